@@ -1,0 +1,63 @@
+#pragma once
+// A G-buffer in memory: structure of arrays, one float per pixel per channel, row-major,
+// row 0 at the top of the data window. See README "G-buffer file".
+#include <array>
+#include <cstddef>
+#include <filesystem>
+#include <vector>
+
+namespace phongcl {
+
+using Plane = std::vector<float>;          // one channel, width*height values
+using Planes3 = std::array<Plane, 3>;      // x,y,z or r,g,b
+
+// Inclusive pixel bounds, as OpenEXR states data and display windows.
+struct PixelWindow {
+  int x_min = 0, y_min = 0, x_max = -1, y_max = -1;
+  int width() const { return x_max - x_min + 1; }
+  int height() const { return y_max - y_min + 1; }
+};
+
+struct GBuffer {
+  int width = 0, height = 0;           // of the data window
+  PixelWindow data_window, display_window;
+  Planes3 position;                    // P.X P.Y P.Z
+  Planes3 normal;                      // N.X N.Y N.Z, any length
+  Plane material;                      // index into the scene's materials; negative = background
+  // Optional per-pixel material channels; an empty group means "use the material table".
+  Planes3 ka, kd, ks;
+  Plane shininess;
+  std::filesystem::path source;        // for messages
+
+  std::size_t pixel_count() const { return static_cast<std::size_t>(width) * height; }
+  bool has_per_pixel_ka() const { return !ka[0].empty(); }
+  bool has_per_pixel_kd() const { return !kd[0].empty(); }
+  bool has_per_pixel_ks() const { return !ks[0].empty(); }
+  bool has_per_pixel_shininess() const { return !shininess.empty(); }
+};
+
+// Why a pixel is or is not shaded. The kernel's packing and the reference both use this, so the
+// two agree on which pixels are background by construction.
+enum class PixelClass {
+  shaded,
+  background,            // material < 0
+  nonfinite_position,    // NaN/Inf in P
+  nonfinite_normal,      // NaN/Inf in N
+  nonfinite_material,    // NaN/Inf in material or any per-pixel material channel
+};
+PixelClass classify_pixel(const GBuffer& gbuffer, std::size_t index);
+
+// Throws InputError (naming gbuffer.source and the first offending pixel) if a shaded pixel's
+// material index is not an integer in [0, material_count) or a per-pixel shininess is negative.
+void check_materials(const GBuffer& gbuffer, std::size_t material_count);
+
+// Reads a phongcl-layout EXR (scanline or tiled, half or float). Throws InputError on a missing
+// required channel, a truncated or corrupt file, or an unreadable one.
+GBuffer read_gbuffer(const std::filesystem::path& file);
+
+enum class ExrPixelType { half, float32 };
+// Writes `gbuffer` in the phongcl layout, atomically (temp file, then rename).
+void write_gbuffer(const GBuffer& gbuffer, const std::filesystem::path& file,
+                   ExrPixelType type = ExrPixelType::float32);
+
+}  // namespace phongcl

@@ -1,0 +1,35 @@
+#pragma once
+// The scalar reference: the Phong formula in double precision, written from the specification
+// (README "The shading, exactly"), single-threaded and plain. It checks the OpenCL kernel, so it
+// shares no code with kernels/ or host/shading/.
+#include <glm/glm.hpp>
+
+#include "gbuffer/gbuffer.h"
+#include "image/image.h"
+#include "scene/scene.h"
+
+namespace phongcl {
+
+// One shaded surface point, material already resolved (table or per-pixel).
+struct SurfacePoint {
+  glm::dvec3 position{0.0};
+  glm::dvec3 normal{0.0};  // any length; normalised here
+  glm::dvec3 ka{0.0}, kd{0.0}, ks{0.0};
+  double shininess = 1.0;
+};
+
+// The three terms of L_o separately; total() is their sum.
+struct ShadingTerms {
+  glm::dvec3 ambient{0.0}, diffuse{0.0}, specular{0.0};
+  glm::dvec3 total() const { return ambient + diffuse + specular; }
+};
+
+ShadingTerms reference_shade_point(const Scene& scene, const SurfacePoint& point);
+
+// The material of a shaded pixel: per-pixel channels where present, else the scene's table.
+SurfacePoint reference_surface(const Scene& scene, const GBuffer& gbuffer, std::size_t index);
+
+// The whole image: shaded pixels get total() (alpha 1), the rest the scene background (alpha 0).
+Image reference_image(const Scene& scene, const GBuffer& gbuffer);
+
+}  // namespace phongcl

@@ -1,0 +1,68 @@
+#pragma once
+// The scene file (JSON) as plain, validated structs. See README "Scene file".
+#include <array>
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace phongcl {
+
+struct Camera {
+  glm::dvec3 eye{0.0, 0.0, 5.0};
+  glm::dvec3 look_at{0.0, 0.0, 0.0};
+  glm::dvec3 up{0.0, 1.0, 0.0};
+  double fov_y_deg = 45.0;
+  int width = 640;
+  int height = 480;
+};
+
+enum class LightType { point, directional };
+
+struct Light {
+  LightType type = LightType::point;
+  glm::dvec3 position{0.0};   // point lights
+  glm::dvec3 direction{0.0};  // directional lights: the direction the light travels (l = -normalize)
+  glm::dvec3 color{1.0};
+};
+
+struct Material {
+  std::string name;
+  glm::dvec3 ka{0.0}, kd{0.0}, ks{0.0};
+  double shininess = 1.0;  // >= 0, validated
+};
+
+// Geometry for the G-buffer generator. A tagged struct rather than a variant: transforms nest.
+struct Object {
+  enum class Kind { sphere, plane, triangle, transform };
+  Kind kind = Kind::sphere;
+  int material = 0;                          // sphere, plane, triangle
+  glm::dvec3 center{0.0};                    // sphere
+  double radius = 1.0;                       // sphere
+  glm::dvec3 normal{0.0, 1.0, 0.0};          // plane: points x with dot(normalize(normal), x) == offset
+  double offset = 0.0;                       // plane
+  std::array<glm::dvec3, 3> vertices{};      // triangle, counter-clockwise seen from the front
+  glm::dmat4 matrix{1.0};                    // transform: object-to-parent
+  std::vector<Object> children;              // transform
+};
+
+struct Scene {
+  Camera camera;
+  glm::dvec3 background{0.0};
+  glm::dvec3 ambient{0.0};
+  std::vector<Light> lights;
+  std::vector<Material> materials;
+  std::vector<Object> objects;
+  std::filesystem::path gbuffer;  // optional "gbuffer" entry, resolved relative to the scene file; empty if absent
+  std::filesystem::path source;   // the scene file, for messages
+};
+
+// Reads and validates a scene file. Throws InputError naming the file and the problem (syntax,
+// unknown key, wrong type, unknown light type, negative shininess, material index out of range...).
+Scene load_scene(const std::filesystem::path& file);
+// The same from text; `source` is used in messages and to resolve the relative "gbuffer" path.
+Scene parse_scene(std::string_view json_text, const std::filesystem::path& source);
+
+}  // namespace phongcl
