@@ -1,0 +1,26 @@
+#include "reference/reference.h"
+
+namespace phongcl {
+
+Image reference_image(const Scene& scene, const GBuffer& gbuffer) {
+  // Built from the G-buffer's size and windows directly (what image_like does), so the reference
+  // needs nothing from the image room but the struct.
+  Image image(gbuffer.width, gbuffer.height);
+  image.data_window = gbuffer.data_window;
+  image.display_window = gbuffer.display_window;
+  for (std::size_t i = 0; i < gbuffer.pixel_count(); ++i) {
+    float* out = image.pixel(i);
+    if (classify_pixel(gbuffer, i) == PixelClass::shaded) {
+      const glm::dvec3 color = reference_shade_point(scene, reference_surface(scene, gbuffer, i)).total();
+      // IEEE round-to-nearest: +Inf exactly when the double colour overflows float, never earlier.
+      for (int c = 0; c < 3; ++c) out[c] = static_cast<float>(color[c]);
+      out[3] = 1.0f;
+    } else {
+      for (int c = 0; c < 3; ++c) out[c] = static_cast<float>(scene.background[c]);
+      out[3] = 0.0f;
+    }
+  }
+  return image;
+}
+
+}  // namespace phongcl
