@@ -1,0 +1,30 @@
+#pragma once
+// The scene file's pinhole camera: rays from the eye through pixel centres.
+#include <glm/glm.hpp>
+
+#include "scene/scene.h"
+
+namespace phongcl {
+
+// origin + t * direction. World rays have unit directions; carried into a transform's object space
+// the direction is left unnormalised, so t means the same distance in every space.
+struct Ray {
+  glm::dvec3 origin;
+  glm::dvec3 direction;
+};
+
+class PerspectiveCamera {
+ public:
+  explicit PerspectiveCamera(const Camera& camera);
+
+  // Through the centre of pixel (x, y); y = 0 is the top row, x = 0 the left column.
+  Ray ray_through_pixel(int x, int y) const;
+
+ private:
+  glm::dvec3 eye_;
+  glm::dvec3 forward_, right_, up_;  // orthonormal; right_ is screen +x, up_ is screen up
+  double half_width_, half_height_;  // of the image plane at distance 1
+  int width_, height_;
+};
+
+}  // namespace phongcl

@@ -1,0 +1,111 @@
+#include "scene/json_reader.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include "common/error.h"
+
+namespace phongcl {
+namespace {
+
+std::string child_path(const std::string& parent, std::string_view key) {
+  return parent.empty() ? std::string(key) : parent + "." + std::string(key);
+}
+
+}  // namespace
+
+std::string format_number(double value) {
+  std::ostringstream text;
+  text << value;
+  return text.str();
+}
+
+JsonValue::JsonValue(const nlohmann::json& json, std::string path, const std::filesystem::path& file)
+    : json_(&json), path_(std::move(path)), file_(&file) {}
+
+std::string JsonValue::place() const { return path_.empty() ? "the top level" : path_; }
+
+void JsonValue::fail(const std::string& problem) const {
+  throw InputError(*file_, path_.empty() ? problem : path_ + " " + problem);
+}
+
+double JsonValue::number() const {
+  if (!json_->is_number()) fail("must be a number");
+  const double value = json_->get<double>();
+  // JSON has no NaN or infinity, but a huge literal still would not survive the float G-buffer.
+  if (!std::isfinite(value) || std::abs(value) > std::numeric_limits<float>::max())
+    fail("must be a finite single-precision number (got " + format_number(value) + ")");
+  return value;
+}
+
+int JsonValue::integer() const {
+  if (!json_->is_number()) fail("must be an integer");
+  const double value = json_->get<double>();
+  if (value != std::floor(value) || value < std::numeric_limits<int>::min() ||
+      value > std::numeric_limits<int>::max())
+    fail("must be an integer (got " + format_number(value) + ")");
+  return static_cast<int>(value);
+}
+
+std::string JsonValue::string() const {
+  if (!json_->is_string()) fail("must be a string");
+  return json_->get<std::string>();
+}
+
+std::vector<double> JsonValue::numbers(std::size_t count) const {
+  if (!json_->is_array() || json_->size() != count)
+    fail("must be an array of " + std::to_string(count) + " numbers");
+  std::vector<double> values;
+  values.reserve(count);
+  for (const JsonValue& element : elements()) values.push_back(element.number());
+  return values;
+}
+
+glm::dvec3 JsonValue::vec3() const {
+  const std::vector<double> xyz = numbers(3);
+  return {xyz[0], xyz[1], xyz[2]};
+}
+
+std::vector<JsonValue> JsonValue::elements() const {
+  if (!json_->is_array()) fail("must be an array");
+  std::vector<JsonValue> result;
+  result.reserve(json_->size());
+  for (std::size_t i = 0; i < json_->size(); ++i)
+    result.emplace_back((*json_)[i], path_ + "[" + std::to_string(i) + "]", *file_);
+  return result;
+}
+
+JsonObject JsonValue::object() const { return JsonObject(*this); }
+
+JsonObject::JsonObject(const JsonValue& value) : value_(value) {
+  if (!value.json().is_object()) value.fail("must be an object");
+}
+
+void JsonObject::expect_keys(std::initializer_list<std::string_view> allowed) const {
+  for (const auto& item : value_.json().items()) {
+    if (std::find(allowed.begin(), allowed.end(), item.key()) != allowed.end()) continue;
+    std::string expected;
+    for (std::string_view name : allowed) expected += (expected.empty() ? "" : ", ") + std::string(name);
+    fail("unknown key '" + item.key() + "' in " + value_.place() + " (expected: " + expected + ")");
+  }
+}
+
+bool JsonObject::has(std::string_view key) const { return value_.json().contains(key); }
+
+JsonValue JsonObject::at(std::string_view key) const {
+  std::optional<JsonValue> found = find(key);
+  if (!found) fail("missing key '" + std::string(key) + "' in " + value_.place());
+  return *found;
+}
+
+std::optional<JsonValue> JsonObject::find(std::string_view key) const {
+  const auto found = value_.json().find(key);
+  if (found == value_.json().end()) return std::nullopt;
+  return JsonValue(*found, child_path(value_.path(), key), value_.file());
+}
+
+void JsonObject::fail(const std::string& problem) const { throw InputError(value_.file(), problem); }
+
+}  // namespace phongcl

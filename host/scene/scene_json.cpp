@@ -1,0 +1,142 @@
+// parse_scene and load_scene: the scene file's sections, each read strictly (see json_reader.h).
+#include <fstream>
+#include <sstream>
+
+#include "common/error.h"
+#include "scene/json_reader.h"
+#include "scene/object_json.h"
+#include "scene/scene.h"
+
+namespace phongcl {
+namespace {
+
+// Colours and reflection coefficients: HDR values above 1 are fine, negative ones are not.
+glm::dvec3 read_non_negative_vec3(const JsonValue& value) {
+  const glm::dvec3 vector = value.vec3();
+  const std::vector<JsonValue> components = value.elements();
+  for (int i = 0; i < 3; ++i)
+    if (vector[i] < 0.0) components[i].fail("must be >= 0 (got " + format_number(vector[i]) + ")");
+  return vector;
+}
+
+int read_image_size(const JsonValue& value) {
+  const int size = value.integer();
+  if (size < 1) value.fail("must be >= 1 (got " + std::to_string(size) + ")");
+  return size;
+}
+
+Camera read_camera(const JsonObject& object) {
+  object.expect_keys({"eye", "look_at", "up", "fov_y_deg", "width", "height"});
+  Camera camera;
+  camera.eye = object.at("eye").vec3();
+  if (auto value = object.find("look_at")) camera.look_at = value->vec3();
+  if (auto value = object.find("up")) camera.up = value->vec3();
+  if (auto value = object.find("fov_y_deg")) {
+    camera.fov_y_deg = value->number();
+    if (!(camera.fov_y_deg > 0.0 && camera.fov_y_deg < 180.0))
+      value->fail("must be in (0, 180) degrees (got " + format_number(camera.fov_y_deg) + ")");
+  }
+  if (auto value = object.find("width")) camera.width = read_image_size(*value);
+  if (auto value = object.find("height")) camera.height = read_image_size(*value);
+
+  // The generator builds its basis from these; a degenerate one would give NaN rays.
+  const glm::dvec3 forward = camera.look_at - camera.eye;
+  if (forward == glm::dvec3(0.0)) object.value().fail("look_at must differ from eye");
+  const double sine = glm::length(glm::cross(forward, camera.up)) /
+                      (glm::length(forward) * glm::length(camera.up));
+  if (!(sine > 1e-9)) object.value().fail("up must not be zero or parallel to the view direction");
+  return camera;
+}
+
+Light read_light(const JsonValue& value) {
+  const JsonObject object = value.object();
+  object.expect_keys({"type", "position", "direction", "color"});
+  const std::string type = object.at("type").string();
+  Light light;
+  if (type == "point") {
+    light.type = LightType::point;
+    if (object.has("direction")) object.at("direction").fail("is not used by a point light (use 'position')");
+    light.position = object.at("position").vec3();
+  } else if (type == "directional") {
+    light.type = LightType::directional;
+    if (object.has("position")) object.at("position").fail("is not used by a directional light (use 'direction')");
+    const JsonValue direction = object.at("direction");
+    light.direction = direction.vec3();
+    if (light.direction == glm::dvec3(0.0)) direction.fail("must not be zero");
+  } else {
+    throw InputError(value.file(), "unknown light type '" + type + "' in " + value.place() +
+                                       " (expected point or directional)");
+  }
+  if (auto color = object.find("color")) light.color = read_non_negative_vec3(*color);
+  return light;
+}
+
+Material read_material(const JsonValue& value) {
+  const JsonObject object = value.object();
+  object.expect_keys({"name", "ka", "kd", "ks", "shininess"});
+  Material material;
+  if (auto name = object.find("name")) material.name = name->string();
+  if (auto ka = object.find("ka")) material.ka = read_non_negative_vec3(*ka);
+  if (auto kd = object.find("kd")) material.kd = read_non_negative_vec3(*kd);
+  if (auto ks = object.find("ks")) material.ks = read_non_negative_vec3(*ks);
+  if (auto shininess = object.find("shininess")) {
+    material.shininess = shininess->number();
+    if (material.shininess < 0.0)
+      shininess->fail("must be >= 0 (got " + format_number(material.shininess) + ")");
+  }
+  return material;
+}
+
+std::filesystem::path read_gbuffer_path(const JsonValue& value, const std::filesystem::path& source) {
+  const std::filesystem::path path = value.string();
+  if (path.empty()) value.fail("must not be empty");
+  return path.is_absolute() ? path : source.parent_path() / path;
+}
+
+// nlohmann's messages start with "[json.exception.parse_error.101] "; the rest (with line and
+// column for syntax errors) is what the user needs.
+std::string json_problem(const nlohmann::json::exception& error) {
+  const std::string what = error.what();
+  const std::size_t end_of_tag = what.find("] ");
+  return "invalid JSON: " + (end_of_tag == std::string::npos ? what : what.substr(end_of_tag + 2));
+}
+
+}  // namespace
+
+Scene parse_scene(std::string_view json_text, const std::filesystem::path& source) {
+  nlohmann::json document;
+  try {
+    document = nlohmann::json::parse(json_text);
+  } catch (const nlohmann::json::exception& error) {
+    throw InputError(source, json_problem(error));
+  }
+
+  const JsonObject top = JsonValue(document, "", source).object();
+  top.expect_keys({"camera", "background", "ambient", "lights", "materials", "objects", "gbuffer"});
+  Scene scene;
+  scene.source = source;
+  scene.camera = read_camera(top.at("camera").object());
+  if (auto value = top.find("background")) scene.background = read_non_negative_vec3(*value);
+  if (auto value = top.find("ambient")) scene.ambient = read_non_negative_vec3(*value);
+  if (auto value = top.find("lights"))
+    for (const JsonValue& light : value->elements()) scene.lights.push_back(read_light(light));
+  if (auto value = top.find("materials"))
+    for (const JsonValue& material : value->elements()) scene.materials.push_back(read_material(material));
+  // After materials: objects refer to them by index.
+  if (auto value = top.find("objects")) scene.objects = read_objects(*value, scene.materials.size());
+  if (auto value = top.find("gbuffer")) scene.gbuffer = read_gbuffer_path(*value, source);
+  return scene;
+}
+
+Scene load_scene(const std::filesystem::path& file) {
+  std::error_code ignored;
+  if (std::filesystem::is_directory(file, ignored)) throw InputError(file, "cannot open (a directory)");
+  std::ifstream stream(file, std::ios::binary);
+  if (!stream) throw InputError(file, "cannot open");
+  std::ostringstream text;
+  text << stream.rdbuf();
+  if (stream.bad()) throw InputError(file, "cannot read");
+  return parse_scene(text.str(), file);
+}
+
+}  // namespace phongcl
