@@ -1,0 +1,14 @@
+// Making output images that line up with the G-buffer they shade.
+#include "gbuffer/exr_channels.h"
+#include "image/image.h"
+
+namespace phongcl {
+
+Image image_like(const GBuffer& gbuffer) {
+  Image image(gbuffer.width, gbuffer.height);
+  image.data_window = exr::data_window_for(gbuffer.data_window, gbuffer.width, gbuffer.height);
+  image.display_window = exr::display_window_for(gbuffer.display_window, image.data_window);
+  return image;
+}
+
+}  // namespace phongcl
