@@ -28,7 +28,7 @@ JsonValue::JsonValue(const nlohmann::json& json, std::string path, const std::fi
 std::string JsonValue::place() const { return path_.empty() ? "the top level" : path_; }
 
 void JsonValue::fail(const std::string& problem) const {
-  throw InputError(*file_, path_.empty() ? problem : path_ + " " + problem);
+  throw InputError(*file_, place() + " " + problem);
 }
 
 double JsonValue::number() const {

@@ -30,7 +30,7 @@ class JsonValue {
   const std::filesystem::path& file() const { return *file_; }
   // "lights[1]", or "the top level" for the document itself.
   std::string place() const;
-  // Throws InputError(file, "<path> <problem>").
+  // Throws InputError(file, "<place> <problem>").
   [[noreturn]] void fail(const std::string& problem) const;
 
   // Numbers must be finite and within float range: the G-buffer and the kernel are single precision.

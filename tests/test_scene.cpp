@@ -1,0 +1,296 @@
+// Scene files: the bundled scenes, defaults, path resolution, every validation error, and the
+// conversion of transforms to GLM's column-major matrices.
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "common/error.h"
+#include "scene/scene.h"
+
+namespace phongcl {
+namespace {
+
+const std::filesystem::path kSource = "some/dir/scene.json";
+
+// A valid scene with one material, plus `extra` top-level entries; `camera` replaces the camera.
+std::string scene_json(const std::string& extra, const std::string& camera = R"({"eye": [0, 0, 5]})") {
+  std::string text = R"({"camera": )" + camera + R"(, "materials": [{"kd": [1, 1, 1]}])";
+  return text + (extra.empty() ? "" : ", " + extra) + "}";
+}
+
+// The InputError message for `json`, or a test failure if it parses.
+std::string error_of(const std::string& json) {
+  try {
+    parse_scene(json, kSource);
+  } catch (const InputError& error) {
+    return error.what();
+  }
+  ADD_FAILURE() << "parsed without error: " << json;
+  return "";
+}
+
+TEST(Scene, BundledScenesParse) {
+  for (const char* name : {"default", "shininess", "large", "directional_diffuse"}) {
+    SCOPED_TRACE(name);
+    const std::filesystem::path file = std::filesystem::path(PHONGCL_SOURCE_DIR) / "scenes" / name / "scene.json";
+    const Scene scene = load_scene(file);
+    EXPECT_EQ(scene.source, file);
+    EXPECT_EQ(scene.gbuffer, file.parent_path() / "gbuffer.exr");
+    EXPECT_FALSE(scene.lights.empty());
+    EXPECT_FALSE(scene.materials.empty());
+    EXPECT_FALSE(scene.objects.empty());
+  }
+}
+
+TEST(Scene, BundledScenesHaveTheirPurpose) {
+  const std::filesystem::path scenes = std::filesystem::path(PHONGCL_SOURCE_DIR) / "scenes";
+
+  const Scene shininess = load_scene(scenes / "shininess" / "scene.json");
+  ASSERT_EQ(shininess.materials.size(), 6u);
+  const double exponents[] = {1, 4, 16, 64, 256, 1024};
+  for (std::size_t i = 0; i < 6; ++i) EXPECT_EQ(shininess.materials[i].shininess, exponents[i]);
+
+  const Scene large = load_scene(scenes / "large" / "scene.json");
+  EXPECT_EQ(large.camera.width, 1920);
+  EXPECT_EQ(large.camera.height, 1080);
+  EXPECT_GE(large.objects.size(), 100u);
+  int point_lights = 0;
+  for (const Light& light : large.lights) point_lights += light.type == LightType::point;
+  EXPECT_EQ(point_lights, 3);
+  EXPECT_EQ(large.lights.size(), 5u);
+
+  // The scene that shows the kernel with the specular path compiled out.
+  const Scene diffuse = load_scene(scenes / "directional_diffuse" / "scene.json");
+  for (const Light& light : diffuse.lights) EXPECT_EQ(light.type, LightType::directional);
+  for (const Material& material : diffuse.materials) EXPECT_EQ(material.ks, glm::dvec3(0.0)) << material.name;
+}
+
+TEST(Scene, DefaultsFillEverythingButTheEye) {
+  const Scene scene = parse_scene(R"({"camera": {"eye": [1, 2, 3]}})", kSource);
+  const Camera defaults;
+  EXPECT_EQ(scene.camera.eye, glm::dvec3(1, 2, 3));
+  EXPECT_EQ(scene.camera.look_at, defaults.look_at);
+  EXPECT_EQ(scene.camera.up, defaults.up);
+  EXPECT_EQ(scene.camera.fov_y_deg, defaults.fov_y_deg);
+  EXPECT_EQ(scene.camera.width, defaults.width);
+  EXPECT_EQ(scene.camera.height, defaults.height);
+  EXPECT_EQ(scene.background, glm::dvec3(0.0));
+  EXPECT_EQ(scene.ambient, glm::dvec3(0.0));
+  EXPECT_TRUE(scene.lights.empty());
+  EXPECT_TRUE(scene.materials.empty());
+  EXPECT_TRUE(scene.objects.empty());
+  EXPECT_TRUE(scene.gbuffer.empty());
+  EXPECT_EQ(scene.source, kSource);
+}
+
+TEST(Scene, EntryDefaults) {
+  const Scene scene = parse_scene(scene_json(R"(
+      "lights": [{"type": "point", "position": [1, 2, 3]}],
+      "objects": [{"type": "sphere"}, {"type": "plane"}, {"type": "transform"}])"),
+                                  kSource);
+  EXPECT_EQ(scene.lights.at(0).color, glm::dvec3(1.0));
+  EXPECT_EQ(scene.materials.at(0).name, "");
+  EXPECT_EQ(scene.materials.at(0).ka, glm::dvec3(0.0));
+  EXPECT_EQ(scene.materials.at(0).shininess, Material{}.shininess);
+  EXPECT_EQ(scene.objects.at(0).radius, 1.0);
+  EXPECT_EQ(scene.objects.at(0).material, 0);
+  EXPECT_EQ(scene.objects.at(1).normal, glm::dvec3(0, 1, 0));
+  EXPECT_EQ(scene.objects.at(2).matrix, glm::dmat4(1.0));
+}
+
+TEST(Scene, ReadsEveryField) {
+  const Scene scene = parse_scene(R"({
+    "camera": {"eye": [0, 1, 6], "look_at": [0, 0.5, 0], "up": [0, 0, 1], "fov_y_deg": 60, "width": 32, "height": 16},
+    "background": [0.1, 0.2, 0.3], "ambient": [0.4, 0.5, 0.6],
+    "lights": [{"type": "directional", "direction": [-1, -1, -1], "color": [2, 3, 4]}],
+    "materials": [{"name": "m", "ka": [0.1, 0, 0], "kd": [0, 0.2, 0], "ks": [0, 0, 0.3], "shininess": 0}],
+    "objects": [{"type": "triangle", "vertices": [[0, 0, 0], [1, 0, 0], [0, 1, 0]]},
+                {"type": "plane", "normal": [0, 0, 2], "offset": -1}]})",
+                                  kSource);
+  EXPECT_EQ(scene.camera.look_at, glm::dvec3(0, 0.5, 0));
+  EXPECT_EQ(scene.camera.up, glm::dvec3(0, 0, 1));
+  EXPECT_EQ(scene.camera.fov_y_deg, 60.0);
+  EXPECT_EQ(scene.camera.width, 32);
+  EXPECT_EQ(scene.camera.height, 16);
+  EXPECT_EQ(scene.background, glm::dvec3(0.1, 0.2, 0.3));
+  EXPECT_EQ(scene.ambient, glm::dvec3(0.4, 0.5, 0.6));
+  EXPECT_EQ(scene.lights.at(0).type, LightType::directional);
+  EXPECT_EQ(scene.lights.at(0).direction, glm::dvec3(-1, -1, -1));
+  EXPECT_EQ(scene.lights.at(0).color, glm::dvec3(2, 3, 4));
+  EXPECT_EQ(scene.materials.at(0).name, "m");
+  EXPECT_EQ(scene.materials.at(0).ks, glm::dvec3(0, 0, 0.3));
+  EXPECT_EQ(scene.materials.at(0).shininess, 0.0);  // zero is allowed: a flat specular term
+  EXPECT_EQ(scene.objects.at(0).kind, Object::Kind::triangle);
+  EXPECT_EQ(scene.objects.at(0).vertices[1], glm::dvec3(1, 0, 0));
+  EXPECT_EQ(scene.objects.at(1).offset, -1.0);
+}
+
+TEST(Scene, HdrValuesUpToFloatRangeParse) {
+  const Scene scene = parse_scene(scene_json(R"(
+      "ambient": [3e38, 0, 0],
+      "lights": [{"type": "point", "position": [0, 0, 0], "color": [3e38, 1e6, 0]}])"),
+                                  kSource);
+  EXPECT_EQ(scene.ambient.x, 3e38);
+  EXPECT_EQ(scene.lights.at(0).color.x, 3e38);
+}
+
+TEST(Scene, GbufferPathIsRelativeToTheSceneFile) {
+  EXPECT_EQ(parse_scene(scene_json(R"("gbuffer": "g.exr")"), "some/dir/scene.json").gbuffer,
+            std::filesystem::path("some/dir/g.exr"));
+  EXPECT_EQ(parse_scene(scene_json(R"("gbuffer": "../g/b.exr")"), "/abs/scene.json").gbuffer,
+            std::filesystem::path("/abs/../g/b.exr"));
+  EXPECT_EQ(parse_scene(scene_json(R"("gbuffer": "g.exr")"), "scene.json").gbuffer, std::filesystem::path("g.exr"));
+  EXPECT_EQ(parse_scene(scene_json(R"("gbuffer": "/elsewhere/g.exr")"), kSource).gbuffer,
+            std::filesystem::path("/elsewhere/g.exr"));
+}
+
+struct ErrorCase {
+  const char* what;
+  std::string json;
+  std::vector<std::string> expected;  // substrings of the message
+};
+
+TEST(Scene, EachProblemIsAOneLineInputErrorNamingFileAndPlace) {
+  const std::string point = R"({"type": "point", "position": [0, 0, 0]})";
+  const std::vector<ErrorCase> cases = {
+      {"unknown key in a light",
+       scene_json(R"("lights": [)" + point + R"(, {"type": "point", "position": [1, 1, 1], "colour": [1, 1, 1]}])"),
+       {"unknown key 'colour' in lights[1] (expected: type, position, direction, color)"}},
+      {"unknown key at the top level", scene_json(R"("lihgts": [])"), {"unknown key 'lihgts' in the top level"}},
+      {"unknown key in the camera", scene_json("", R"({"eye": [0, 0, 5], "fov": 30})"),
+       {"unknown key 'fov' in camera (expected: eye, look_at"}},
+      {"unknown key in a material", scene_json("").replace(scene_json("").find("\"kd\""), 4, "\"Kd\""),
+       {"unknown key 'Kd' in materials[0]"}},
+      {"unknown key in an object", scene_json(R"("objects": [{"type": "sphere", "radius": 1, "offset": 2}])"),
+       {"unknown key 'offset' in objects[0] (expected: type, center, radius, material)"}},
+      {"unknown key in a nested object",
+       scene_json(R"("objects": [{"type": "transform", "children": [{"type": "plane", "colour": 1}]}])"),
+       {"unknown key 'colour' in objects[0].children[0]"}},
+      {"missing camera", R"({"materials": []})", {"missing key 'camera' in the top level"}},
+      {"missing eye", scene_json("", R"({"look_at": [0, 0, 0]})"), {"missing key 'eye' in camera"}},
+      {"wrong type", scene_json("", R"({"eye": "far away"})"), {"camera.eye must be an array of 3 numbers"}},
+      {"wrong length", scene_json("", R"({"eye": [0, 0]})"), {"camera.eye must be an array of 3 numbers"}},
+      {"string where a number goes", scene_json(R"("ambient": [0, "0", 0])"), {"ambient[1] must be a number"}},
+      {"fractional size", scene_json("", R"({"eye": [0, 0, 5], "width": 1.5})"), {"camera.width must be an integer"}},
+      {"name not a string", scene_json("").replace(scene_json("").find("{\"kd\""), 1, "{\"name\": 7, "),
+       {"materials[0].name must be a string"}},
+      {"lights not an array", scene_json(R"("lights": {})"), {"lights must be an array"}},
+      {"light not an object", scene_json(R"("lights": [3])"), {"lights[0] must be an object"}},
+      {"number beyond float range", scene_json(R"("ambient": [1e39, 0, 0])"),
+       {"ambient[0] must be a finite single-precision number"}},
+      {"number beyond double range", scene_json(R"("ambient": [1e999, 0, 0])"), {"invalid JSON", "1e999"}},
+      {"unknown light type", scene_json(R"("lights": [{"type": "spot", "position": [0, 0, 0]}])"),
+       {"unknown light type 'spot' in lights[0] (expected point or directional)"}},
+      {"unknown object type", scene_json(R"("objects": [{"type": "cone"}])"), {"unknown object type 'cone' in objects[0]"}},
+      {"object without type", scene_json(R"("objects": [{"radius": 1}])"), {"missing key 'type' in objects[0]"}},
+      {"negative shininess", R"({"camera": {"eye": [0, 0, 5]}, "materials": [{"shininess": -1}]})",
+       {"materials[0].shininess must be >= 0 (got -1)"}},
+      {"negative ka", R"({"camera": {"eye": [0, 0, 5]}, "materials": [{"ka": [0, -0.5, 0]}]})",
+       {"materials[0].ka[1] must be >= 0 (got -0.5)"}},
+      {"negative kd", R"({"camera": {"eye": [0, 0, 5]}, "materials": [{"kd": [-1, 0, 0]}]})", {"materials[0].kd[0] must be >= 0"}},
+      {"negative ks", R"({"camera": {"eye": [0, 0, 5]}, "materials": [{"ks": [0, 0, -2]}]})", {"materials[0].ks[2] must be >= 0"}},
+      {"negative light color", scene_json(R"("lights": [{"type": "point", "position": [0, 0, 0], "color": [1, -1, 1]}])"),
+       {"lights[0].color[1] must be >= 0"}},
+      {"negative ambient", scene_json(R"("ambient": [0, 0, -0.1])"), {"ambient[2] must be >= 0"}},
+      {"zero radius", scene_json(R"("objects": [{"type": "sphere", "radius": 0}])"), {"objects[0].radius must be > 0 (got 0)"}},
+      {"negative radius", scene_json(R"("objects": [{"type": "sphere", "radius": -2}])"), {"objects[0].radius must be > 0"}},
+      {"zero width", scene_json("", R"({"eye": [0, 0, 5], "width": 0})"), {"camera.width must be >= 1 (got 0)"}},
+      {"negative height", scene_json("", R"({"eye": [0, 0, 5], "height": -4})"), {"camera.height must be >= 1"}},
+      {"zero fov", scene_json("", R"({"eye": [0, 0, 5], "fov_y_deg": 0})"), {"camera.fov_y_deg must be in (0, 180)"}},
+      {"straight fov", scene_json("", R"({"eye": [0, 0, 5], "fov_y_deg": 180})"), {"camera.fov_y_deg must be in (0, 180)"}},
+      {"eye at look_at", scene_json("", R"({"eye": [0, 0, 0]})"), {"camera look_at must differ from eye"}},
+      {"up along the view", scene_json("", R"({"eye": [0, 5, 0]})"), {"camera up must not be zero or parallel"}},
+      {"point light without position", scene_json(R"("lights": [{"type": "point"}])"), {"missing key 'position' in lights[0]"}},
+      {"point light with a direction",
+       scene_json(R"("lights": [{"type": "point", "position": [0, 0, 0], "direction": [0, -1, 0]}])"),
+       {"lights[0].direction is not used by a point light"}},
+      {"directional light without direction", scene_json(R"("lights": [{"type": "directional"}])"),
+       {"missing key 'direction' in lights[0]"}},
+      {"directional light with zero direction", scene_json(R"("lights": [{"type": "directional", "direction": [0, 0, 0]}])"),
+       {"lights[0].direction must not be zero"}},
+      {"material index out of range", scene_json(R"("objects": [{"type": "sphere", "material": 1}])"),
+       {"objects[0] material index 1 is out of range (the scene has 1 materials)"}},
+      {"negative material index", scene_json(R"("objects": [{"type": "plane", "material": -1}])"),
+       {"objects[0] material index -1 is out of range"}},
+      {"default material with no materials", R"({"camera": {"eye": [0, 0, 5]}, "objects": [{"type": "sphere"}]})",
+       {"objects[0] material index 0 is out of range (the scene has 0 materials)"}},
+      {"nested material index out of range",
+       scene_json(R"("objects": [{"type": "transform", "children": [{"type": "sphere", "material": 4}]}])"),
+       {"objects[0].children[0] material index 4"}},
+      {"singular matrix",
+       scene_json(R"("objects": [{"type": "transform", "matrix": [1, 0, 0, 0,  0, 1, 0, 0,  1, 1, 0, 0,  0, 0, 0, 1]}])"),
+       {"objects[0] transform is singular"}},
+      {"zero scale", scene_json(R"("objects": [{"type": "transform", "scale": [1, 0, 1]}])"), {"objects[0] transform is singular"}},
+      {"projective matrix",
+       scene_json(R"("objects": [{"type": "transform", "matrix": [1, 0, 0, 0,  0, 1, 0, 0,  0, 0, 1, 0,  0, 0, 1, 0]}])"),
+       {"objects[0].matrix must be affine"}},
+      {"matrix of 15 numbers",
+       scene_json(R"("objects": [{"type": "transform", "matrix": [1, 0, 0, 0,  0, 1, 0, 0,  0, 0, 1, 0,  0, 0, 0]}])"),
+       {"objects[0].matrix must be an array of 16 numbers"}},
+      {"both transform forms",
+       scene_json(R"("objects": [{"type": "transform", "matrix": [1, 0, 0, 0,  0, 1, 0, 0,  0, 0, 1, 0,  0, 0, 0, 1], "translate": [1, 0, 0]}])"),
+       {"objects[0] has both 'matrix' and"}},
+      {"triangle with two vertices", scene_json(R"("objects": [{"type": "triangle", "vertices": [[0, 0, 0], [1, 0, 0]]}])"),
+       {"objects[0].vertices must be an array of 3 points"}},
+      {"collinear triangle", scene_json(R"("objects": [{"type": "triangle", "vertices": [[0, 0, 0], [1, 1, 1], [2, 2, 2]]}])"),
+       {"objects[0].vertices must not be collinear"}},
+      {"zero plane normal", scene_json(R"("objects": [{"type": "plane", "normal": [0, 0, 0]}])"), {"objects[0].normal must not be zero"}},
+      {"empty gbuffer path", scene_json(R"("gbuffer": "")"), {"gbuffer must not be empty"}},
+      {"syntax error", "{\n  \"camera\": {\"eye\": [0, 0, 5]},\n  \"ambient\": [0, 0,, 0]\n}", {"invalid JSON", "line 3, column"}},
+      {"not an object", "[1, 2]", {"the top level must be an object"}},
+      {"empty text", "", {"invalid JSON"}},
+  };
+  for (const ErrorCase& error_case : cases) {
+    SCOPED_TRACE(error_case.what);
+    const std::string message = error_of(error_case.json);
+    EXPECT_EQ(message.rfind(kSource.string() + ": ", 0), 0u) << message;
+    EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+    for (const std::string& expected : error_case.expected)
+      EXPECT_NE(message.find(expected), std::string::npos) << "message: " << message << "\nexpected: " << expected;
+  }
+}
+
+TEST(Scene, MissingFileCannotBeOpened) {
+  const std::filesystem::path missing = std::filesystem::temp_directory_path() / "phongcl-no-such-dir" / "scene.json";
+  try {
+    load_scene(missing);
+    FAIL() << "loaded a missing file";
+  } catch (const InputError& error) {
+    EXPECT_EQ(std::string(error.what()), missing.string() + ": cannot open");
+  }
+}
+
+// Row-major text must land in GLM's column-major storage so that the last column translates.
+TEST(Scene, RowMajorMatrixTranslatesPoints) {
+  const Scene scene = parse_scene(scene_json(R"("objects": [
+      {"type": "transform", "matrix": [1, 0, 0, 5,  0, 1, 0, 6,  0, 0, 1, 7,  0, 0, 0, 1]},
+      {"type": "transform", "matrix": [0, -1, 0, 0,  1, 0, 0, 0,  0, 0, 1, 0,  0, 0, 0, 1]}])"),
+                                  kSource);
+  EXPECT_EQ(scene.objects.at(0).matrix * glm::dvec4(1, 1, 1, 1), glm::dvec4(6, 7, 8, 1));
+  // A quarter turn about +z takes +x to +y (counter-clockwise seen from +z).
+  EXPECT_EQ(scene.objects.at(1).matrix * glm::dvec4(1, 0, 0, 1), glm::dvec4(0, 1, 0, 1));
+}
+
+// T * R * S, rotations about X first: each expected point is worked out by hand.
+TEST(Scene, TransformPartsComposeScaleThenRotateXYZThenTranslate) {
+  const Scene scene = parse_scene(scene_json(R"("objects": [
+      {"type": "transform", "translate": [1, 0, 0], "scale": [2, 1, 1]},
+      {"type": "transform", "rotate_deg": [90, 90, 0]},
+      {"type": "transform", "translate": [0, 0, 10], "rotate_deg": [0, 0, 90], "scale": [3, 3, 3]}])"),
+                                  kSource);
+  const auto moved = [&](std::size_t object, glm::dvec3 point) {
+    return glm::dvec3(scene.objects.at(object).matrix * glm::dvec4(point, 1.0));
+  };
+  const auto expect_near = [](glm::dvec3 actual, glm::dvec3 expected) {
+    EXPECT_LT(glm::length(actual - expected), 1e-12) << "got (" << actual.x << ", " << actual.y << ", " << actual.z << ")";
+  };
+  expect_near(moved(0, {1, 0, 0}), {3, 0, 0});    // scaled to 2, then moved by 1 (not (1+1)*2)
+  expect_near(moved(1, {0, 1, 0}), {1, 0, 0});    // X: +y -> +z, then Y: +z -> +x
+  expect_near(moved(2, {1, 0, 0}), {0, 3, 10});   // scaled, turned to +y, lifted along z
+}
+
+}  // namespace
+}  // namespace phongcl
