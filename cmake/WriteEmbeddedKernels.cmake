@@ -1,4 +1,5 @@
 # Script mode: writes OUTPUT, a C++ source defining phongcl::embedded_kernel_files().
+string(REPLACE "|" ";" FILES "${FILES}")
 set(body "")
 foreach(file ${FILES})
   get_filename_component(name ${file} NAME)

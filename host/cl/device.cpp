@@ -1,0 +1,118 @@
+#include "cl/device.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cstdlib>
+#include <filesystem>
+#include <stdexcept>
+
+namespace phongcl {
+
+namespace {
+
+DeviceInfo read_info(const cl::Platform& platform, const cl::Device& device, int index) {
+  DeviceInfo info;
+  info.index = index;
+  info.platform = platform.getInfo<CL_PLATFORM_NAME>();
+  info.platform_version = platform.getInfo<CL_PLATFORM_VERSION>();
+  info.name = device.getInfo<CL_DEVICE_NAME>();
+  info.vendor = device.getInfo<CL_DEVICE_VENDOR>();
+  info.driver_version = device.getInfo<CL_DRIVER_VERSION>();
+  info.device_version = device.getInfo<CL_DEVICE_VERSION>();
+  info.is_cpu = (device.getInfo<CL_DEVICE_TYPE>() & CL_DEVICE_TYPE_CPU) != 0;
+  info.has_fp64 = device.getInfo<CL_DEVICE_EXTENSIONS>().find("cl_khr_fp64") != std::string::npos;
+  info.compute_units = device.getInfo<CL_DEVICE_MAX_COMPUTE_UNITS>();
+  info.global_memory = device.getInfo<CL_DEVICE_GLOBAL_MEM_SIZE>();
+  info.max_allocation = device.getInfo<CL_DEVICE_MAX_MEM_ALLOC_SIZE>();
+  info.max_constant_buffer = device.getInfo<CL_DEVICE_MAX_CONSTANT_BUFFER_SIZE>();
+  info.max_constant_args = device.getInfo<CL_DEVICE_MAX_CONSTANT_ARGS>();
+  return info;
+}
+
+std::string lower(std::string text) {
+  std::transform(text.begin(), text.end(), text.begin(), [](unsigned char c) { return std::tolower(c); });
+  return text;
+}
+
+bool is_writable_dir_or_creatable(const std::filesystem::path& dir) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  return !ec && ::access(dir.c_str(), W_OK) == 0;
+}
+
+// PoCL keeps compiled kernels in $POCL_CACHE_DIR, else $XDG_CACHE_HOME/pocl, else ~/.cache/pocl, and
+// when it cannot create that directory it reports zero devices without a word. Point it at a
+// private temporary directory instead when the default is not usable (HOME unset or read-only).
+void ensure_pocl_cache_dir() {
+  if (std::getenv("POCL_CACHE_DIR")) return;
+  const char* xdg = std::getenv("XDG_CACHE_HOME");
+  const char* home = std::getenv("HOME");
+  std::filesystem::path dir;
+  if (xdg && *xdg) dir = std::filesystem::path(xdg) / "pocl";
+  else if (home && *home) dir = std::filesystem::path(home) / ".cache" / "pocl";
+  if (!dir.empty() && is_writable_dir_or_creatable(dir)) return;
+  const auto fallback = std::filesystem::temp_directory_path() / ("phongcl-pocl-cache-" + std::to_string(::getuid()));
+  if (is_writable_dir_or_creatable(fallback)) ::setenv("POCL_CACHE_DIR", fallback.c_str(), 0);
+}
+
+}  // namespace
+
+std::vector<Device> list_devices() {
+  ensure_pocl_cache_dir();
+  std::vector<cl::Platform> platforms;
+  try {
+    cl::Platform::get(&platforms);
+  } catch (const cl::Error& error) {
+    if (error.err() == -1001) return {};  // CL_PLATFORM_NOT_FOUND_KHR: no ICD installed
+    throw;
+  }
+  std::vector<Device> devices;
+  for (const auto& platform : platforms) {
+    std::vector<cl::Device> found;
+    try {
+      platform.getDevices(CL_DEVICE_TYPE_ALL, &found);
+    } catch (const cl::Error& error) {
+      if (error.err() == CL_DEVICE_NOT_FOUND) continue;
+      throw;
+    }
+    for (const auto& device : found) {
+      devices.push_back({device, read_info(platform, device, static_cast<int>(devices.size()))});
+    }
+  }
+  return devices;
+}
+
+Device pick_device(const std::string& selector) {
+  const auto devices = list_devices();
+  if (devices.empty()) {
+    throw std::runtime_error(
+        "no OpenCL device found: install an OpenCL driver (e.g. Debian's pocl-opencl-icd); PoCL also "
+        "reports none when it cannot create its kernel cache, so check that POCL_CACHE_DIR is writable");
+  }
+  if (selector.empty()) {
+    const auto cpu = std::find_if(devices.begin(), devices.end(), [](const Device& d) { return d.info.is_cpu; });
+    return cpu != devices.end() ? *cpu : devices.front();
+  }
+  if (std::all_of(selector.begin(), selector.end(), [](unsigned char c) { return std::isdigit(c); })) {
+    const auto index = std::stoul(selector);
+    if (index < devices.size()) return devices[index];
+    throw std::runtime_error("--device " + selector + ": there are only " + std::to_string(devices.size()) +
+                             " OpenCL devices (see `phongcl devices`)");
+  }
+  for (const auto& device : devices) {
+    if (lower(device.info.name).find(lower(selector)) != std::string::npos ||
+        lower(device.info.platform).find(lower(selector)) != std::string::npos) {
+      return device;
+    }
+  }
+  throw std::runtime_error("--device " + selector + ": no OpenCL device matches (see `phongcl devices`)");
+}
+
+std::string describe(const DeviceInfo& info) {
+  return info.name + " (" + info.platform + ", " + info.device_version + ", driver " + info.driver_version + ", " +
+         (info.is_cpu ? "CPU" : "non-CPU") + ", " + std::to_string(info.compute_units) + " compute units)";
+}
+
+}  // namespace phongcl

@@ -1,0 +1,13 @@
+#pragma once
+// kernels/layout.h seen from the host, with its sizes and offsets checked at compile time: a
+// mismatch with the kernel's view would shade silently wrong, so it must not build.
+#include <cstddef>
+
+extern "C" {
+#include "kernels/layout.h"
+}
+
+static_assert(sizeof(PointLight) == 32 && offsetof(PointLight, color) == 16);
+static_assert(sizeof(DirectionalLight) == 32 && offsetof(DirectionalLight, color) == 16);
+static_assert(sizeof(MaterialRecord) == 64 && offsetof(MaterialRecord, kd) == 16 &&
+              offsetof(MaterialRecord, ks) == 32 && offsetof(MaterialRecord, shininess) == 48);

@@ -1,0 +1,169 @@
+#include "shading/pack.h"
+
+#include <Imath/half.h>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "common/error.h"
+
+namespace phongcl {
+
+namespace {
+
+void store3(layout_float* out, const glm::dvec3& value) {
+  out[0] = static_cast<float>(value.x);
+  out[1] = static_cast<float>(value.y);
+  out[2] = static_cast<float>(value.z);
+  out[3] = 0.0f;
+}
+
+double largest_component(const glm::dvec3& c) { return std::max({c.x, c.y, c.z}); }
+
+const char* plane_name(const Recipe& recipe, int plane) {
+  static const char* geometry[] = {"P.X", "P.Y", "P.Z", "N.X", "N.Y", "N.Z"};
+  if (plane < PLANE_GEOMETRY_COUNT) return geometry[plane];
+  static const char* ka[] = {"Ka.R", "Ka.G", "Ka.B"};
+  static const char* kd[] = {"Kd.R", "Kd.G", "Kd.B"};
+  static const char* ks[] = {"Ks.R", "Ks.G", "Ks.B"};
+  int next = PLANE_GEOMETRY_COUNT;
+  for (auto [present, names] : {std::pair{recipe.per_pixel_ka, ka}, {recipe.per_pixel_kd, kd}, {recipe.per_pixel_ks, ks}}) {
+    if (!present) continue;
+    if (plane < next + 3) return names[plane - next];
+    next += 3;
+  }
+  return "shininess";
+}
+
+}  // namespace
+
+UniformData pack_uniforms(const Scene& scene) {
+  UniformData data;
+  double brightest = largest_component(scene.ambient);
+  for (const Light& light : scene.lights) brightest = std::max(brightest, largest_component(light.color));
+  // Scale so the brightest colour lands in [0.5, 1); split 2^e in two factors that are both normal floats.
+  const int exponent = brightest > 0.0 ? std::ilogb(brightest) + 1 : 0;
+  const double scale = std::ldexp(1.0, -exponent);
+  data.radiance_scale_a = static_cast<float>(std::ldexp(1.0, exponent / 2));
+  data.radiance_scale_b = static_cast<float>(std::ldexp(1.0, exponent - exponent / 2));
+
+  const glm::dvec3& eye = scene.camera.eye;
+  for (const Light& light : scene.lights) {
+    if (light.type == LightType::point) {
+      PointLight packed{};
+      store3(packed.position, light.position - eye);
+      store3(packed.color, light.color * scale);
+      data.point_lights.push_back(packed);
+    } else {
+      DirectionalLight packed{};
+      store3(packed.to_light, -glm::normalize(light.direction));
+      store3(packed.color, light.color * scale);
+      data.directional_lights.push_back(packed);
+    }
+  }
+  for (const Material& material : scene.materials) {
+    MaterialRecord record{};
+    store3(record.ka, material.ka);
+    store3(record.kd, material.kd);
+    store3(record.ks, material.ks);
+    record.shininess = static_cast<float>(material.shininess);
+    data.materials.push_back(record);
+  }
+  for (int c = 0; c < 3; ++c) {
+    data.ambient[c] = static_cast<float>(scene.ambient[c] * scale);
+    data.background[c] = static_cast<float>(scene.background[c]);
+  }
+  return data;
+}
+
+void PixelCounts::add(PixelClass pixel_class) {
+  switch (pixel_class) {
+    case PixelClass::shaded: ++shaded; break;
+    case PixelClass::background: ++background; break;
+    case PixelClass::nonfinite_position: ++nonfinite_position; break;
+    case PixelClass::nonfinite_normal: ++nonfinite_normal; break;
+    case PixelClass::nonfinite_material: ++nonfinite_material; break;
+  }
+}
+
+PixelCounts& PixelCounts::operator+=(const PixelCounts& other) {
+  shaded += other.shaded;
+  background += other.background;
+  nonfinite_position += other.nonfinite_position;
+  nonfinite_normal += other.nonfinite_normal;
+  nonfinite_material += other.nonfinite_material;
+  return *this;
+}
+
+PixelCounts pack_tile(const GBuffer& gbuffer, const glm::dvec3& eye, const Recipe& recipe, std::size_t first,
+                      std::size_t count, std::size_t stride, float* planes, std::int32_t* material_index) {
+  PixelCounts counts;
+  for (std::size_t t = 0; t < count; ++t) {
+    const std::size_t i = first + t;
+    const PixelClass pixel_class = classify_pixel(gbuffer, i);
+    counts.add(pixel_class);
+    material_index[t] = pixel_class == PixelClass::shaded ? static_cast<std::int32_t>(gbuffer.material[i]) : PHONGCL_BACKGROUND;
+  }
+  for (int axis = 0; axis < 3; ++axis) {
+    float* position = planes + (PLANE_PX + axis) * stride;
+    float* normal = planes + (PLANE_NX + axis) * stride;
+    const float* source_position = gbuffer.position[axis].data() + first;
+    const float* source_normal = gbuffer.normal[axis].data() + first;
+    const double eye_axis = eye[axis];
+    for (std::size_t t = 0; t < count; ++t) {
+      position[t] = static_cast<float>(static_cast<double>(source_position[t]) - eye_axis);
+    }
+    std::copy_n(source_normal, count, normal);
+  }
+  float* next_plane = planes + PLANE_GEOMETRY_COUNT * stride;
+  auto copy_plane = [&](const Plane& channel) {
+    std::copy_n(channel.data() + first, count, next_plane);
+    next_plane += stride;
+  };
+  if (recipe.per_pixel_ka) for (const Plane& channel : gbuffer.ka) copy_plane(channel);
+  if (recipe.per_pixel_kd) for (const Plane& channel : gbuffer.kd) copy_plane(channel);
+  if (recipe.per_pixel_ks) for (const Plane& channel : gbuffer.ks) copy_plane(channel);
+  if (recipe.per_pixel_shininess) copy_plane(gbuffer.shininess);
+  return counts;
+}
+
+std::size_t convert_planes_to_half(const GBuffer& gbuffer, const Recipe& recipe, std::size_t first, std::size_t count,
+                                   std::size_t stride, float* planes, std::uint16_t* half_planes) {
+  for (std::size_t t = 0; t < count; ++t) {
+    float* x = planes + PLANE_NX * stride + t;
+    float* y = planes + PLANE_NY * stride + t;
+    float* z = planes + PLANE_NZ * stride + t;
+    const float largest = std::max({std::fabs(*x), std::fabs(*y), std::fabs(*z)});
+    if (largest > 0.0f && std::isfinite(largest)) {
+      *x /= largest;
+      *y /= largest;
+      *z /= largest;
+    }
+  }
+  constexpr float kHalfMax = 65504.0f;
+  constexpr float kHalfSmallest = 5.9604645e-8f;  // 2^-24, the smallest half subnormal
+  std::size_t flushed = 0;
+  for (int plane = 0; plane < recipe.plane_count(); ++plane) {
+    const float* in = planes + plane * stride;
+    std::uint16_t* out = half_planes + plane * stride;
+    for (std::size_t t = 0; t < count; ++t) {
+      const float value = in[t];
+      const float magnitude = std::fabs(value);
+      if (magnitude > kHalfMax && std::isfinite(value)) {
+        const std::size_t i = first + t;
+        std::ostringstream problem;
+        problem << "--precision half-storage: " << plane_name(recipe, plane) << (plane < 3 ? " (relative to the eye)" : "")
+                << " value " << value << " at pixel (" << gbuffer.data_window.x_min + static_cast<int>(i % gbuffer.width)
+                << ", " << gbuffer.data_window.y_min + static_cast<int>(i / gbuffer.width)
+                << ") exceeds half's range (65504); use --precision precise";
+        throw InputError(gbuffer.source, problem.str());
+      }
+      if (magnitude > 0.0f && magnitude < kHalfSmallest / 2) ++flushed;
+      out[t] = Imath::half(value).bits();
+    }
+  }
+  return flushed;
+}
+
+}  // namespace phongcl

@@ -1,0 +1,124 @@
+#include "shading/phong_shader.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstring>
+
+#include "cl/kernel_source.h"
+
+namespace phongcl {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double milliseconds(Clock::time_point start, Clock::time_point end) {
+  return std::chrono::duration<double, std::milli>(end - start).count();
+}
+
+// OpenCL has no empty buffers: an unused table still gets one zeroed element.
+template <typename T>
+cl::Buffer uniform_buffer(const cl::Context& context, std::vector<T> values) {
+  if (values.empty()) values.resize(1);
+  return cl::Buffer(context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, values.size() * sizeof(T), values.data());
+}
+
+using PhongKernel = cl::KernelFunctor<
+    /* G-buffer */ cl::Buffer, cl_uint, cl::Buffer,
+    /* scene */ cl::Buffer, cl::Buffer, cl_int, cl::Buffer, cl_int, cl_float, cl_float, cl_float, cl_float, cl_float,
+    cl_float, cl_float, cl_float,
+    /* output */ cl::Buffer>;
+
+// Pixels per tile: the whole frame unless a buffer would exceed the device's largest allocation or
+// the tile's buffers its memory.
+std::size_t tile_pixels(const DeviceInfo& device, const Recipe& recipe, std::size_t pixels, std::size_t limit) {
+  const std::size_t plane_bytes = recipe.precision == Precision::half_storage ? 2 : 4;
+  const std::size_t largest_per_pixel = std::max<std::size_t>(recipe.plane_count() * plane_bytes, 4 * sizeof(float));
+  const std::size_t total_per_pixel = recipe.plane_count() * plane_bytes + sizeof(cl_int) + 4 * sizeof(float);
+  std::size_t tile = std::min<std::size_t>(pixels, device.max_allocation / largest_per_pixel);
+  tile = std::min<std::size_t>(tile, device.global_memory / 2 / total_per_pixel);
+  if (limit > 0) tile = std::min(tile, limit);
+  return std::max<std::size_t>(tile, 1);
+}
+
+}  // namespace
+
+ShadeResult PhongShader::shade(const Scene& scene, const GBuffer& gbuffer, const ShadeOptions& options) {
+  check_materials(gbuffer, scene.materials.size());
+  ShadeResult result;
+  result.recipe = make_recipe(scene, gbuffer, compute_.device.info, options);
+  const Recipe& recipe = result.recipe;
+  result.build_options = recipe.build_options();
+  const BuiltProgram built = cache_.build(compute_, load_kernel_source("phong.cl"), result.build_options);
+  result.cache = built.outcome;
+  result.timings.build_ms = built.build_milliseconds;
+  PhongKernel kernel(built.program, "phong_shade");
+
+  const auto start = Clock::now();
+  const cl::Context& context = compute_.context;
+  cl::CommandQueue& queue = compute_.queue;
+  const UniformData uniforms = pack_uniforms(scene);
+  const cl::Buffer materials = uniform_buffer(context, uniforms.materials);
+  const cl::Buffer point_lights = uniform_buffer(context, uniforms.point_lights);
+  const cl::Buffer directional_lights = uniform_buffer(context, uniforms.directional_lights);
+
+  const std::size_t pixels = gbuffer.pixel_count();
+  const bool half = recipe.precision == Precision::half_storage;
+  const std::size_t tile = tile_pixels(compute_.device.info, recipe, pixels, options.max_tile_pixels);
+  const std::size_t plane_values = tile * recipe.plane_count();
+  // ALLOC_HOST_PTR + map/unmap: on a CPU device packing writes straight into device memory.
+  const cl_mem_flags input_flags = CL_MEM_READ_ONLY | CL_MEM_ALLOC_HOST_PTR;
+  cl::Buffer planes(context, input_flags, plane_values * (half ? sizeof(cl_half) : sizeof(cl_float)));
+  cl::Buffer material_index(context, input_flags, tile * sizeof(cl_int));
+  cl::Buffer output(context, CL_MEM_WRITE_ONLY | CL_MEM_ALLOC_HOST_PTR, tile * 4 * sizeof(cl_float));
+  std::vector<float> half_staging(half ? plane_values : 0);
+  std::size_t flushed_to_zero = 0;
+
+  result.image = image_like(gbuffer);
+  for (std::size_t first = 0; first < pixels; first += tile, ++result.tiles) {
+    const std::size_t count = std::min(tile, pixels - first);
+    const auto pack_start = Clock::now();
+    void* mapped_planes = queue.enqueueMapBuffer(planes, CL_TRUE, CL_MAP_WRITE_INVALIDATE_REGION, 0,
+                                                 plane_values * (half ? sizeof(cl_half) : sizeof(cl_float)));
+    auto* mapped_index = static_cast<cl_int*>(
+        queue.enqueueMapBuffer(material_index, CL_TRUE, CL_MAP_WRITE_INVALIDATE_REGION, 0, tile * sizeof(cl_int)));
+    float* float_planes = half ? half_staging.data() : static_cast<float*>(mapped_planes);
+    result.counts += pack_tile(gbuffer, scene.camera.eye, recipe, first, count, tile, float_planes, mapped_index);
+    if (half) {
+      flushed_to_zero += convert_planes_to_half(gbuffer, recipe, first, count, tile, float_planes,
+                                                static_cast<std::uint16_t*>(mapped_planes));
+    }
+    result.timings.pack_ms += milliseconds(pack_start, Clock::now());
+
+    cl::Event unmap_planes, unmap_index;
+    queue.enqueueUnmapMemObject(planes, mapped_planes, nullptr, &unmap_planes);
+    queue.enqueueUnmapMemObject(material_index, mapped_index, nullptr, &unmap_index);
+    const cl::Event launched =
+        kernel(cl::EnqueueArgs(queue, cl::NDRange(count)), planes, static_cast<cl_uint>(tile), material_index,
+               materials, point_lights, recipe.point_lights, directional_lights, recipe.directional_lights,
+               uniforms.ambient[0], uniforms.ambient[1], uniforms.ambient[2], uniforms.radiance_scale_a,
+               uniforms.radiance_scale_b, uniforms.background[0], uniforms.background[1], uniforms.background[2], output);
+
+    cl::Event map_output;
+    const auto* shaded = static_cast<const float*>(
+        queue.enqueueMapBuffer(output, CL_TRUE, CL_MAP_READ, 0, count * 4 * sizeof(cl_float), nullptr, &map_output));
+    const auto copy_start = Clock::now();
+    std::memcpy(result.image.pixel(first), shaded, count * 4 * sizeof(float));
+    const double copy_ms = milliseconds(copy_start, Clock::now());
+    queue.enqueueUnmapMemObject(output, const_cast<float*>(shaded));
+    queue.finish();
+
+    result.timings.upload_ms += event_milliseconds(unmap_planes) + event_milliseconds(unmap_index);
+    result.timings.kernel_ms += event_milliseconds(launched);
+    result.timings.download_ms += event_milliseconds(map_output) + copy_ms;
+  }
+  result.timings.total_ms = milliseconds(start, Clock::now());
+  if (flushed_to_zero > 0) {
+    result.warnings.push_back(std::to_string(flushed_to_zero) +
+                              " non-zero G-buffer values were below half's smallest subnormal (6e-8) and became 0 "
+                              "in --precision half-storage");
+  }
+  return result;
+}
+
+}  // namespace phongcl

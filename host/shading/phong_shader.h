@@ -1,0 +1,47 @@
+#pragma once
+// Phong shading of a G-buffer on an OpenCL device: recipe, kernel build (cached), packing, launch.
+#include <string>
+#include <vector>
+
+#include "cl/program_cache.h"
+#include "image/image.h"
+#include "shading/pack.h"
+#include "shading/recipe.h"
+
+namespace phongcl {
+
+// Milliseconds. pack: host packing into mapped device memory; upload: unmapping it; kernel:
+// profiling events; download: mapping the result and copying it out. total: wall clock of all of
+// it, build excluded (build_ms says what the build cost, 0 on a memory-cache hit).
+struct ShadeTimings {
+  double build_ms = 0.0, pack_ms = 0.0, upload_ms = 0.0, kernel_ms = 0.0, download_ms = 0.0, total_ms = 0.0;
+};
+
+struct ShadeResult {
+  Image image;
+  Recipe recipe;
+  std::string build_options;
+  CacheOutcome cache = CacheOutcome::compiled;
+  ShadeTimings timings;
+  PixelCounts counts;
+  std::size_t tiles = 0;
+  std::vector<std::string> warnings;
+};
+
+class PhongShader {
+ public:
+  PhongShader(ComputeContext compute, ProgramCache& cache) : compute_(std::move(compute)), cache_(cache) {}
+
+  // Checks material indices against the scene (InputError), builds or reuses the kernel the
+  // recipe asks for, and shades every pixel. Frames larger than the device's largest allocation
+  // are shaded in tiles of whole pixel ranges.
+  ShadeResult shade(const Scene& scene, const GBuffer& gbuffer, const ShadeOptions& options);
+
+  const ComputeContext& compute() const { return compute_; }
+
+ private:
+  ComputeContext compute_;
+  ProgramCache& cache_;
+};
+
+}  // namespace phongcl

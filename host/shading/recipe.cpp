@@ -1,0 +1,166 @@
+#include "shading/recipe.h"
+
+#include <algorithm>
+#include <stdexcept>
+
+#include "shading/device_layout.h"
+
+namespace phongcl {
+
+namespace {
+
+bool is_zero(const glm::dvec3& c) { return c.x == 0.0 && c.y == 0.0 && c.z == 0.0; }
+
+bool all_zero(const Planes3& planes) {
+  return std::all_of(planes.begin(), planes.end(),
+                     [](const Plane& plane) { return std::all_of(plane.begin(), plane.end(), [](float x) { return x == 0.0f; }); });
+}
+
+void decide_terms(Recipe& recipe, const Scene& scene, const GBuffer& gbuffer) {
+  const auto& materials = scene.materials;
+  const bool any_lights = !scene.lights.empty();
+  const bool table_ks_zero = std::all_of(materials.begin(), materials.end(), [](const Material& m) { return is_zero(m.ks); });
+  const bool ks_zero = gbuffer.has_per_pixel_ks() ? all_zero(gbuffer.ks) : table_ks_zero;
+  recipe.specular = any_lights && !ks_zero;
+  recipe.reasons.push_back(recipe.specular ? "specular: compiled in (some material has ks > 0)"
+                           : any_lights    ? "specular: compiled out (every ks is 0): no pow"
+                                           : "specular: compiled out (no lights)");
+
+  const bool table_ka_zero = std::all_of(materials.begin(), materials.end(), [](const Material& m) { return is_zero(m.ka); });
+  const bool ka_zero = gbuffer.has_per_pixel_ka() ? all_zero(gbuffer.ka) : table_ka_zero;
+  recipe.ambient = !is_zero(scene.ambient) && !ka_zero;
+  recipe.reasons.push_back(recipe.ambient            ? "ambient: compiled in"
+                           : is_zero(scene.ambient) ? "ambient: compiled out (ambient light is 0)"
+                                                    : "ambient: compiled out (every ka is 0)");
+}
+
+void count_lights(Recipe& recipe, const Scene& scene) {
+  for (const Light& light : scene.lights) {
+    (light.type == LightType::point ? recipe.point_lights : recipe.directional_lights)++;
+  }
+}
+
+void decide_lights(Recipe& recipe) {
+  recipe.point_code = recipe.point_lights > 0;
+  recipe.directional_code = recipe.directional_lights > 0;
+  recipe.point_count_in_code = recipe.point_code && recipe.point_lights <= kUnrollLightLimit;
+  recipe.directional_count_in_code = recipe.directional_code && recipe.directional_lights <= kUnrollLightLimit;
+  auto describe = [](const char* type, int count, bool in_code) {
+    if (count == 0) return std::string(type) + " lights: compiled out (none in the scene)";
+    return std::string(type) + " lights: " + std::to_string(count) +
+           (in_code ? ", count compiled in (loop unrolls)"
+                    : ", count at run time (more than " + std::to_string(kUnrollLightLimit) + ")");
+  };
+  recipe.reasons.push_back(describe("point", recipe.point_lights, recipe.point_count_in_code));
+  recipe.reasons.push_back(describe("directional", recipe.directional_lights, recipe.directional_count_in_code));
+}
+
+void decide_materials(Recipe& recipe, const Scene& scene, const GBuffer& gbuffer) {
+  recipe.per_pixel_ka = gbuffer.has_per_pixel_ka();
+  recipe.per_pixel_kd = gbuffer.has_per_pixel_kd();
+  recipe.per_pixel_ks = gbuffer.has_per_pixel_ks();
+  recipe.per_pixel_shininess = gbuffer.has_per_pixel_shininess();
+  const bool table_needed = !(recipe.per_pixel_ka && recipe.per_pixel_kd && recipe.per_pixel_ks && recipe.per_pixel_shininess);
+  recipe.single_material = recipe.specialised && scene.materials.size() <= 1;
+  std::string line = "materials: ";
+  if (!table_needed) line += "all per-pixel channels (Ka, Kd, Ks, shininess)";
+  else if (recipe.single_material) line += "single material, no per-pixel fetch";
+  else line += std::to_string(scene.materials.size()) + " in a table, indexed per pixel";
+  if (table_needed && (recipe.per_pixel_ka || recipe.per_pixel_kd || recipe.per_pixel_ks || recipe.per_pixel_shininess)) {
+    line += "; per-pixel overrides:";
+    if (recipe.per_pixel_ka) line += " Ka";
+    if (recipe.per_pixel_kd) line += " Kd";
+    if (recipe.per_pixel_ks) line += " Ks";
+    if (recipe.per_pixel_shininess) line += " shininess";
+  }
+  recipe.reasons.push_back(line);
+}
+
+void decide_memory(Recipe& recipe, const Scene& scene, const DeviceInfo& device) {
+  const unsigned long long bytes = recipe.point_lights * sizeof(PointLight) +
+                                   recipe.directional_lights * sizeof(DirectionalLight) +
+                                   std::max<std::size_t>(scene.materials.size(), 1) * sizeof(MaterialRecord);
+  recipe.uniforms_in_constant = recipe.specialised && device.max_constant_args >= 3 && bytes <= device.max_constant_buffer;
+  recipe.reasons.push_back(recipe.uniforms_in_constant
+                               ? "lights and materials: __constant memory (" + std::to_string(bytes) + " bytes fit)"
+                               : "lights and materials: __global memory");
+}
+
+}  // namespace
+
+int Recipe::plane_count() const {
+  return PLANE_GEOMETRY_COUNT + 3 * (per_pixel_ka + per_pixel_kd + per_pixel_ks) + per_pixel_shininess;
+}
+
+std::string Recipe::build_options() const {
+  std::string options = "-cl-std=CL1.2";
+  auto define = [&options](const std::string& name) { options += " -D" + name; };
+  if (point_code) define("POINT_LIGHTS");
+  if (directional_code) define("DIRECTIONAL_LIGHTS");
+  if (point_count_in_code) define("POINT_COUNT=" + std::to_string(point_lights));
+  if (directional_count_in_code) define("DIRECTIONAL_COUNT=" + std::to_string(directional_lights));
+  if (specular) define("SPECULAR");
+  if (ambient) define("AMBIENT");
+  if (single_material) define("SINGLE_MATERIAL");
+  int plane = PLANE_GEOMETRY_COUNT;
+  auto place = [&](bool present, const char* name, int planes) {
+    if (!present) return;
+    define(std::string(name) + "=" + std::to_string(plane));
+    plane += planes;
+  };
+  place(per_pixel_ka, "PLANE_KA", 3);
+  place(per_pixel_kd, "PLANE_KD", 3);
+  place(per_pixel_ks, "PLANE_KS", 3);
+  place(per_pixel_shininess, "PLANE_Q", 1);
+  define(std::string("UNIFORM_SPACE=") + (uniforms_in_constant ? "__constant" : "__global"));
+  switch (precision) {
+    case Precision::double_precision: define("PHONGCL_DOUBLE"); break;
+    case Precision::precise: break;
+    case Precision::fast: define("PHONGCL_FAST"); options += " -cl-fast-relaxed-math"; break;
+    case Precision::half_storage: define("HALF_STORAGE"); break;
+  }
+  return options;
+}
+
+std::string Recipe::summary() const {
+  std::string text = to_string(precision) + (specialised ? ", specialised: " : ", general kernel: ");
+  auto lights = [](int count, const char* type, bool unrolled) {
+    return std::to_string(count) + " " + type + (unrolled ? " (unrolled)" : "");
+  };
+  text += lights(point_lights, "point", point_count_in_code) + " + " +
+          lights(directional_lights, "directional", directional_count_in_code) + " lights";
+  text += specular ? ", specular" : ", no specular";
+  text += ambient ? ", ambient" : ", no ambient";
+  text += single_material ? ", single material" : ", material table";
+  if (plane_count() > PLANE_GEOMETRY_COUNT) text += ", per-pixel material channels";
+  return text;
+}
+
+Recipe make_recipe(const Scene& scene, const GBuffer& gbuffer, const DeviceInfo& device, const ShadeOptions& options) {
+  if (options.precision == Precision::double_precision && !device.has_fp64) {
+    throw std::runtime_error("--precision double: device " + device.name + " has no fp64 support (cl_khr_fp64)");
+  }
+  Recipe recipe;
+  recipe.precision = options.precision;
+  recipe.specialised = options.specialise;
+  recipe.reasons.push_back("precision: " + to_string(options.precision));
+  count_lights(recipe, scene);
+  decide_materials(recipe, scene, gbuffer);
+  if (recipe.specialised) {
+    decide_lights(recipe);
+    decide_terms(recipe, scene, gbuffer);
+  } else {
+    // The general kernel: every light type and term, counts at run time; the per-pixel planes
+    // present are still compile-time, since they are the data layout, not the shading.
+    recipe.point_code = recipe.directional_code = true;
+    recipe.point_count_in_code = recipe.directional_count_in_code = false;
+    recipe.specular = recipe.ambient = true;
+    recipe.reasons.push_back("general kernel (--no-specialise): every light type and term compiled in, " +
+                             std::to_string(recipe.point_lights) + " point and " +
+                             std::to_string(recipe.directional_lights) + " directional lights counted at run time");
+  }
+  decide_memory(recipe, scene, device);
+  return recipe;
+}
+
+}  // namespace phongcl

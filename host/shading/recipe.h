@@ -1,0 +1,43 @@
+#pragma once
+// What a scene needs from the kernel, derived from the scene and the G-buffer: light types, terms,
+// material paths, precision. It becomes the kernel's build options; the rest is compiled out.
+#include <string>
+#include <vector>
+
+#include "cl/device.h"
+#include "gbuffer/gbuffer.h"
+#include "scene/scene.h"
+#include "shading/precision.h"
+
+namespace phongcl {
+
+struct ShadeOptions {
+  Precision precision = Precision::precise;
+  bool specialise = true;           // false: the general kernel, everything compiled in
+  std::size_t max_tile_pixels = 0;  // 0: as large as the device allows
+};
+
+struct Recipe {
+  Precision precision = Precision::precise;
+  bool specialised = true;
+  int point_lights = 0, directional_lights = 0;
+  bool point_count_in_code = false, directional_count_in_code = false;  // compile-time, loops unroll
+  bool point_code = true, directional_code = true;                      // light types compiled in
+  bool specular = true, ambient = true;
+  bool single_material = false;  // no per-pixel material fetch
+  bool per_pixel_ka = false, per_pixel_kd = false, per_pixel_ks = false, per_pixel_shininess = false;
+  bool uniforms_in_constant = false;  // lights and materials in __constant memory
+  std::vector<std::string> reasons;   // one line per decision, for --explain
+
+  int plane_count() const;  // G-buffer planes the device buffer holds
+  std::string build_options() const;
+  std::string summary() const;  // one line: "precise, specialised: 2 point (unrolled) + 1 directional, ..."
+};
+
+// Lights up to this many of a type become compile-time constants.
+inline constexpr int kUnrollLightLimit = 16;
+
+// Throws std::runtime_error when the device cannot run the precision (double without fp64).
+Recipe make_recipe(const Scene& scene, const GBuffer& gbuffer, const DeviceInfo& device, const ShadeOptions& options);
+
+}  // namespace phongcl
