@@ -1,0 +1,85 @@
+// phongcl shade: the OpenCL kernel on a G-buffer.
+#include <iostream>
+#include <memory>
+
+#include "cl/compute_context.h"
+#include "cli/commands.h"
+#include "cli/format.h"
+#include "cli/inputs.h"
+#include "cli/outputs.h"
+#include "shading/phong_shader.h"
+
+namespace phongcl::cli {
+
+namespace {
+
+struct ShadeArguments {
+  SceneInputs inputs;
+  ImageOutputs outputs;
+  std::string device;
+  std::string precision = "precise";
+  bool no_specialise = false;
+  bool explain = false;
+};
+
+void print_unshaded(const PixelCounts& counts) {
+  auto line = [](std::size_t count, const char* what) {
+    if (count > 0) std::cout << "  note       " << with_commas(count) << " pixels had non-finite " << what << " and were left unshaded\n";
+  };
+  line(counts.nonfinite_position, "positions");
+  line(counts.nonfinite_normal, "normals");
+  line(counts.nonfinite_material, "material values");
+}
+
+void run_shade(const ShadeArguments& args) {
+  const Scene scene = args.inputs.load_scene();
+  const GBuffer gbuffer = args.inputs.load_gbuffer(scene);
+  const ShadeOptions options{parse_precision(args.precision), !args.no_specialise};
+  ProgramCache cache(ProgramCache::default_directory());
+  PhongShader shader(make_compute_context(pick_device(args.device)), cache);
+  const ShadeResult result = shader.shade(scene, gbuffer, options);
+  const std::string written = args.outputs.write(result.image);
+
+  const ShadeTimings& t = result.timings;
+  std::cout << "phongcl shade: " << scene.source.string() << " + " << gbuffer.source.string() << "\n"
+            << "  image      " << gbuffer.width << " x " << gbuffer.height << ", " << with_commas(gbuffer.pixel_count())
+            << " pixels: " << with_commas(result.counts.shaded) << " shaded, "
+            << with_commas(gbuffer.pixel_count() - result.counts.shaded) << " background\n"
+            << "  lights     " << result.recipe.point_lights << " point + " << result.recipe.directional_lights
+            << " directional\n"
+            << "  device     " << describe(shader.compute().device.info) << "\n"
+            << "  kernel     " << result.recipe.summary() << "\n"
+            << "  build      " << to_string(result.cache) << ", " << milliseconds(t.build_ms)
+            << (cache.disk_directory().empty() ? " (no disk cache: no writable cache directory)" : "") << "\n"
+            << "  time       pack " << milliseconds(t.pack_ms) << ", upload " << milliseconds(t.upload_ms) << ", kernel "
+            << milliseconds(t.kernel_ms) << ", download " << milliseconds(t.download_ms) << ", total "
+            << milliseconds(t.total_ms) << " (" << mpixels_per_second(gbuffer.pixel_count(), t.total_ms) << "; kernel "
+            << mpixels_per_second(gbuffer.pixel_count(), t.kernel_ms) << ")\n";
+  if (result.tiles > 1) std::cout << "  tiles      " << result.tiles << " (frame larger than one device allocation)\n";
+  print_unshaded(result.counts);
+  for (const auto& warning : result.warnings) std::cout << "  warning    " << warning << "\n";
+  if (!cache.disk_problem().empty()) std::cout << "  note       " << cache.disk_problem() << "\n";
+  if (args.explain) {
+    std::cout << "  recipe:\n";
+    for (const auto& reason : result.recipe.reasons) std::cout << "    " << reason << "\n";
+    std::cout << "  build options: " << result.build_options << "\n";
+  }
+  std::cout << "  wrote      " << written << "\n";
+}
+
+}  // namespace
+
+void add_shade_command(CLI::App& app) {
+  auto args = std::make_shared<ShadeArguments>();
+  CLI::App* command = app.add_subcommand("shade", "Shade a G-buffer with the OpenCL Phong kernel");
+  args->inputs.add_options(*command);
+  args->outputs.add_options(*command);
+  command->add_option("--device", args->device, "OpenCL device: index or name (default: first CPU device)");
+  command->add_option("--precision", args->precision, "double, precise (default), fast or half-storage")
+      ->check(CLI::IsMember({"double", "precise", "fast", "half-storage"}));
+  command->add_flag("--no-specialise", args->no_specialise, "Use the general kernel with everything compiled in");
+  command->add_flag("--explain", args->explain, "Print what was compiled in and out, and why, and the build options");
+  command->callback([args] { run_shade(*args); });
+}
+
+}  // namespace phongcl::cli
