@@ -9,13 +9,9 @@
 namespace phongcl {
 namespace {
 
-struct Ball {
-  glm::dvec3 center;
-  double radius;
-};
-
-// The primitive's bounding ball in its own space: exact for a sphere, about the centroid for a triangle.
-Ball object_space_bound(const Object& shape) {
+// The primitive's bounding ball in its own space: exact for a sphere, about the centroid for a
+// triangle.
+BoundingBall object_space_bound(const Object& shape) {
   if (shape.kind == Object::Kind::sphere) return {shape.center, shape.radius};
   const auto& v = shape.vertices;
   const glm::dvec3 centroid = (v[0] + v[1] + v[2]) / 3.0;
@@ -58,22 +54,33 @@ void SceneGeometry::add(const std::vector<Object>& objects, const glm::dmat4& ob
     const glm::dmat3 linear(object_to_world);
     primitive.world_to_object = glm::inverse(object_to_world);
     primitive.normal_to_world = glm::transpose(glm::inverse(linear));
-    if (object.kind != Object::Kind::plane && (transformed || object.kind == Object::Kind::triangle)) {
-      const Ball ball = object_space_bound(object);
-      primitive.bounded = true;
-      primitive.bound_center = glm::dvec3(object_to_world * glm::dvec4(ball.center, 1.0));
-      primitive.bound_radius = ball.radius * (transformed ? max_stretch(linear) : 1.0);
+    if (object.kind != Object::Kind::plane) {
+      const BoundingBall ball = object_space_bound(object);
+      primitive.bound = BoundingBall{glm::dvec3(object_to_world * glm::dvec4(ball.center, 1.0)),
+                                     ball.radius * (transformed ? max_stretch(linear) : 1.0)};
+      primitive.test_bound_per_ray = transformed || object.kind == Object::Kind::triangle;
     }
     primitives_.push_back(std::move(primitive));
   }
 }
 
-std::optional<SurfaceHit> SceneGeometry::nearest_hit(const Ray& ray, double t_min) const {
+std::vector<std::size_t> SceneGeometry::candidates(const Frustum& frustum) const {
+  std::vector<std::size_t> indices;
+  for (std::size_t i = 0; i < primitives_.size(); ++i) {
+    const std::optional<BoundingBall>& bound = primitives_[i].bound;
+    if (!bound || frustum.may_overlap_ball(bound->center, bound->radius)) indices.push_back(i);
+  }
+  return indices;
+}
+
+std::optional<SurfaceHit> SceneGeometry::nearest_hit(const Ray& ray, double t_min,
+                                                     const std::vector<std::size_t>& candidates) const {
   std::optional<SurfaceHit> nearest;
   double t_max = std::numeric_limits<double>::infinity();
-  for (const Primitive& primitive : primitives_) {
-    if (primitive.bounded &&
-        !ray_meets_ball(ray, primitive.bound_center, primitive.bound_radius, t_min, t_max))
+  for (std::size_t index : candidates) {
+    const Primitive& primitive = primitives_[index];
+    if (primitive.test_bound_per_ray &&
+        !ray_meets_ball(ray, primitive.bound->center, primitive.bound->radius, t_min, t_max))
       continue;
     // An affine map keeps t: the object-space point at t is the image of the world point at t.
     const Ray local = primitive.transformed
