@@ -110,6 +110,7 @@ BuiltProgram ProgramCache::build(const ComputeContext& compute, const std::strin
   if (!file.empty()) {
     try {
       const auto binaries = program.getInfo<CL_PROGRAM_BINARIES>();
+      fs::create_directories(disk_directory_);
       write_atomically(file, [&](const fs::path& temp) {
         std::ofstream out(temp, std::ios::binary);
         out << key.size() << '\n' << key;
