@@ -1,11 +1,11 @@
 // The scalar reference against values worked out by hand from the formula (README "The shading,
 // exactly"). Each case states its geometry and derivation; expected values never come from the
 // code under test.
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <limits>
 #include <string>
-
-#include <gtest/gtest.h>
 
 #include "common/error.h"
 #include "reference/reference.h"
@@ -17,8 +17,7 @@ const double kSqrt3 = std::sqrt(3.0);
 
 // Per-channel comparison with an absolute tolerance; `what` names the case and the term.
 void expect_near3(const glm::dvec3& got, const glm::dvec3& want, double tolerance, const std::string& what) {
-  for (int c = 0; c < 3; ++c)
-    EXPECT_NEAR(got[c], want[c], tolerance) << what << ", channel " << c;
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(got[c], want[c], tolerance) << what << ", channel " << c;
 }
 
 // Relative comparison for HDR magnitudes.
@@ -109,12 +108,14 @@ TEST(ReferenceShade, BackFacingAndGrazingLightGiveNothing) {
   // Light below the surface (0,0,-5): ndl = -1 <= 0 -> no diffuse, no specular, even with q = 0
   // (which would otherwise give pow(0,0) = 1).
   for (double q : {0.0, 8.0}) {
-    const ShadingTerms t = reference_shade_point(scene_with({0, 0, -5}, {point_light({0, 0, -5}, kLi)}), surface(q));
+    const ShadingTerms t =
+        reference_shade_point(scene_with({0, 0, -5}, {point_light({0, 0, -5}, kLi)}), surface(q));
     expect_near3(t.diffuse, kZero, 0.0, "back-facing light, q=" + std::to_string(q) + ": diffuse");
     expect_near3(t.specular, kZero, 0.0, "back-facing light, q=" + std::to_string(q) + ": specular");
   }
   // Light in the tangent plane (5,0,0): ndl = 0, not > 0 -> nothing.
-  const ShadingTerms t = reference_shade_point(scene_with({0, 0, 5}, {point_light({5, 0, 0}, kLi)}), surface(0.0));
+  const ShadingTerms t =
+      reference_shade_point(scene_with({0, 0, 5}, {point_light({5, 0, 0}, kLi)}), surface(0.0));
   expect_near3(t.diffuse, kZero, 0.0, "grazing light ndl=0: diffuse");
   expect_near3(t.specular, kZero, 0.0, "grazing light ndl=0, q=0: specular");
 }
@@ -122,7 +123,8 @@ TEST(ReferenceShade, BackFacingAndGrazingLightGiveNothing) {
 TEST(ReferenceShade, DirectionalLightTravelsAlongDirection) {
   // direction = (0,0,-7) travels down onto the +z-facing surface: l = -normalize(direction) = (0,0,1),
   // ndl = 1 -> diffuse = kd*Li, and with the eye above, specular = ks*Li.
-  ShadingTerms t = reference_shade_point(scene_with({0, 0, 5}, {directional_light({0, 0, -7}, kLi)}), surface(8.0));
+  ShadingTerms t =
+      reference_shade_point(scene_with({0, 0, 5}, {directional_light({0, 0, -7}, kLi)}), surface(8.0));
   expect_near3(t.diffuse, {1.0, 0.75, 0.5}, 1e-12, "directional (0,0,-7): diffuse");
   expect_near3(t.specular, {0.5, 1.5, 3.0}, 1e-12, "directional (0,0,-7): specular");
 
@@ -132,7 +134,8 @@ TEST(ReferenceShade, DirectionalLightTravelsAlongDirection) {
   expect_near3(t.specular, kZero, 0.0, "directional (0,0,1) from below: specular");
 
   // direction = -3*(sqrt3/2, 0, 1/2): l = (sqrt3/2, 0, 1/2), ndl = 0.5 -> diffuse = 0.5*kd*Li.
-  t = reference_shade_point(scene_with({0, 0, 5}, {directional_light({-1.5 * kSqrt3, 0, -1.5}, kLi)}), surface(8.0));
+  t = reference_shade_point(scene_with({0, 0, 5}, {directional_light({-1.5 * kSqrt3, 0, -1.5}, kLi)}),
+                            surface(8.0));
   expect_near3(t.diffuse, {0.5, 0.375, 0.25}, 1e-12, "directional at 60 degrees: diffuse");
 }
 
@@ -168,8 +171,8 @@ TEST(ReferenceShade, ZeroNormalIsAmbientOnly) {
   for (double q : {0.0, 8.0}) {
     SurfacePoint p = surface(q);
     p.normal = {0.0, 0.0, 0.0};
-    const Scene scene = scene_with({0, 0, 5}, {point_light({0, 0, 5}, kLi), directional_light({0, 0, -1}, kLi)},
-                                   {1, 1, 1});
+    const Scene scene =
+        scene_with({0, 0, 5}, {point_light({0, 0, 5}, kLi), directional_light({0, 0, -1}, kLi)}, {1, 1, 1});
     const ShadingTerms t = reference_shade_point(scene, p);
     const std::string what = "zero normal, q=" + std::to_string(q);
     expect_near3(t.total(), {0.1, 0.2, 0.3}, 1e-15, what + ": total");
@@ -207,7 +210,8 @@ void expect_tilted_normal_shading(glm::dvec3 normal, const std::string& what) {
   p.normal = normal;
   const ShadingTerms t = reference_shade_point(scene_with({0, 0, 5}, {point_light({0, 0, 5}, kLi)}), p);
   expect_near3(t.diffuse, glm::dvec3{1.0, 0.75, 0.5} * (6.0 / 7.0), 1e-12, what + ": diffuse");
-  expect_near3(t.specular, glm::dvec3{0.5, 1.5, 3.0} * std::pow(23.0 / 49.0, 3.0), 1e-12, what + ": specular");
+  expect_near3(t.specular, glm::dvec3{0.5, 1.5, 3.0} * std::pow(23.0 / 49.0, 3.0), 1e-12,
+               what + ": specular");
 }
 
 TEST(ReferenceShade, NormalLengthDoesNotMatter) {
@@ -220,28 +224,32 @@ TEST(ReferenceShade, NormalLengthDoesNotMatter) {
 TEST(ReferenceShade, HugeAndDenormalNormals) {
   // Powers of two scale (2,3,6) exactly, so the stored normal has exactly the unit normal's direction.
   // As G-buffer floats: 2^100 ~ 1.3e30 and 2^-133 ~ 9e-41 (a float denormal), converted to double.
-  expect_tilted_normal_shading(glm::dvec3(glm::vec3(2, 3, 6) * std::ldexp(1.0f, 100)), "float normal *2^100 (~1e30)");
-  expect_tilted_normal_shading(glm::dvec3(glm::vec3(2, 3, 6) * std::ldexp(1.0f, -133)), "float normal *2^-133 (~1e-40)");
+  expect_tilted_normal_shading(glm::dvec3(glm::vec3(2, 3, 6) * std::ldexp(1.0f, 100)),
+                               "float normal *2^100 (~1e30)");
+  expect_tilted_normal_shading(glm::dvec3(glm::vec3(2, 3, 6) * std::ldexp(1.0f, -133)),
+                               "float normal *2^-133 (~1e-40)");
   // The literal values 1e30 and 1e-40 as floats, along the axis (any positive scale of (0,0,1) is
   // exact): head-on light, eye above -> kd*Li + ks*Li.
   for (float scale : {1e30f, 1e-40f}) {
     SurfacePoint p = surface(3.0);
     p.normal = {0.0, 0.0, static_cast<double>(scale)};
     const ShadingTerms t = reference_shade_point(scene_with({0, 0, 5}, {point_light({0, 0, 5}, kLi)}), p);
-    expect_near3(t.total(), glm::dvec3{1.5, 2.25, 3.5}, 1e-12, std::string("float normal (0,0,") + (scale > 1 ? "1e30)" : "1e-40)"));
+    expect_near3(t.total(), glm::dvec3{1.5, 2.25, 3.5}, 1e-12,
+                 std::string("float normal (0,0,") + (scale > 1 ? "1e30)" : "1e-40)"));
   }
   // Beyond float: double squares overflow (2^1000) or underflow (2^-1040, a double denormal) here,
   // so a naive normalize would give 0 or NaN.
   expect_tilted_normal_shading(glm::dvec3{2, 3, 6} * std::ldexp(1.0, 1000), "double normal *2^1000 (~1e301)");
-  expect_tilted_normal_shading(glm::dvec3{2, 3, 6} * std::ldexp(1.0, -1040), "double normal *2^-1040 (~1e-313)");
+  expect_tilted_normal_shading(glm::dvec3{2, 3, 6} * std::ldexp(1.0, -1040),
+                               "double normal *2^-1040 (~1e-313)");
 }
 
 TEST(ReferenceShade, HugeAndTinyLightAndEyeOffsets) {
   // The light and eye directions are normalized by the same rule: a light 1e300 away head-on is
   // still l = (0,0,1), and one 1e-310 above the point too.
   for (double distance : {1e300, 1e-310}) {
-    const ShadingTerms t =
-        reference_shade_point(scene_with({0, 0, distance}, {point_light({0, 0, distance}, kLi)}), surface(8.0));
+    const ShadingTerms t = reference_shade_point(
+        scene_with({0, 0, distance}, {point_light({0, 0, distance}, kLi)}), surface(8.0));
     const std::string what = std::string("light and eye at distance ") + (distance > 1 ? "1e300" : "1e-310");
     expect_near3(t.diffuse, {1.0, 0.75, 0.5}, 1e-12, what + ": diffuse");
     expect_near3(t.specular, {0.5, 1.5, 3.0}, 1e-12, what + ": specular");
@@ -252,7 +260,8 @@ TEST(ReferenceShade, HdrLightScalesLinearly) {
   // Li = 1e30*(2,3,4), head-on with the eye above: diffuse = kd*Li, specular = ks*Li, both
   // 1e30 times the unit-scale case (1, 0.75, 0.5) and (0.5, 1.5, 3).
   const glm::dvec3 hdr = kLi * 1e30;
-  const ShadingTerms t = reference_shade_point(scene_with({0, 0, 5}, {point_light({0, 0, 5}, hdr)}), surface(8.0));
+  const ShadingTerms t =
+      reference_shade_point(scene_with({0, 0, 5}, {point_light({0, 0, 5}, hdr)}), surface(8.0));
   expect_rel3(t.diffuse, glm::dvec3{1.0, 0.75, 0.5} * 1e30, 1e-14, "Li=1e30: diffuse");
   expect_rel3(t.specular, glm::dvec3{0.5, 1.5, 3.0} * 1e30, 1e-14, "Li=1e30: specular");
 }
@@ -261,9 +270,8 @@ TEST(ReferenceShade, MultipleLightsSum) {
   // Head-on point light A = (2,3,4) and 60-degree directional light B = (1,1,1), eye above, q = 8.
   // A: ndl = 1, v.r = 1 -> diffuse kd*A = (1, 0.75, 0.5), specular ks*A = (0.5, 1.5, 3).
   // B: ndl = 0.5, v.r = 1/2 -> diffuse 0.5*kd = (0.25, 0.125, 0.0625), specular ks/256.
-  const Scene scene = scene_with({0, 0, 5},
-                                 {point_light({0, 0, 5}, kLi), directional_light({-kSqrt3, 0, -1}, {1, 1, 1})},
-                                 {1, 1, 1});
+  const Scene scene = scene_with(
+      {0, 0, 5}, {point_light({0, 0, 5}, kLi), directional_light({-kSqrt3, 0, -1}, {1, 1, 1})}, {1, 1, 1});
   const ShadingTerms t = reference_shade_point(scene, surface(8.0));
   const glm::dvec3 diffuse{1.25, 0.875, 0.5625};
   const glm::dvec3 specular = glm::dvec3{0.5, 1.5, 3.0} + glm::dvec3{0.25, 0.5, 0.75} / 256.0;
@@ -298,7 +306,8 @@ Material material(glm::dvec3 ka, glm::dvec3 kd, glm::dvec3 ks, double q) {
 
 TEST(ReferenceSurface, TableMaterialAndFloatInputs) {
   Scene scene;
-  scene.materials = {material({1, 1, 1}, {2, 2, 2}, {3, 3, 3}, 4), material({0.1, 0.2, 0.3}, {0.4, 0.5, 0.6}, {0.7, 0.8, 0.9}, 5)};
+  scene.materials = {material({1, 1, 1}, {2, 2, 2}, {3, 3, 3}, 4),
+                     material({0.1, 0.2, 0.3}, {0.4, 0.5, 0.6}, {0.7, 0.8, 0.9}, 5)};
   GBuffer g = row_gbuffer({1.0f, 0.0f});
   g.position[1][0] = 0.1f;  // not exactly 0.1 as a float: the reference must see double(0.1f)
   g.normal[0][0] = 0.3f;
@@ -357,6 +366,51 @@ TEST(ReferenceSurface, IndexOutsideTheTableThrows) {
   scene.materials = {material({1, 1, 1}, {2, 2, 2}, {3, 3, 3}, 4)};
   const GBuffer g = row_gbuffer({1.0f});
   EXPECT_THROW(reference_surface(scene, g, 0), InputError) << "material 1 with a one-entry table";
+}
+
+TEST(ReferenceImage, ShadedBackgroundAndNonFinitePixels) {
+  // Pixel 0: material 0 at P = 0, n = (0,0,1), light (2,3,4) and eye at (0,0,5), La = 1:
+  // ka + kd*Li + ks*Li = (0.1,0.2,0.3) + (1,0.75,0.5) + (0.5,1.5,3) = (1.6, 2.45, 3.8), alpha 1.
+  // Pixel 1: material -1 -> background (0.25, 0.5, 0.75), alpha 0.
+  // Pixel 2: material 0 but P.x = NaN -> not shaded -> background, alpha 0.
+  Scene scene = scene_with({0, 0, 5}, {point_light({0, 0, 5}, kLi)}, {1, 1, 1});
+  const SurfacePoint s = surface(8.0);
+  scene.materials = {material(s.ka, s.kd, s.ks, s.shininess)};
+  scene.background = {0.25, 0.5, 0.75};
+  GBuffer g = row_gbuffer({0.0f, -1.0f, 0.0f});
+  g.position[0][2] = std::numeric_limits<float>::quiet_NaN();
+  g.data_window = PixelWindow{10, 20, 12, 20};
+  g.display_window = PixelWindow{0, 0, 99, 49};
+
+  const Image image = reference_image(scene, g);
+  ASSERT_EQ(image.width, 3) << "3x1 G-buffer";
+  ASSERT_EQ(image.height, 1) << "3x1 G-buffer";
+  ASSERT_EQ(image.rgba.size(), 12u) << "3x1 G-buffer";
+  EXPECT_EQ(image.data_window.x_min, 10) << "data window carried from the G-buffer";
+  EXPECT_EQ(image.data_window.y_max, 20) << "data window carried from the G-buffer";
+  EXPECT_EQ(image.display_window.x_max, 99) << "display window carried from the G-buffer";
+
+  const float shaded[4] = {1.6f, 2.45f, 3.8f, 1.0f};
+  const float background[4] = {0.25f, 0.5f, 0.75f, 0.0f};
+  for (int c = 0; c < 4; ++c) {
+    EXPECT_NEAR(image.pixel(0)[c], shaded[c], 1e-6) << "shaded pixel 0, channel " << c;
+    EXPECT_NEAR(image.pixel(1)[c], background[c], 1e-7) << "background pixel 1 (material -1), channel " << c;
+    EXPECT_NEAR(image.pixel(2)[c], background[c], 1e-7) << "NaN position pixel 2, channel " << c;
+  }
+}
+
+TEST(ReferenceImage, InfOnlyWhereTheExactResultOverflowsFloat) {
+  // Head-on light, eye above, kd = ks = 1, ka = 0: each channel is 2*Li (FLT_MAX ~ 3.40e38).
+  // Li = 1e30 -> 2e30 finite; Li = 1.5e38 -> 3e38 finite although a float sum of the terms would
+  // be close to the edge; Li = 2e38 -> 4e38 overflows -> +Inf. Exercise all three in one pixel.
+  Scene scene = scene_with({0, 0, 5}, {point_light({0, 0, 5}, {1e30, 1.5e38, 2e38})});
+  scene.materials = {material({0, 0, 0}, {1, 1, 1}, {1, 1, 1}, 8.0)};
+  const Image image = reference_image(scene, row_gbuffer({0.0f}));
+  EXPECT_NEAR(image.pixel(0)[0], 2e30f, 2e30 * 1e-6) << "Li=1e30: 2e30 stays finite";
+  EXPECT_NEAR(image.pixel(0)[1], 3e38f, 3e38 * 1e-6) << "Li=1.5e38: 3e38 < FLT_MAX stays finite";
+  EXPECT_TRUE(std::isinf(image.pixel(0)[2]) && image.pixel(0)[2] > 0)
+      << "Li=2e38: 4e38 > FLT_MAX becomes +Inf";
+  EXPECT_EQ(image.pixel(0)[3], 1.0f) << "overflowing pixel is still shaded";
 }
 
 }  // namespace

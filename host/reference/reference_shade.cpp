@@ -30,9 +30,8 @@ ShadingTerms reference_shade_point(const Scene& scene, const SurfacePoint& point
   for (const Light& light : scene.lights) {
     // l points from the surface towards the light; a directional light's direction is the way it
     // travels, hence the minus sign. Point lights are not attenuated with distance.
-    const glm::dvec3 l = light.type == LightType::point
-                             ? robust_normalize(light.position - point.position)
-                             : -robust_normalize(light.direction);
+    const glm::dvec3 l = light.type == LightType::point ? robust_normalize(light.position - point.position)
+                                                        : -robust_normalize(light.direction);
     const double ndl = glm::dot(n, l);
     if (!(ndl > 0.0)) continue;  // back-facing, zero normal, or light at the point
 
