@@ -10,6 +10,7 @@
  *   UNIFORM_SPACE=__constant|__global  where the light and material tables live
  *   HALF_STORAGE                       G-buffer planes stored as half (vload_half)
  *   PHONGCL_DOUBLE, PHONGCL_FAST       arithmetic precision (see phong_math.h)
+ *   WRITE_TERMS                        also write ambient, diffuse, specular separately (AOVs)
  */
 #include "layout.h"
 #include "phong_math.h"
@@ -55,6 +56,10 @@ inline void add_light(LightSums* sums, vec3 n, vec3 v, vec3 l, vec3 color, real 
 #endif
 }
 
+/* Undoes the host's radiance scaling by 2^e = a * b: two power-of-two factors, each a normal float,
+ * so the result overflows only when the exact one does. */
+inline float unscale(real value, float a, float b) { return (float)(value * a) * b; }
+
 inline vec3 light_color(const UNIFORM_SPACE float* color) { return make_vec3(color[0], color[1], color[2]); }
 
 __kernel void phong_shade(
@@ -68,8 +73,9 @@ __kernel void phong_shade(
     float ambient_r, float ambient_g, float ambient_b,
     float radiance_scale_a, float radiance_scale_b,
     float background_r, float background_g, float background_b,
-    /* output: RGBA float, interleaved */
-    __global float* out_rgba) {
+    /* output: RGBA float, interleaved; with WRITE_TERMS also 9 floats per pixel: ambient, diffuse,
+     * specular RGB (one-element dummy otherwise) */
+    __global float* out_rgba, __global float* out_terms) {
   const size_t i = get_global_id(0);
   __global float* out = out_rgba + 4 * i;
   const int material = material_index[i];
@@ -78,6 +84,9 @@ __kernel void phong_shade(
     out[1] = background_g;
     out[2] = background_b;
     out[3] = 0.0f;
+#ifdef WRITE_TERMS
+    for (int k = 0; k < 9; ++k) out_terms[9 * i + k] = 0.0f;
+#endif
     return;
   }
 
@@ -118,16 +127,16 @@ __kernel void phong_shade(
 #else
   const vec3 kd = make_vec3(record->kd[0], record->kd[1], record->kd[2]);
 #endif
-  vec3 radiance = make_vec3(kd.x * sums.diffuse.x, kd.y * sums.diffuse.y, kd.z * sums.diffuse.z);
+  const vec3 diffuse = make_vec3(kd.x * sums.diffuse.x, kd.y * sums.diffuse.y, kd.z * sums.diffuse.z);
 #ifdef SPECULAR
 #ifdef PLANE_KS
   const vec3 ks = make_vec3(LOAD_PLANE(PLANE_KS, i), LOAD_PLANE(PLANE_KS + 1, i), LOAD_PLANE(PLANE_KS + 2, i));
 #else
   const vec3 ks = make_vec3(record->ks[0], record->ks[1], record->ks[2]);
 #endif
-  radiance.x += ks.x * sums.specular.x;
-  radiance.y += ks.y * sums.specular.y;
-  radiance.z += ks.z * sums.specular.z;
+  const vec3 specular = make_vec3(ks.x * sums.specular.x, ks.y * sums.specular.y, ks.z * sums.specular.z);
+#else
+  const vec3 specular = make_vec3(0, 0, 0);
 #endif
 #ifdef AMBIENT
 #ifdef PLANE_KA
@@ -135,15 +144,21 @@ __kernel void phong_shade(
 #else
   const vec3 ka = make_vec3(record->ka[0], record->ka[1], record->ka[2]);
 #endif
-  radiance.x += ka.x * ambient_r;
-  radiance.y += ka.y * ambient_g;
-  radiance.z += ka.z * ambient_b;
+  const vec3 ambient = make_vec3(ka.x * ambient_r, ka.y * ambient_g, ka.z * ambient_b);
+#else
+  const vec3 ambient = make_vec3(0, 0, 0);
 #endif
 
-  /* Two power-of-two factors: each is a normal float, and the product overflows only when the
-   * exact result does. */
-  out[0] = (float)(radiance.x * radiance_scale_a) * radiance_scale_b;
-  out[1] = (float)(radiance.y * radiance_scale_a) * radiance_scale_b;
-  out[2] = (float)(radiance.z * radiance_scale_a) * radiance_scale_b;
+  out[0] = unscale(ambient.x + diffuse.x + specular.x, radiance_scale_a, radiance_scale_b);
+  out[1] = unscale(ambient.y + diffuse.y + specular.y, radiance_scale_a, radiance_scale_b);
+  out[2] = unscale(ambient.z + diffuse.z + specular.z, radiance_scale_a, radiance_scale_b);
   out[3] = 1.0f;
+#ifdef WRITE_TERMS
+  const vec3 terms[3] = {ambient, diffuse, specular};
+  for (int t = 0; t < 3; ++t) {
+    out_terms[9 * i + 3 * t + 0] = unscale(terms[t].x, radiance_scale_a, radiance_scale_b);
+    out_terms[9 * i + 3 * t + 1] = unscale(terms[t].y, radiance_scale_a, radiance_scale_b);
+    out_terms[9 * i + 3 * t + 2] = unscale(terms[t].z, radiance_scale_a, radiance_scale_b);
+  }
+#endif
 }

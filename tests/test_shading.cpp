@@ -193,3 +193,35 @@ TEST(ProgramCache, SecondBuildHitsMemoryThenDisk) {
 
 }  // namespace
 }  // namespace phongcl
+
+namespace phongcl {
+namespace {
+
+TEST(Shading, TermImagesSumToTheCombinedImage) {
+  PHONGCL_REQUIRE_DEVICE(shader);
+  const auto [scene, gbuffer] = random_scene({}, 88);
+  ShadeOptions options;
+  options.write_terms = true;
+  const ShadeResult result = shader.shade(scene, gbuffer, options);
+  const TermImages& terms = result.terms;
+  ASSERT_EQ(terms.ambient.pixel_count(), gbuffer.pixel_count());
+  bool any_specular = false;
+  for (std::size_t i = 0; i < gbuffer.pixel_count(); ++i) {
+    for (int c = 0; c < 3; ++c) {
+      const double sum = double(terms.ambient.pixel(i)[c]) + terms.diffuse.pixel(i)[c] + terms.specular.pixel(i)[c];
+      const double combined = result.image.pixel(i)[c];
+      if (result.image.pixel(i)[3] == 0.0f) continue;  // background: combined holds the background colour
+      any_specular |= terms.specular.pixel(i)[c] > 0.0f;
+      // Each term and the combined value are rounded to float once from the same sums: 2 ulp apart at most.
+      EXPECT_NEAR(sum, combined, 2.5e-7 * std::max(1.0, std::fabs(combined))) << "pixel " << i << " channel " << c;
+    }
+    EXPECT_EQ(terms.diffuse.pixel(i)[3], result.image.pixel(i)[3]);
+  }
+  EXPECT_TRUE(any_specular);
+  const ErrorStats stats = compare_images(result.image, reference_image(scene, gbuffer), kAbsoluteFloor,
+                                          testing::shaded_mask(gbuffer));
+  EXPECT_LE(stats.max_rel, kRelativeBound) << describe_worst(stats);
+}
+
+}  // namespace
+}  // namespace phongcl

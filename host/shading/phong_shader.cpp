@@ -27,7 +27,7 @@ using PhongKernel = cl::KernelFunctor<
     /* G-buffer */ cl::Buffer, cl_uint, cl::Buffer,
     /* scene */ cl::Buffer, cl::Buffer, cl_int, cl::Buffer, cl_int, cl_float, cl_float, cl_float, cl_float, cl_float,
     cl_float, cl_float, cl_float,
-    /* output */ cl::Buffer>;
+    /* output */ cl::Buffer, cl::Buffer>;
 
 // Pixels per tile: the whole frame unless a buffer would exceed the device's largest allocation or
 // the tile's buffers its memory.
@@ -39,6 +39,25 @@ std::size_t tile_pixels(const DeviceInfo& device, const Recipe& recipe, std::siz
   tile = std::min<std::size_t>(tile, device.global_memory / 2 / total_per_pixel);
   if (limit > 0) tile = std::min(tile, limit);
   return std::max<std::size_t>(tile, 1);
+}
+
+constexpr std::size_t kTermValuesPerPixel = 9;  // ambient, diffuse, specular RGB
+
+// Scatters the kernel's per-pixel terms into the three term images, alpha from the combined image.
+void copy_terms(cl::CommandQueue& queue, const cl::Buffer& terms, std::size_t first, std::size_t count,
+                ShadeResult& result) {
+  const auto* values = static_cast<const float*>(
+      queue.enqueueMapBuffer(terms, CL_TRUE, CL_MAP_READ, 0, count * kTermValuesPerPixel * sizeof(cl_float)));
+  Image* images[] = {&result.terms.ambient, &result.terms.diffuse, &result.terms.specular};
+  for (std::size_t t = 0; t < count; ++t) {
+    const std::size_t i = first + t;
+    for (int term = 0; term < 3; ++term) {
+      float* out = images[term]->pixel(i);
+      std::copy_n(values + kTermValuesPerPixel * t + 3 * term, 3, out);
+      out[3] = result.image.pixel(i)[3];
+    }
+  }
+  queue.enqueueUnmapMemObject(terms, const_cast<float*>(values));
 }
 
 }  // namespace
@@ -71,10 +90,15 @@ ShadeResult PhongShader::shade(const Scene& scene, const GBuffer& gbuffer, const
   cl::Buffer planes(context, input_flags, plane_values * (half ? sizeof(cl_half) : sizeof(cl_float)));
   cl::Buffer material_index(context, input_flags, tile * sizeof(cl_int));
   cl::Buffer output(context, CL_MEM_WRITE_ONLY | CL_MEM_ALLOC_HOST_PTR, tile * 4 * sizeof(cl_float));
+  const std::size_t term_values = recipe.write_terms ? tile * kTermValuesPerPixel : 1;
+  cl::Buffer terms(context, CL_MEM_WRITE_ONLY | CL_MEM_ALLOC_HOST_PTR, term_values * sizeof(cl_float));
   std::vector<float> half_staging(half ? plane_values : 0);
   std::size_t flushed_to_zero = 0;
 
   result.image = image_like(gbuffer);
+  if (recipe.write_terms) {
+    result.terms = {image_like(gbuffer), image_like(gbuffer), image_like(gbuffer)};
+  }
   for (std::size_t first = 0; first < pixels; first += tile, ++result.tiles) {
     const std::size_t count = std::min(tile, pixels - first);
     const auto pack_start = Clock::now();
@@ -97,7 +121,7 @@ ShadeResult PhongShader::shade(const Scene& scene, const GBuffer& gbuffer, const
         kernel(cl::EnqueueArgs(queue, cl::NDRange(count)), planes, static_cast<cl_uint>(tile), material_index,
                materials, point_lights, recipe.point_lights, directional_lights, recipe.directional_lights,
                uniforms.ambient[0], uniforms.ambient[1], uniforms.ambient[2], uniforms.radiance_scale_a,
-               uniforms.radiance_scale_b, uniforms.background[0], uniforms.background[1], uniforms.background[2], output);
+               uniforms.radiance_scale_b, uniforms.background[0], uniforms.background[1], uniforms.background[2], output, terms);
 
     cl::Event map_output;
     const auto* shaded = static_cast<const float*>(
@@ -106,6 +130,7 @@ ShadeResult PhongShader::shade(const Scene& scene, const GBuffer& gbuffer, const
     std::memcpy(result.image.pixel(first), shaded, count * 4 * sizeof(float));
     const double copy_ms = milliseconds(copy_start, Clock::now());
     queue.enqueueUnmapMemObject(output, const_cast<float*>(shaded));
+    if (recipe.write_terms) copy_terms(queue, terms, first, count, result);
     queue.finish();
 
     result.timings.upload_ms += event_milliseconds(unmap_planes) + event_milliseconds(unmap_index);

@@ -17,8 +17,15 @@ struct ShadeTimings {
   double build_ms = 0.0, pack_ms = 0.0, upload_ms = 0.0, kernel_ms = 0.0, download_ms = 0.0, total_ms = 0.0;
 };
 
+// The three terms of L_o as images (RGB, alpha as in the combined image); their sum is the
+// combined image up to float rounding. Filled only with ShadeOptions::write_terms.
+struct TermImages {
+  Image ambient, diffuse, specular;
+};
+
 struct ShadeResult {
   Image image;
+  TermImages terms;
   Recipe recipe;
   std::string build_options;
   CacheOutcome cache = CacheOutcome::compiled;

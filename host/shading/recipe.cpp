@@ -112,6 +112,7 @@ std::string Recipe::build_options() const {
   place(per_pixel_kd, "PLANE_KD", 3);
   place(per_pixel_ks, "PLANE_KS", 3);
   place(per_pixel_shininess, "PLANE_Q", 1);
+  if (write_terms) define("WRITE_TERMS");
   define(std::string("UNIFORM_SPACE=") + (uniforms_in_constant ? "__constant" : "__global"));
   switch (precision) {
     case Precision::double_precision: define("PHONGCL_DOUBLE"); break;
@@ -143,6 +144,7 @@ Recipe make_recipe(const Scene& scene, const GBuffer& gbuffer, const DeviceInfo&
   Recipe recipe;
   recipe.precision = options.precision;
   recipe.specialised = options.specialise;
+  recipe.write_terms = options.write_terms;
   recipe.reasons.push_back("precision: " + to_string(options.precision));
   count_lights(recipe, scene);
   decide_materials(recipe, scene, gbuffer);

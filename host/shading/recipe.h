@@ -15,6 +15,7 @@ struct ShadeOptions {
   Precision precision = Precision::precise;
   bool specialise = true;           // false: the general kernel, everything compiled in
   std::size_t max_tile_pixels = 0;  // 0: as large as the device allows
+  bool write_terms = false;         // also return ambient, diffuse and specular separately (AOVs)
 };
 
 struct Recipe {
@@ -27,6 +28,7 @@ struct Recipe {
   bool single_material = false;  // no per-pixel material fetch
   bool per_pixel_ka = false, per_pixel_kd = false, per_pixel_ks = false, per_pixel_shininess = false;
   bool uniforms_in_constant = false;  // lights and materials in __constant memory
+  bool write_terms = false;
   std::vector<std::string> reasons;   // one line per decision, for --explain
 
   int plane_count() const;  // G-buffer planes the device buffer holds
