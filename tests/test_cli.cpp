@@ -1,0 +1,209 @@
+// The phongcl commands end to end, as a user runs them: outputs, summaries, and every kind of bad
+// input getting a one-line error that names the file, a non-zero exit, and no clobbered output.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+
+#include "cli_runner.h"
+
+namespace phongcl {
+namespace {
+
+namespace fs = std::filesystem;
+using testing::CliRun;
+using testing::read_text;
+using testing::run_phongcl;
+
+class Cli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("phongcl-cli-test-" + std::to_string(::getpid()) + "-" +
+                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+  std::string write(const std::string& name, const std::string& text) const {
+    std::ofstream(path(name), std::ios::binary) << text;
+    return path(name);
+  }
+  // An existing output file that a failed run must leave exactly as it was.
+  std::string existing_output() const { return write("existing.exr", "precious bytes"); }
+
+  // A failed run: non-zero exit, one line on stderr naming `what`, nothing on the existing output.
+  void expect_clean_failure(const CliRun& run, const std::string& what, const std::string& output) const {
+    EXPECT_NE(run.exit_code, 0) << run.out << run.err;
+    EXPECT_NE(run.err.find(what), std::string::npos) << "stderr: " << run.err;
+    EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << "stderr should be one line: " << run.err;
+    EXPECT_EQ(read_text(output), "precious bytes");
+    for (const auto& entry : fs::directory_iterator(dir_)) {
+      EXPECT_EQ(entry.path().string().find(".tmp"), std::string::npos) << "temporary left behind: " << entry.path();
+    }
+  }
+
+  fs::path dir_;
+};
+
+constexpr const char* kDefaultScene = "scenes/default/scene.json";
+
+TEST_F(Cli, ShadeWritesImagesAndSaysWhatItDid) {
+  if (!testing::have_opencl_device()) GTEST_SKIP() << "no OpenCL device";
+  const CliRun run = run_phongcl(std::string("shade --scene ") + kDefaultScene + " --out " + path("lit.exr") +
+                                 " --png " + path("lit.png") + " --explain");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  for (const char* expected : {"640 x 480", "307,200 pixels", "2 point + 1 directional", "device", "kernel",
+                               "Mpixels/s", "build options", "-DSPECULAR", "wrote"}) {
+    EXPECT_NE(run.out.find(expected), std::string::npos) << "missing '" << expected << "' in:\n" << run.out;
+  }
+  EXPECT_GT(fs::file_size(path("lit.exr")), 1000u);
+  EXPECT_EQ(read_text(path("lit.png")).substr(1, 3), "PNG");
+}
+
+TEST_F(Cli, ShadeMatchesReferenceThroughCompare) {
+  if (!testing::have_opencl_device()) GTEST_SKIP() << "no OpenCL device";
+  const std::string scene = " --scene scenes/shininess/scene.json";
+  ASSERT_EQ(run_phongcl("shade" + scene + " --out " + path("lit.exr")).exit_code, 0);
+  ASSERT_EQ(run_phongcl("reference" + scene + " --out " + path("ref.exr")).exit_code, 0);
+  const CliRun compare = run_phongcl("compare " + path("lit.exr") + " " + path("ref.exr") + " --tolerance 5e-4");
+  EXPECT_EQ(compare.exit_code, 0) << compare.out << compare.err;
+  for (const char* expected : {"max abs", "max rel", "RMSE", "PSNR", "worst"}) {
+    EXPECT_NE(compare.out.find(expected), std::string::npos) << compare.out;
+  }
+}
+
+TEST_F(Cli, GbufferCommandWritesALoadableGBuffer) {
+  if (!testing::have_opencl_device()) GTEST_SKIP() << "no OpenCL device";
+  ASSERT_EQ(run_phongcl(std::string("gbuffer --scene ") + kDefaultScene + " --out " + path("g.exr")).exit_code, 0);
+  const CliRun run = run_phongcl(std::string("shade --scene ") + kDefaultScene + " --gbuffer " + path("g.exr") +
+                                 " --out " + path("lit.exr"));
+  EXPECT_EQ(run.exit_code, 0) << run.err;
+}
+
+TEST_F(Cli, SecondRunHitsTheProgramCache) {
+  if (!testing::have_opencl_device()) GTEST_SKIP() << "no OpenCL device";
+  const std::string env = "PHONGCL_CACHE_DIR='" + path("cache") + "' ";
+  const std::string args = std::string("shade --scene ") + kDefaultScene + " --out " + path("lit.exr");
+  const CliRun first = run_phongcl(args, env);
+  const CliRun second = run_phongcl(args, env);
+  EXPECT_NE(first.out.find("compiled"), std::string::npos) << first.out;
+  EXPECT_NE(second.out.find("cache hit (disk)"), std::string::npos) << second.out;
+}
+
+TEST_F(Cli, WorksWithoutAHomeDirectory) {
+  if (!testing::have_opencl_device()) GTEST_SKIP() << "no OpenCL device";
+  const CliRun run = run_phongcl(std::string("shade --scene ") + kDefaultScene + " --out " + path("lit.exr"),
+                                 "env -u HOME -u XDG_CACHE_HOME -u PHONGCL_CACHE_DIR -u POCL_CACHE_DIR ");
+  EXPECT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(run.out.find("no disk cache"), std::string::npos) << run.out;
+}
+
+TEST_F(Cli, TruncatedGBufferFailsCleanly) {
+  const std::string full = read_text(fs::path(PHONGCL_SOURCE_DIR) / "scenes/default/gbuffer.exr");
+  const std::string truncated = write("truncated.exr", full.substr(0, full.size() / 2));
+  const std::string out = existing_output();
+  const CliRun run = run_phongcl(std::string("shade --scene ") + kDefaultScene + " --gbuffer " + truncated + " --out " + out);
+  expect_clean_failure(run, "truncated.exr", out);
+}
+
+TEST_F(Cli, NotAnExrFailsCleanly) {
+  const std::string bogus = write("bogus.exr", "this is not an OpenEXR file\n");
+  const std::string out = existing_output();
+  expect_clean_failure(run_phongcl(std::string("shade --scene ") + kDefaultScene + " --gbuffer " + bogus + " --out " + out),
+                       "bogus.exr", out);
+}
+
+TEST_F(Cli, BadScenesFailCleanly) {
+  const std::string out = existing_output();
+  const std::string gbuffer = std::string(" --gbuffer ") + PHONGCL_SOURCE_DIR + "/scenes/default/gbuffer.exr --out " + out;
+  const std::string base_lights = R"("lights": [{"type": "point", "position": [1, 2, 3], "color": [1, 1, 1]}])";
+  const std::string material = R"({"ka": [0.1, 0.1, 0.1], "kd": [0.5, 0.5, 0.5], "ks": [0, 0, 0], "shininess": 4})";
+  const std::string materials = "\"materials\": [" + material + ", " + material + ", " + material + ", " + material +
+                                ", " + material + "]";
+  struct Case {
+    const char* name;
+    std::string json;
+    const char* expected;
+  };
+  const Case cases[] = {
+      {"syntax", R"({"camera": {"eye": [0, 1, 6]},)", "syntax.json"},
+      {"unknown_key", R"({"camera": {"eye": [0, 1, 6]}, "colour": 1})", "colour"},
+      {"light_type", R"({"camera": {"eye": [0, 1, 6]}, "lights": [{"type": "spot", "position": [0, 0, 0]}]})", "spot"},
+      {"shininess", "{\"camera\": {\"eye\": [0, 1, 6]}, " + base_lights +
+                        R"(, "materials": [{"ka": [0,0,0], "kd": [1,1,1], "ks": [1,1,1], "shininess": -3}]})",
+       "shininess"},
+      {"too_few_materials", "{\"camera\": {\"eye\": [0, 1, 6]}, " + base_lights +
+                                R"(, "materials": [{"ka": [0,0,0], "kd": [1,1,1], "ks": [1,1,1], "shininess": 3}]})",
+       "out of range"},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.name);
+    const std::string scene = write(std::string(c.name) + ".json", c.json);
+    expect_clean_failure(run_phongcl("shade --scene " + scene + gbuffer), c.expected, out);
+  }
+  // A valid scene with enough materials shades (so the failures above are about what they say).
+  if (testing::have_opencl_device()) {
+    const std::string good = write("good.json", "{\"camera\": {\"eye\": [0, 1, 6]}, " + base_lights + ", " + materials + "}");
+    const CliRun run = run_phongcl("shade --scene " + good + " --gbuffer " + PHONGCL_SOURCE_DIR +
+                                   "/scenes/default/gbuffer.exr --out " + path("good.exr"));
+    EXPECT_EQ(run.exit_code, 0) << run.err;
+  }
+}
+
+TEST_F(Cli, MissingGBufferFailsCleanly) {
+  const std::string out = existing_output();
+  const std::string scene = write("no_gbuffer.json", R"({"camera": {"eye": [0, 1, 6]}})");
+  expect_clean_failure(run_phongcl("shade --scene " + scene + " --out " + out), "no G-buffer", out);
+  expect_clean_failure(run_phongcl(std::string("shade --scene ") + kDefaultScene + " --gbuffer " + path("absent.exr") +
+                                   " --out " + out),
+                       "absent.exr", out);
+}
+
+TEST_F(Cli, NoOpenCLDeviceIsAClearError) {
+  const std::string out = existing_output();
+  // The ICD loader reads vendors from OCL_ICD_VENDORS: an empty directory means no platform at all.
+  fs::create_directories(path("no-vendors"));
+  const CliRun run = run_phongcl(std::string("shade --scene ") + kDefaultScene + " --out " + out,
+                                 "OCL_ICD_VENDORS='" + path("no-vendors") + "' ");
+  expect_clean_failure(run, "no OpenCL device", out);
+}
+
+TEST_F(Cli, KernelBuildFailureShowsTheBuildLog) {
+  if (!testing::have_opencl_device()) GTEST_SKIP() << "no OpenCL device";
+  const fs::path kernels = fs::path(PHONGCL_SOURCE_DIR) / "kernels";
+  fs::create_directories(path("kernels"));
+  for (const auto& entry : fs::directory_iterator(kernels)) fs::copy(entry.path(), path("kernels"));
+  std::ofstream(path("kernels/phong.cl"), std::ios::app) << "\nthis_is_not_opencl_c;\n";
+  const std::string out = existing_output();
+  const CliRun run = run_phongcl(std::string("shade --scene ") + kDefaultScene + " --out " + out,
+                                 "PHONGCL_KERNEL_DIR='" + path("kernels") + "' PHONGCL_CACHE_DIR='" + path("cache") + "' ");
+  EXPECT_NE(run.exit_code, 0);
+  EXPECT_NE(run.err.find("kernel build failed"), std::string::npos) << run.err;
+  // The log points at the broken line of the original file (the #line directives keep it so).
+  const std::string kernel_text = read_text(path("kernels/phong.cl"));
+  const std::string broken_line = "phong.cl:" + std::to_string(std::count(kernel_text.begin(), kernel_text.end(), '\n'));
+  EXPECT_NE(run.err.find(broken_line), std::string::npos) << "build log should name " << broken_line << ": " << run.err;
+  EXPECT_EQ(read_text(out), "precious bytes");
+}
+
+TEST_F(Cli, UnwritableOutputDirectoryFailsCleanly) {
+  if (!testing::have_opencl_device()) GTEST_SKIP() << "no OpenCL device";
+  const CliRun run = run_phongcl(std::string("shade --scene ") + kDefaultScene + " --out " + path("missing-dir/lit.exr"));
+  EXPECT_NE(run.exit_code, 0);
+  EXPECT_NE(run.err.find("lit.exr"), std::string::npos) << run.err;
+  EXPECT_FALSE(fs::exists(path("missing-dir")));
+}
+
+TEST_F(Cli, NonFinitePixelsAreCountedNotFatal) {
+  if (!testing::have_opencl_device()) GTEST_SKIP() << "no OpenCL device";
+  // Covered in depth by the G-buffer and shading suites; here: the summary line a user sees.
+  const CliRun run = run_phongcl(std::string("shade --scene ") + kDefaultScene + " --out " + path("lit.exr"));
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_EQ(run.out.find("non-finite"), std::string::npos) << "the bundled G-buffer is all finite: " << run.out;
+}
+
+}  // namespace
+}  // namespace phongcl
