@@ -6,8 +6,10 @@
 #include <ImfCompression.h>
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
-#include <ImfInputFile.h>
+#include <ImfInputPart.h>
+#include <ImfMultiPartInputFile.h>
 #include <ImfOutputFile.h>
+#include <ImfPartType.h>
 #include <ImfTestFile.h>
 #include <half.h>
 
@@ -55,14 +57,6 @@ struct ChannelSlice {
 using ReadSlice = ChannelSlice<float>;
 using WriteSlice = ChannelSlice<const float>;
 
-inline Imf::FrameBuffer float_frame_buffer(const std::vector<ReadSlice>& slices, const Imath::Box2i& window) {
-  Imf::FrameBuffer frame_buffer;
-  for (const auto& slice : slices)
-    frame_buffer.insert(slice.name,
-                        Imf::Slice::Make(Imf::FLOAT, slice.first, window, slice.stride * sizeof(float)));
-  return frame_buffer;
-}
-
 // Runs action; an OpenEXR (Iex) or other library exception becomes InputError(file, "what (detail)").
 template <class Action>
 void translate_errors(const std::filesystem::path& file, const std::string& what, Action&& action) {
@@ -77,7 +71,10 @@ void translate_errors(const std::filesystem::path& file, const std::string& what
   }
 }
 
-// A single-part, flat (not deep) EXR opened for reading, scanline or tiled alike.
+// A flat (not deep) EXR opened for reading: single- or multi-part, scanline or tiled parts alike.
+// Channels are named as the parts state them; a channel of a named part is also reachable as
+// "<part name>.<channel>" (Nuke and others write one part per layer with unprefixed channels).
+// Where two parts hold the same name, the first part's channel is the one read.
 class InputExr {
  public:
   explicit InputExr(const std::filesystem::path& file) : file_(file) {
@@ -89,42 +86,80 @@ class InputExr {
     if (!Imf::isOpenExrFile(file.c_str(), tiled, deep, multi_part))
       throw InputError(file, "not an OpenEXR file");
     if (deep) throw InputError(file, "deep EXR files are not supported");
-    if (multi_part) throw InputError(file, "multi-part EXR files are not supported");
     translate_errors(file, "truncated or corrupt EXR header",
-                     [&] { input_ = std::make_unique<Imf::InputFile>(file.c_str()); });
+                     [&] { input_ = std::make_unique<Imf::MultiPartInputFile>(file.c_str()); });
+    for (int part = 0; part < input_->parts(); ++part) {
+      const Imf::Header& header = input_->header(part);
+      if (header.hasType() && Imf::isDeepData(header.type()))
+        throw InputError(file, "part " + std::to_string(part) + " holds deep data, which is not supported");
+      const std::string prefix = header.hasName() ? header.name() + "." : "";
+      for (auto it = header.channels().begin(); it != header.channels().end(); ++it) {
+        add_channel(it.name(), part, it.name());
+        if (!prefix.empty() && std::string(it.name()).rfind(prefix, 0) != 0) add_channel(prefix + it.name(), part, it.name());
+      }
+    }
   }
 
-  PixelWindow data_window() const { return to_window(input_->header().dataWindow()); }
-  PixelWindow display_window() const { return to_window(input_->header().displayWindow()); }
+  // Of the first part; parts whose channels are read together must share it (see read()).
+  PixelWindow data_window() const { return to_window(input_->header(0).dataWindow()); }
+  PixelWindow display_window() const { return to_window(input_->header(0).displayWindow()); }
+  int parts() const { return input_->parts(); }
 
+  // In file order, part by part.
   std::vector<std::string> channel_names() const {
     std::vector<std::string> names;
-    for (auto it = input_->header().channels().begin(); it != input_->header().channels().end(); ++it)
-      names.emplace_back(it.name());
+    for (const auto& channel : channels_) names.push_back(channel.name);
     return names;
   }
-  bool has_channel(const std::string& name) const {
-    return input_->header().channels().findChannel(name) != nullptr;
-  }
+  bool has_channel(const std::string& name) const { return find(name) != nullptr; }
 
   // Reads the named channels (which must exist) as float, converting half and uint.
   void read(const std::vector<ReadSlice>& slices) {
+    const Imath::Box2i window = input_->header(0).dataWindow();
+    std::vector<Imf::FrameBuffer> frame_buffers(static_cast<std::size_t>(input_->parts()));
+    std::vector<bool> used(frame_buffers.size(), false);
     for (const auto& slice : slices) {
-      const Imf::Channel* channel = input_->header().channels().findChannel(slice.name);
-      if (channel == nullptr) throw InputError(file_, "missing channel " + slice.name);
-      if (channel->xSampling != 1 || channel->ySampling != 1)
+      const PartChannel* found = find(slice.name);
+      if (found == nullptr) throw InputError(file_, "missing channel " + slice.name);
+      const Imf::Header& header = input_->header(found->part);
+      const Imf::Channel& channel = header.channels()[found->name_in_part];
+      if (channel.xSampling != 1 || channel.ySampling != 1)
         throw InputError(file_, "channel " + slice.name + " is subsampled; full resolution is needed");
+      if (header.dataWindow() != window)
+        throw InputError(file_, "channel " + slice.name + " is in a part whose data window differs from the first part's");
+      frame_buffers[found->part].insert(
+          found->name_in_part, Imf::Slice::Make(Imf::FLOAT, slice.first, window, slice.stride * sizeof(float)));
+      used[found->part] = true;
     }
-    const Imath::Box2i window = input_->header().dataWindow();
     translate_errors(file_, "truncated or corrupt EXR", [&] {
-      input_->setFrameBuffer(float_frame_buffer(slices, window));
-      input_->readPixels(window.min.y, window.max.y);
+      for (std::size_t part = 0; part < frame_buffers.size(); ++part) {
+        if (!used[part]) continue;
+        Imf::InputPart input(*input_, static_cast<int>(part));
+        input.setFrameBuffer(frame_buffers[part]);
+        input.readPixels(window.min.y, window.max.y);
+      }
     });
   }
 
  private:
+  struct PartChannel {
+    std::string name;          // as callers ask for it
+    int part;
+    std::string name_in_part;  // as the part's header states it
+  };
+
+  void add_channel(const std::string& name, int part, const std::string& name_in_part) {
+    if (!has_channel(name)) channels_.push_back({name, part, name_in_part});
+  }
+  const PartChannel* find(const std::string& name) const {
+    for (const auto& channel : channels_)
+      if (channel.name == name) return &channel;
+    return nullptr;
+  }
+
   std::filesystem::path file_;
-  std::unique_ptr<Imf::InputFile> input_;
+  std::unique_ptr<Imf::MultiPartInputFile> input_;
+  std::vector<PartChannel> channels_;
 };
 
 // Writes the slices as one scanline EXR with ZIP compression, atomically (temp file, then rename).
