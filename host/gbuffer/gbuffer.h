@@ -51,8 +51,10 @@ PixelClass classify_pixel(const GBuffer& gbuffer, std::size_t index);
 // material index is not an integer in [0, material_count) or a per-pixel shininess is negative.
 void check_materials(const GBuffer& gbuffer, std::size_t material_count);
 
-// Reads a phongcl-layout EXR (scanline or tiled, half or float). Throws InputError on a missing
-// required channel, a truncated or corrupt file, or an unreadable one.
+// Reads a G-buffer EXR in any layout, detected from its channels (the same as
+// read_gbuffer(file, ReadOptions{}) of gbuffer/layouts.h, which also says what it found): single-
+// or multi-part, scanline or tiled, half, float or uint, any compression. Throws InputError on a
+// missing required channel, a truncated or corrupt file, or an unreadable one.
 GBuffer read_gbuffer(const std::filesystem::path& file);
 
 enum class ExrPixelType { half, float32 };

@@ -1,69 +1,184 @@
-// Reading a phongcl-layout G-buffer EXR into planes.
+// Reading a G-buffer EXR in any layout into planes: resolve the layout's channels against the
+// file, report everything missing at once, then read and mark background.
+#include <algorithm>
 #include <string>
 #include <vector>
 
 #include "common/error.h"
 #include "gbuffer/exr_channels.h"
 #include "gbuffer/gbuffer.h"
-#include "gbuffer/gbuffer_layout.h"
+#include "gbuffer/layout_presets.h"
+#include "gbuffer/layouts.h"
 
 namespace phongcl {
 
 namespace {
 
-std::string join(const std::vector<std::string>& names) {
+std::string join(const std::vector<std::string>& names, const char* separator = ", ") {
   if (names.empty()) return "none";
   std::string joined = names.front();
-  for (std::size_t i = 1; i < names.size(); ++i) joined += ", " + names[i];
+  for (std::size_t i = 1; i < names.size(); ++i) joined += separator + names[i];
   return joined;
 }
 
-template <class Group>
-std::vector<std::string> missing_channels(const Group& group, const exr::InputExr& input) {
-  std::vector<std::string> missing;
-  for (const auto& channel : group.channels)
-    if (!input.has_channel(channel.name)) missing.emplace_back(channel.name);
-  return missing;
+std::size_t present_count(const PassSource& source, const exr::InputExr& input) {
+  return static_cast<std::size_t>(std::count_if(source.channels.begin(), source.channels.end(),
+                                                [&](const std::string& name) { return input.has_channel(name); }));
+}
+
+bool complete(const PassSource* source, const exr::InputExr& input) {
+  return source != nullptr && present_count(*source, input) == source->channels.size();
+}
+
+// The first source whose channels are all present, else the most complete one (to name what is
+// missing); null if the layout has no source for the pass.
+const PassSource* best_source(const PassSpec& spec, const exr::InputExr& input) {
+  const PassSource* best = nullptr;
+  for (const auto& source : spec.sources) {
+    if (complete(&source, input)) return &source;
+    if (best == nullptr || present_count(source, input) > present_count(*best, input)) best = &source;
+  }
+  return best;
+}
+
+// The layout's passes matched against the file, with the user's mapping on top.
+struct Resolution {
+  ChannelMap channels;
+  std::vector<std::string> labels;  // of the passes used, in the layout's order
+  std::vector<std::string> missing_required, missing_from_partial_group;
+};
+
+Resolution resolve(const LayoutSpec& spec, const ChannelMap& user, const exr::InputExr& input,
+                   const std::filesystem::path& file, const std::string& found) {
+  for (const auto& [pass, channels] : user)
+    for (const auto& name : channels)
+      if (!input.has_channel(name))
+        throw InputError(file, "--channel " + std::string(pass_name(pass)) + ": no channel '" + name + "'" + found);
+  const auto user_label = [](Pass pass, const std::vector<std::string>& channels) {
+    return std::string(pass_name(pass)) + "=" + join(channels, ",");
+  };
+  // A depth the user names (and no position) is a request to reconstruct positions from it.
+  const bool depth_stands_in = user.count(Pass::depth) > 0 && user.count(Pass::position) == 0;
+  bool depth_available = user.count(Pass::depth) > 0;
+  for (const auto& pass_spec : spec.passes)
+    if (pass_spec.pass == Pass::depth) depth_available |= complete(best_source(pass_spec, input), input);
+
+  Resolution r;
+  for (const auto& pass_spec : spec.passes) {
+    const Pass pass = pass_spec.pass;
+    if (depth_stands_in && pass == Pass::position) continue;
+    if (pass == Pass::depth && r.channels.count(Pass::position)) continue;  // positions are there already
+    if (const auto mapped = user.find(pass); mapped != user.end()) {
+      r.channels[pass] = mapped->second;
+      r.labels.push_back(user_label(pass, mapped->second));
+      continue;
+    }
+    const PassSource* source = best_source(pass_spec, input);
+    if (complete(source, input)) {
+      r.channels[pass] = source->channels;
+      r.labels.push_back(source->label);
+      continue;
+    }
+    const bool required = pass_spec.required && !(pass == Pass::position && depth_available);
+    if (source == nullptr) {
+      if (required) r.missing_required.push_back(std::string(pass_name(pass)) + " (give --channel " + pass_name(pass) + "=...)");
+      continue;
+    }
+    if (!required && present_count(*source, input) == 0) continue;  // an absent optional pass
+    auto& list = required ? r.missing_required : r.missing_from_partial_group;
+    for (const auto& name : source->channels)
+      if (!input.has_channel(name)) list.push_back(name);
+  }
+  for (const auto& [pass, channels] : user)  // passes the layout does not list
+    if (!r.channels.count(pass)) {
+      r.channels[pass] = channels;
+      r.labels.push_back(user_label(pass, channels));
+    }
+  return r;
+}
+
+std::string describe(const LayoutSpec& spec, const Resolution& r) {
+  std::string text = layout_name(spec.layout);
+  text += " (";
+  if (spec.layout == Layout::blender) text += "view layer '" + spec.view_layer + "': ";
+  text += join(r.labels);
+  if (!r.channels.count(Pass::material)) text += "; no material pass: material 0";
+  if (!r.channels.count(Pass::position)) text += "; positions from depth";
+  return text + ")";
+}
+
+// Where each pass's channels go: the G-buffer's planes, or the reader's own for depth and alpha.
+std::vector<Plane*> destinations(Pass pass, GBufferRead& read, Plane& alpha) {
+  GBuffer& g = read.gbuffer;
+  const auto three = [](Planes3& planes) { return std::vector<Plane*>{&planes[0], &planes[1], &planes[2]}; };
+  switch (pass) {
+    case Pass::position: return three(g.position);
+    case Pass::normal: return three(g.normal);
+    case Pass::ka: return three(g.ka);
+    case Pass::kd: return three(g.kd);
+    case Pass::ks: return three(g.ks);
+    case Pass::material: return {&g.material};
+    case Pass::shininess: return {&g.shininess};
+    case Pass::depth: return {&read.depth};
+    case Pass::alpha: return {&alpha};
+  }
+  return {};
+}
+
+void mark_background(GBuffer& g, const Plane& alpha, bool zero_normal_is_background) {
+  for (std::size_t i = 0; i < g.pixel_count(); ++i) {
+    const bool uncovered = !alpha.empty() && alpha[i] == 0.0f;
+    const bool no_normal =
+        zero_normal_is_background && g.normal[0][i] == 0.0f && g.normal[1][i] == 0.0f && g.normal[2][i] == 0.0f;
+    if (uncovered || no_normal) g.material[i] = -1.0f;
+  }
 }
 
 }  // namespace
 
-GBuffer read_gbuffer(const std::filesystem::path& file) {
+GBufferRead read_gbuffer(const std::filesystem::path& file, const ReadOptions& options) {
   exr::InputExr input(file);
-  GBuffer g;
+  const std::vector<std::string> channel_names = input.channel_names();
+  const LayoutSpec spec = options.layout == Layout::automatic
+                              ? detect_layout(channel_names, options, file)
+                              : layout_spec(options.layout, options.view_layer, channel_names, file);
+  const std::string context = spec.layout == Layout::phongcl ? "" : std::string(layout_name(spec.layout)) + " layout; ";
+  const std::string found = " (" + context + "found: " + join(channel_names) + ")";
+
+  // Every problem with the channel list is reported before any pixel is read.
+  const Resolution r = resolve(spec, options.channels, input, file, found);
+  if (!r.missing_required.empty())
+    throw InputError(file, (r.missing_required.size() == 1 ? "missing channel " : "missing channels ") +
+                               join(r.missing_required) + found);
+  if (!r.missing_from_partial_group.empty())
+    throw InputError(file, "incomplete per-pixel material group, missing " + join(r.missing_from_partial_group) + found);
+
+  GBufferRead read;
+  read.layout = spec.layout;
+  read.description = describe(spec, r);
+  GBuffer& g = read.gbuffer;
   g.source = file;
   g.data_window = input.data_window();
   g.display_window = input.display_window();
   g.width = g.data_window.width();
   g.height = g.data_window.height();
 
-  // Every problem with the channel list is reported before any pixel is read.
-  const auto layout = gbuffer_layout(g);
-  std::vector<std::string> missing_required, missing_from_partial_group;
-  for (const auto& group : layout) {
-    const auto missing = missing_channels(group, input);
-    auto& list = group.required ? missing_required : missing_from_partial_group;
-    if (group.required || missing.size() < group.channels.size())
-      list.insert(list.end(), missing.begin(), missing.end());
-  }
-  const std::string found = " (found: " + join(input.channel_names()) + ")";
-  if (!missing_required.empty())
-    throw InputError(file, (missing_required.size() == 1 ? "missing channel " : "missing channels ") +
-                               join(missing_required) + found);
-  if (!missing_from_partial_group.empty())
-    throw InputError(file, "incomplete per-pixel material group, missing " +
-                               join(missing_from_partial_group) + found);
-
+  Plane alpha;
   std::vector<exr::ReadSlice> slices;
-  for (const auto& group : layout) {
-    if (!missing_channels(group, input).empty()) continue;  // an absent optional group
-    for (const auto& channel : group.channels) {
-      channel.plane->resize(g.pixel_count());
-      slices.push_back({channel.name, channel.plane->data()});
+  for (const auto& [pass, channels] : r.channels) {
+    if (pass == Pass::depth && r.channels.count(Pass::position)) continue;  // only read what is used
+    const auto planes = destinations(pass, read, alpha);
+    for (std::size_t c = 0; c < channels.size(); ++c) {
+      planes[c]->resize(g.pixel_count());
+      slices.push_back({channels[c], planes[c]->data()});
     }
   }
   input.read(slices);
-  return g;
+  if (g.material.empty()) g.material.assign(g.pixel_count(), 0.0f);
+  mark_background(g, alpha, spec.zero_normal_is_background);
+  return read;
 }
+
+GBuffer read_gbuffer(const std::filesystem::path& file) { return read_gbuffer(file, ReadOptions{}).gbuffer; }
 
 }  // namespace phongcl
