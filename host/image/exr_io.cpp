@@ -16,14 +16,28 @@ constexpr const char* kChannelNames[4] = {"R", "G", "B", "A"};
 }  // namespace
 
 void write_exr(const Image& image, const std::filesystem::path& file, ExrPixelType type) {
-  const PixelWindow data_window = exr::data_window_for(image.data_window, image.width, image.height);
-  if (image.rgba.size() != 4 * image.pixel_count())
-    throw std::invalid_argument("write_exr: image holds " + std::to_string(image.rgba.size()) +
-                                " floats, expected " + std::to_string(4 * image.pixel_count()));
+  write_layered_exr({{"", &image, true}}, file, type);
+}
+
+void write_layered_exr(const std::vector<ExrLayer>& layers, const std::filesystem::path& file, ExrPixelType type) {
+  if (layers.empty()) throw std::invalid_argument("write_layered_exr: no layers");
+  const Image& first = *layers.front().image;
+  const PixelWindow data_window = exr::data_window_for(first.data_window, first.width, first.height);
   std::vector<exr::WriteSlice> slices;
-  for (int c = 0; c < 4; ++c) slices.push_back({kChannelNames[c], image.rgba.data() + c, 4});
-  exr::write_channels(file, data_window, exr::display_window_for(image.display_window, data_window), type,
-                      slices);
+  for (const auto& layer : layers) {
+    const Image& image = *layer.image;
+    if (image.rgba.size() != 4 * image.pixel_count())
+      throw std::invalid_argument("write_exr: image holds " + std::to_string(image.rgba.size()) +
+                                  " floats, expected " + std::to_string(4 * image.pixel_count()));
+    const PixelWindow window = exr::data_window_for(image.data_window, image.width, image.height);
+    if (window.x_min != data_window.x_min || window.y_min != data_window.y_min || window.x_max != data_window.x_max ||
+        window.y_max != data_window.y_max)
+      throw std::invalid_argument("write_layered_exr: layer '" + layer.name + "' differs in size or window");
+    for (int c = 0; c < (layer.with_alpha ? 4 : 3); ++c)
+      slices.push_back({layer.name.empty() ? kChannelNames[c] : layer.name + "." + kChannelNames[c],
+                        image.rgba.data() + c, 4});
+  }
+  exr::write_channels(file, data_window, exr::display_window_for(first.display_window, data_window), type, slices);
 }
 
 Image read_exr(const std::filesystem::path& file) {
