@@ -1,7 +1,9 @@
 #pragma once
-// The --scene/--gbuffer pair that shade, reference and bench share.
+// The scene and G-buffer options that shade, reference and bench share: --scene/--gbuffer, and how
+// to read a renderer's G-buffer (--layout, --view-layer, --channel, --space, --depth-convention).
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -10,14 +12,29 @@
 
 namespace phongcl::cli {
 
+struct LoadedGBuffer {
+  GBuffer gbuffer;
+  std::string layout;  // what was read, for the summary: "blender (view layer 'ViewLayer': ...)"
+};
+
 struct SceneInputs {
   std::string scene_file;
   std::string gbuffer_file;  // empty: the scene's "gbuffer" entry
+  std::string layout = "auto";
+  std::string view_layer;
+  std::vector<std::string> channels;  // "position=Foo.X,Foo.Y,Foo.Z", ...
+  std::string space = "world";
+  std::string depth_convention = "distance";
 
   void add_options(CLI::App& command);
+  bool camera_space() const { return space == "camera"; }
+  // The scene file; with --space camera, seen from its camera (scene/camera_space.h).
   Scene load_scene() const;
+  // Reads the G-buffer in the chosen layout and, where it has depth but no position, rebuilds
+  // positions from depth and scene.camera (so call it with the scene load_scene() returned).
   // Throws InputError when neither --gbuffer nor the scene's "gbuffer" entry names a file.
-  GBuffer load_gbuffer(const Scene& scene) const;
+  LoadedGBuffer load_described_gbuffer(const Scene& scene) const;
+  GBuffer load_gbuffer(const Scene& scene) const { return load_described_gbuffer(scene).gbuffer; }
 };
 
 }  // namespace phongcl::cli

@@ -1,5 +1,6 @@
 #pragma once
-// The --out/--half/--png/--exposure/--tonemap options that shade and reference share.
+// The --out/--half/--png/--exposure/--tonemap options that shade and reference share, and shade's
+// --aov (the ambient, diffuse and specular terms as layers of one EXR).
 #include <string>
 
 #include <CLI/CLI.hpp>
@@ -8,15 +9,26 @@
 
 namespace phongcl::cli {
 
+// The terms of the combined image, for --aov.
+struct TermLayers {
+  const Image& ambient;
+  const Image& diffuse;
+  const Image& specular;
+};
+
 struct ImageOutputs {
-  std::string exr_file, png_file;
+  std::string exr_file, png_file, aov_file;
   bool half = false;
   double exposure = 0.0;
   std::string tone_map = "reinhard";
 
   void add_options(CLI::App& command);
+  void add_aov_option(CLI::App& command);  // only for commands that can produce the terms
+  bool wants_terms() const { return !aov_file.empty(); }
   // Each file is written atomically; returns "lit.exr (float32), lit.png" for the summary.
   std::string write(const Image& image) const;
+  // The same, plus --aov: layers ambient.*, diffuse.*, specular.* (R G B) and the combined R G B A.
+  std::string write(const Image& image, const TermLayers& terms) const;
 };
 
 }  // namespace phongcl::cli

@@ -33,15 +33,20 @@ void print_unshaded(const PixelCounts& counts) {
 
 void run_shade(const ShadeArguments& args) {
   const Scene scene = args.inputs.load_scene();
-  const GBuffer gbuffer = args.inputs.load_gbuffer(scene);
-  const ShadeOptions options{parse_precision(args.precision), !args.no_specialise};
+  const LoadedGBuffer loaded = args.inputs.load_described_gbuffer(scene);
+  const GBuffer& gbuffer = loaded.gbuffer;
+  ShadeOptions options{parse_precision(args.precision), !args.no_specialise};
+  options.write_terms = args.outputs.wants_terms();
   ProgramCache cache(ProgramCache::default_directory());
   PhongShader shader(make_compute_context(pick_device(args.device)), cache);
   const ShadeResult result = shader.shade(scene, gbuffer, options);
-  const std::string written = args.outputs.write(result.image);
+  const std::string written =
+      args.outputs.write(result.image, {result.terms.ambient, result.terms.diffuse, result.terms.specular});
 
   const ShadeTimings& t = result.timings;
   std::cout << "phongcl shade: " << scene.source.string() << " + " << gbuffer.source.string() << "\n"
+            << "  layout     " << loaded.layout << "\n"
+            << (args.inputs.camera_space() ? "  space      camera (lights moved into the scene camera's frame)\n" : "")
             << "  image      " << gbuffer.width << " x " << gbuffer.height << ", " << with_commas(gbuffer.pixel_count())
             << " pixels: " << with_commas(result.counts.shaded) << " shaded, "
             << with_commas(gbuffer.pixel_count() - result.counts.shaded) << " background\n"
@@ -74,6 +79,7 @@ void add_shade_command(CLI::App& app) {
   CLI::App* command = app.add_subcommand("shade", "Shade a G-buffer with the OpenCL Phong kernel");
   args->inputs.add_options(*command);
   args->outputs.add_options(*command);
+  args->outputs.add_aov_option(*command);
   command->add_option("--device", args->device, "OpenCL device: index or name (default: first CPU device)");
   command->add_option("--precision", args->precision, "double, precise (default), fast or half-storage")
       ->check(CLI::IsMember({"double", "precise", "fast", "half-storage"}));
