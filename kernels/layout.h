@@ -27,6 +27,9 @@ typedef struct {
   layout_float padding[3];
 } MaterialRecord;
 
+/* Float offsets of MaterialRecord's fields, for the kernel's per-lane gathers. */
+enum { MATERIAL_KA = 0, MATERIAL_KD = 4, MATERIAL_KS = 8, MATERIAL_SHININESS = 12 };
+
 /* The G-buffer lives in one device buffer of planes (structure of arrays: kernels over plain float
  * arrays vectorise, float3 code does not). Plane k of a tile starts at k * plane_stride. The
  * per-pixel material planes follow the geometry planes, in this order, only if present. */

@@ -1,7 +1,8 @@
-/* Deferred Phong shading, one work-item per pixel:
+/* Deferred Phong shading; each work-item shades PHONGCL_LANES consecutive pixels (phong_math.h):
  *   L_o = ka*La + sum_i Li * [ kd*max(0, n.l_i) + ks*max(0, v.r_i)^q ],  r = 2(n.l)n - l
  * Only what the scene needs is compiled in. The host (host/shading/recipe.cpp) writes the options;
  * `phongcl shade --explain` prints them:
+ *   PHONGCL_LANES=n                    pixels per work-item (8 on CPUs: one AVX register)
  *   POINT_LIGHTS, DIRECTIONAL_LIGHTS   light types present
  *   POINT_COUNT=n, DIRECTIONAL_COUNT=n compile-time light counts (loops unroll), else run-time
  *   SPECULAR, AMBIENT                  terms present
@@ -11,17 +12,20 @@
  *   HALF_STORAGE                       G-buffer planes stored as half (vload_half)
  *   PHONGCL_DOUBLE, PHONGCL_FAST       arithmetic precision (see phong_math.h)
  *   WRITE_TERMS                        also write ambient, diffuse, specular separately (AOVs)
+ * Every buffer is planar with `plane_stride` values per plane, a multiple of PHONGCL_LANES (the host
+ * pads each tile with background pixels).
  */
 #include "layout.h"
 #include "phong_math.h"
 
 #ifdef HALF_STORAGE
 #define STORAGE half
-#define LOAD_PLANE(plane, i) ((real)vload_half((size_t)(plane) * plane_stride + (i), planes))
+#define LOAD_PLANE(plane) TO_REALV(VLOAD_HALF(group, planes + (size_t)(plane) * plane_stride))
 #else
 #define STORAGE float
-#define LOAD_PLANE(plane, i) ((real)planes[(size_t)(plane) * plane_stride + (i)])
+#define LOAD_PLANE(plane) TO_REALV(VLOAD_FLOAT(group, planes + (size_t)(plane) * plane_stride))
 #endif
+#define LOAD_PLANE3(plane) make_vec3(LOAD_PLANE(plane), LOAD_PLANE((plane) + 1), LOAD_PLANE((plane) + 2))
 
 #ifdef POINT_COUNT
 #define POINT_LOOP_COUNT POINT_COUNT
@@ -40,125 +44,140 @@ typedef struct {
 } LightSums;
 
 /* Adds one light's contribution, with l the unit vector towards the light. */
-inline void add_light(LightSums* sums, vec3 n, vec3 v, vec3 l, vec3 color, real shininess) {
-  real ndl = dot3(n, l);
-  if (!(ndl > 0)) return; /* back-facing or grazing: nothing from this light */
-  sums->diffuse.x += color.x * ndl;
-  sums->diffuse.y += color.y * ndl;
-  sums->diffuse.z += color.z * ndl;
+inline void add_light(LightSums* sums, vec3 n, vec3 v, vec3 l, const UNIFORM_SPACE float* color, realv shininess) {
+  const realv ndl = dot3(n, l);
+  const realv lit_ndl = SELECT(ndl > 0, ndl, 0); /* back-facing or grazing: nothing from this light */
+  sums->diffuse.x += color[0] * lit_ndl;
+  sums->diffuse.y += color[1] * lit_ndl;
+  sums->diffuse.z += color[2] * lit_ndl;
 #ifdef SPECULAR
-  vec3 r = sub3(scale3(n, 2 * ndl), l);
-  vec3 v_minus_r = sub3(v, r);
-  real spec = specular_power(dot3(v, r), (real)0.5 * dot3(v_minus_r, v_minus_r), shininess);
-  sums->specular.x += color.x * spec;
-  sums->specular.y += color.y * spec;
-  sums->specular.z += color.z * spec;
+  const vec3 r = sub3(scale3(n, 2 * ndl), l);
+  const vec3 v_minus_r = sub3(v, r);
+  const realv spec = specular_power(dot3(v, r), (real)0.5 * dot3(v_minus_r, v_minus_r), shininess);
+  const realv lit_spec = SELECT(ndl > 0, spec, 0);
+  sums->specular.x += color[0] * lit_spec;
+  sums->specular.y += color[1] * lit_spec;
+  sums->specular.z += color[2] * lit_spec;
 #endif
 }
 
+#if !defined(SINGLE_MATERIAL) && PHONGCL_LANES > 1
+/* One field of each lane's material record: a gather through private memory (no dynamic lane
+ * indexing in OpenCL C). `field` is a float offset within MaterialRecord (layout.h). */
+inline realv gather_field(UNIFORM_SPACE const MaterialRecord* table, const int* index, int field) {
+  real values[PHONGCL_LANES];
+  for (int k = 0; k < PHONGCL_LANES; ++k) values[k] = ((const UNIFORM_SPACE float*)&table[index[k]])[field];
+  return PHONGCL_XCAT(vload, PHONGCL_LANES)(0, values);
+}
+#define MATERIAL_FIELD(field) gather_field(materials, lane_material, field)
+#else
+/* One material for the whole work-item: a uniform load. */
+#ifdef SINGLE_MATERIAL
+#define MATERIAL_RECORD (&materials[0])
+#else
+#define MATERIAL_RECORD (&materials[lane_material[0]])
+#endif
+#define MATERIAL_FIELD(field) ((realv)((const UNIFORM_SPACE float*)MATERIAL_RECORD)[field])
+#endif
+#define MATERIAL_FIELD3(field) make_vec3(MATERIAL_FIELD(field), MATERIAL_FIELD((field) + 1), MATERIAL_FIELD((field) + 2))
+
 /* Undoes the host's radiance scaling by 2^e = a * b: two power-of-two factors, each a normal float,
  * so the result overflows only when the exact one does. */
-inline float unscale(real value, float a, float b) { return (float)(value * a) * b; }
+inline floatv unscale(realv value, float a, float b) { return TO_FLOATV(value * a) * b; }
 
-inline vec3 light_color(const UNIFORM_SPACE float* color) { return make_vec3(color[0], color[1], color[2]); }
+inline void store3(vec3 value, float a, float b, size_t group, __global float* restrict out, uint plane_stride) {
+  VSTORE_FLOAT(unscale(value.x, a, b), group, out);
+  VSTORE_FLOAT(unscale(value.y, a, b), group, out + plane_stride);
+  VSTORE_FLOAT(unscale(value.z, a, b), group, out + 2 * (size_t)plane_stride);
+}
 
 __kernel void phong_shade(
     /* G-buffer tile: planes (see layout.h), positions relative to the eye */
-    __global const STORAGE* planes, uint plane_stride,
-    __global const int* material_index,
+    __global const STORAGE* restrict planes, uint plane_stride,
+    __global const int* restrict material_index,
     /* scene; colours scaled by 2^-radiance_exponent, undone by the two scale factors */
-    UNIFORM_SPACE const MaterialRecord* materials,
-    UNIFORM_SPACE const PointLight* point_lights, int point_count,
-    UNIFORM_SPACE const DirectionalLight* directional_lights, int directional_count,
+    UNIFORM_SPACE const MaterialRecord* restrict materials,
+    UNIFORM_SPACE const PointLight* restrict point_lights, int point_count,
+    UNIFORM_SPACE const DirectionalLight* restrict directional_lights, int directional_count,
     float ambient_r, float ambient_g, float ambient_b,
     float radiance_scale_a, float radiance_scale_b,
     float background_r, float background_g, float background_b,
-    /* output: RGBA float, interleaved; with WRITE_TERMS also 9 floats per pixel: ambient, diffuse,
-     * specular RGB (one-element dummy otherwise) */
-    __global float* out_rgba, __global float* out_terms) {
-  const size_t i = get_global_id(0);
-  __global float* out = out_rgba + 4 * i;
-  const int material = material_index[i];
-  if (material == PHONGCL_BACKGROUND) {
-    out[0] = background_r;
-    out[1] = background_g;
-    out[2] = background_b;
-    out[3] = 0.0f;
-#ifdef WRITE_TERMS
-    for (int k = 0; k < 9; ++k) out_terms[9 * i + k] = 0.0f;
-#endif
-    return;
-  }
-
-#ifdef SINGLE_MATERIAL
-  UNIFORM_SPACE const MaterialRecord* record = &materials[0];
-#else
-  UNIFORM_SPACE const MaterialRecord* record = &materials[material];
+    /* output planes: R G B A; with WRITE_TERMS also ambient, diffuse, specular RGB (9 planes) */
+    __global float* restrict out_rgba, __global float* restrict out_terms) {
+  const size_t group = get_global_id(0);
+  const intv index = VLOAD_INT(group, material_index);
+  const intv background = index == PHONGCL_BACKGROUND;
+#ifndef SINGLE_MATERIAL
+  /* Background lanes read material 0 and are replaced by the background colour at the end. */
+  int lane_material[PHONGCL_LANES];
+  for (int k = 0; k < PHONGCL_LANES; ++k) lane_material[k] = max(material_index[group * PHONGCL_LANES + k], 0);
 #endif
 #ifdef PLANE_Q
-  const real shininess = LOAD_PLANE(PLANE_Q, i);
+  const realv shininess = LOAD_PLANE(PLANE_Q);
 #else
-  const real shininess = record->shininess;
+  const realv shininess = MATERIAL_FIELD(MATERIAL_SHININESS);
 #endif
 
   /* The eye is the origin: v = normalize(E - P) = normalize(-P). */
-  const vec3 p = make_vec3(LOAD_PLANE(PLANE_PX, i), LOAD_PLANE(PLANE_PY, i), LOAD_PLANE(PLANE_PZ, i));
-  const vec3 n = unit_or_zero(make_vec3(LOAD_PLANE(PLANE_NX, i), LOAD_PLANE(PLANE_NY, i), LOAD_PLANE(PLANE_NZ, i)));
+  const vec3 p = LOAD_PLANE3(PLANE_PX);
+  const vec3 n = unit_or_zero(LOAD_PLANE3(PLANE_NX));
   const vec3 v = unit_or_zero(make_vec3(-p.x, -p.y, -p.z));
 
-  LightSums sums = {{0, 0, 0}, {0, 0, 0}};
+  const realv zero = 0;
+  LightSums sums = {{zero, zero, zero}, {zero, zero, zero}};
 #ifdef POINT_LIGHTS
   for (int k = 0; k < POINT_LOOP_COUNT; ++k) {
     UNIFORM_SPACE const PointLight* light = &point_lights[k];
-    vec3 to_light = sub3(make_vec3(light->position[0], light->position[1], light->position[2]), p);
-    add_light(&sums, n, v, unit_or_zero(to_light), light_color(light->color), shininess);
+    const vec3 position = make_vec3(light->position[0], light->position[1], light->position[2]);
+    add_light(&sums, n, v, unit_or_zero(sub3(position, p)), light->color, shininess);
   }
 #endif
 #ifdef DIRECTIONAL_LIGHTS
   for (int k = 0; k < DIRECTIONAL_LOOP_COUNT; ++k) {
     UNIFORM_SPACE const DirectionalLight* light = &directional_lights[k];
-    vec3 l = make_vec3(light->to_light[0], light->to_light[1], light->to_light[2]);
-    add_light(&sums, n, v, l, light_color(light->color), shininess);
+    const vec3 l = make_vec3(light->to_light[0], light->to_light[1], light->to_light[2]);
+    add_light(&sums, n, v, l, light->color, shininess);
   }
 #endif
 
 #ifdef PLANE_KD
-  const vec3 kd = make_vec3(LOAD_PLANE(PLANE_KD, i), LOAD_PLANE(PLANE_KD + 1, i), LOAD_PLANE(PLANE_KD + 2, i));
+  const vec3 kd = LOAD_PLANE3(PLANE_KD);
 #else
-  const vec3 kd = make_vec3(record->kd[0], record->kd[1], record->kd[2]);
+  const vec3 kd = MATERIAL_FIELD3(MATERIAL_KD);
 #endif
   const vec3 diffuse = make_vec3(kd.x * sums.diffuse.x, kd.y * sums.diffuse.y, kd.z * sums.diffuse.z);
 #ifdef SPECULAR
 #ifdef PLANE_KS
-  const vec3 ks = make_vec3(LOAD_PLANE(PLANE_KS, i), LOAD_PLANE(PLANE_KS + 1, i), LOAD_PLANE(PLANE_KS + 2, i));
+  const vec3 ks = LOAD_PLANE3(PLANE_KS);
 #else
-  const vec3 ks = make_vec3(record->ks[0], record->ks[1], record->ks[2]);
+  const vec3 ks = MATERIAL_FIELD3(MATERIAL_KS);
 #endif
   const vec3 specular = make_vec3(ks.x * sums.specular.x, ks.y * sums.specular.y, ks.z * sums.specular.z);
 #else
-  const vec3 specular = make_vec3(0, 0, 0);
+  const vec3 specular = make_vec3(zero, zero, zero);
 #endif
 #ifdef AMBIENT
 #ifdef PLANE_KA
-  const vec3 ka = make_vec3(LOAD_PLANE(PLANE_KA, i), LOAD_PLANE(PLANE_KA + 1, i), LOAD_PLANE(PLANE_KA + 2, i));
+  const vec3 ka = LOAD_PLANE3(PLANE_KA);
 #else
-  const vec3 ka = make_vec3(record->ka[0], record->ka[1], record->ka[2]);
+  const vec3 ka = MATERIAL_FIELD3(MATERIAL_KA);
 #endif
   const vec3 ambient = make_vec3(ka.x * ambient_r, ka.y * ambient_g, ka.z * ambient_b);
 #else
-  const vec3 ambient = make_vec3(0, 0, 0);
+  const vec3 ambient = make_vec3(zero, zero, zero);
 #endif
 
-  out[0] = unscale(ambient.x + diffuse.x + specular.x, radiance_scale_a, radiance_scale_b);
-  out[1] = unscale(ambient.y + diffuse.y + specular.y, radiance_scale_a, radiance_scale_b);
-  out[2] = unscale(ambient.z + diffuse.z + specular.z, radiance_scale_a, radiance_scale_b);
-  out[3] = 1.0f;
+  const floatv shaded_r = unscale(ambient.x + diffuse.x + specular.x, radiance_scale_a, radiance_scale_b);
+  const floatv shaded_g = unscale(ambient.y + diffuse.y + specular.y, radiance_scale_a, radiance_scale_b);
+  const floatv shaded_b = unscale(ambient.z + diffuse.z + specular.z, radiance_scale_a, radiance_scale_b);
+  VSTORE_FLOAT(background ? (floatv)background_r : shaded_r, group, out_rgba);
+  VSTORE_FLOAT(background ? (floatv)background_g : shaded_g, group, out_rgba + plane_stride);
+  VSTORE_FLOAT(background ? (floatv)background_b : shaded_b, group, out_rgba + 2 * (size_t)plane_stride);
+  VSTORE_FLOAT(background ? (floatv)0.0f : (floatv)1.0f, group, out_rgba + 3 * (size_t)plane_stride);
 #ifdef WRITE_TERMS
-  const vec3 terms[3] = {ambient, diffuse, specular};
-  for (int t = 0; t < 3; ++t) {
-    out_terms[9 * i + 3 * t + 0] = unscale(terms[t].x, radiance_scale_a, radiance_scale_b);
-    out_terms[9 * i + 3 * t + 1] = unscale(terms[t].y, radiance_scale_a, radiance_scale_b);
-    out_terms[9 * i + 3 * t + 2] = unscale(terms[t].z, radiance_scale_a, radiance_scale_b);
-  }
+  /* Background lanes: the host ignores terms where alpha is 0. */
+  store3(ambient, radiance_scale_a, radiance_scale_b, group, out_terms, plane_stride);
+  store3(diffuse, radiance_scale_a, radiance_scale_b, group, out_terms + 3 * (size_t)plane_stride, plane_stride);
+  store3(specular, radiance_scale_a, radiance_scale_b, group, out_terms + 6 * (size_t)plane_stride, plane_stride);
 #endif
 }

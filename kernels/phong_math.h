@@ -1,60 +1,104 @@
-/* Small vector math for the Phong kernel, robust on degenerate inputs. Included by phong.cl and by
- * the stability kernel (kernels/stability.cl), so the catalogue tests exactly the code that shades. */
+/* Small vector math for the Phong kernel, robust on degenerate inputs, written once for any lane
+ * count. A work-item shades PHONGCL_LANES pixels at once as OpenCL vectors (floatN): PoCL's
+ * implicit work-item vectoriser gives up on this kernel (its SLP pass first packs the x/y/z math
+ * into short vectors), while explicit floatN code compiles to full-width SIMD with vectorised
+ * exp2/log2. PHONGCL_LANES=1 is the plain scalar kernel for GPUs. */
 #ifndef PHONGCL_PHONG_MATH_H
 #define PHONGCL_PHONG_MATH_H
 
-#ifdef PHONGCL_DOUBLE
-#pragma OPENCL EXTENSION cl_khr_fp64 : enable
-typedef double real;
-#else
-typedef float real;
+#ifndef PHONGCL_LANES
+#define PHONGCL_LANES 1
 #endif
 
-/* A plain struct, not float3: it is scalarised, so PoCL vectorises across work-items. */
+#define PHONGCL_CAT(a, b) a##b
+#define PHONGCL_XCAT(a, b) PHONGCL_CAT(a, b)
+
+#ifdef PHONGCL_DOUBLE
+#pragma OPENCL EXTENSION cl_khr_fp64 : enable
+#define PHONGCL_REAL double
+#else
+#define PHONGCL_REAL float
+#endif
+typedef PHONGCL_REAL real;
+
+#if PHONGCL_LANES == 1
+typedef real realv; /* one pixel's value */
+typedef float floatv;
+typedef int intv;
+#define VLOAD_FLOAT(i, p) ((p)[i])
+#define VLOAD_HALF(i, p) vload_half(i, p)
+#define VLOAD_INT(i, p) ((p)[i])
+#define VSTORE_FLOAT(v, i, p) ((p)[i] = (v))
+#define TO_REALV(x) ((real)(x))
+#define TO_FLOATV(x) ((float)(x))
+#else
+typedef PHONGCL_XCAT(PHONGCL_REAL, PHONGCL_LANES) realv;
+typedef PHONGCL_XCAT(float, PHONGCL_LANES) floatv;
+typedef PHONGCL_XCAT(int, PHONGCL_LANES) intv;
+#define VLOAD_FLOAT(i, p) PHONGCL_XCAT(vload, PHONGCL_LANES)(i, p)
+#define VLOAD_HALF(i, p) PHONGCL_XCAT(vload_half, PHONGCL_LANES)(i, p)
+#define VLOAD_INT(i, p) PHONGCL_XCAT(vload, PHONGCL_LANES)(i, p)
+#define VSTORE_FLOAT(v, i, p) PHONGCL_XCAT(vstore, PHONGCL_LANES)(v, i, p)
+#define TO_REALV(x) PHONGCL_XCAT(PHONGCL_XCAT(convert_, PHONGCL_REAL), PHONGCL_LANES)(x)
+#define TO_FLOATV(x) PHONGCL_XCAT(convert_float, PHONGCL_LANES)(x)
+#endif
+
+/* Per-lane choice without branches: `condition` is a comparison of realv values. */
+#define SELECT(condition, if_true, if_false) ((condition) ? (realv)(if_true) : (realv)(if_false))
+
+/* A plain struct of lanes, not float3: float3 math does not vectorise on PoCL. */
 typedef struct {
-  real x, y, z;
+  realv x, y, z;
 } vec3;
 
-inline vec3 make_vec3(real x, real y, real z) {
+inline vec3 make_vec3(realv x, realv y, realv z) {
   vec3 v = {x, y, z};
   return v;
 }
 inline vec3 sub3(vec3 a, vec3 b) { return make_vec3(a.x - b.x, a.y - b.y, a.z - b.z); }
-inline vec3 scale3(vec3 a, real s) { return make_vec3(a.x * s, a.y * s, a.z * s); }
-inline real dot3(vec3 a, vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+inline vec3 scale3(vec3 a, realv s) { return make_vec3(a.x * s, a.y * s, a.z * s); }
+inline realv dot3(vec3 a, vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
 
 #ifdef PHONGCL_FAST
 /* Fast variant: no rescaling, native reciprocal square root. Zero stays zero; components whose
  * squares overflow or underflow float lose the direction (the cost of this variant). */
 inline vec3 unit_or_zero(vec3 v) {
-  real length_sq = dot3(v, v);
-  return length_sq > 0 ? scale3(v, native_rsqrt(length_sq)) : make_vec3(0, 0, 0);
+  realv length_sq = dot3(v, v);
+  return scale3(v, SELECT(length_sq > 0, native_rsqrt(length_sq), 0));
 }
 #else
 /* normalize() that neither overflows nor underflows: divide by the largest |component| first, so
  * components of 1e30 (squares overflow float) or 1e-40 (squares vanish) still give a unit vector.
  * A zero vector stays zero: the documented policy for degenerate inputs (README). */
 inline vec3 unit_or_zero(vec3 v) {
-  real largest = fmax(fabs(v.x), fmax(fabs(v.y), fabs(v.z)));
-  if (!(largest > 0)) return make_vec3(0, 0, 0);
-  vec3 scaled = make_vec3(v.x / largest, v.y / largest, v.z / largest);
-  return scale3(scaled, rsqrt(dot3(scaled, scaled)));
+  realv largest = fmax(fabs(v.x), fmax(fabs(v.y), fabs(v.z)));
+  realv nonzero = SELECT(largest > 0, largest, 1);
+  vec3 scaled = make_vec3(v.x / nonzero, v.y / nonzero, v.z / nonzero);
+  realv length_sq = dot3(scaled, scaled);
+  return scale3(scaled, SELECT(length_sq > 0, rsqrt(length_sq), 0));
 }
 #endif
+
+/* log2(1 - e) to a few ulp for small e, from the vectorised log2: u = 1 - e rounds, but
+ * log2(u) * e / (1 - u) corrects for the rounding (Goldberg's log1p trick); u == 1 only when e
+ * is below half an ulp of 1, where log2(1 - e) = -e / ln 2 to float precision. */
+inline realv log2_one_minus(realv e) {
+  realv u = 1 - e;
+  return SELECT(u == 1, -e * (real)M_LOG2E, log2(u) * (e / (1 - u)));
+}
 
 /* max(0, v.r)^q with pow(0, 0) = 1 (OpenCL powr(0, 0) is NaN, so no powr).
  * Near the highlight peak v.r rounds towards 1 and x^q multiplies that rounding error by q, so the
  * logarithm is taken from one_minus_cos = 1 - v.r, which the caller computes without cancellation
- * as |v - r|^2 / 2 (v and r unit vectors). Far from the peak, log(v.r) is the accurate one. */
-inline real specular_power(real cos_vr, real one_minus_cos, real q) {
-  if (q == 0) return 1;
-  if (!(cos_vr > 0)) return 0;
+ * as |v - r|^2 / 2 (v and r unit vectors). Far from the peak, log2(v.r) is the accurate one.
+ * exp2/log2 rather than pow or exp/log1p: PoCL vectorises those, not the others. */
+inline realv specular_power(realv cos_vr, realv one_minus_cos, realv q) {
 #ifdef PHONGCL_FAST
-  return native_exp2(q * native_log2(cos_vr));
+  realv power = native_exp2(q * native_log2(cos_vr));
 #else
-  real log_base = one_minus_cos < (real)0.5 ? log1p(-one_minus_cos) : log(cos_vr);
-  return exp(q * log_base);
+  realv power = exp2(q * SELECT(one_minus_cos < (real)0.5, log2_one_minus(one_minus_cos), log2(cos_vr)));
 #endif
+  return SELECT(q == 0, 1, SELECT(cos_vr > 0, power, 0));
 }
 
 #endif

@@ -9,5 +9,8 @@ extern "C" {
 
 static_assert(sizeof(PointLight) == 32 && offsetof(PointLight, color) == 16);
 static_assert(sizeof(DirectionalLight) == 32 && offsetof(DirectionalLight, color) == 16);
-static_assert(sizeof(MaterialRecord) == 64 && offsetof(MaterialRecord, kd) == 16 &&
-              offsetof(MaterialRecord, ks) == 32 && offsetof(MaterialRecord, shininess) == 48);
+static_assert(sizeof(MaterialRecord) == 64);
+static_assert(offsetof(MaterialRecord, ka) == MATERIAL_KA * sizeof(float) &&
+              offsetof(MaterialRecord, kd) == MATERIAL_KD * sizeof(float) &&
+              offsetof(MaterialRecord, ks) == MATERIAL_KS * sizeof(float) &&
+              offsetof(MaterialRecord, shininess) == MATERIAL_SHININESS * sizeof(float));

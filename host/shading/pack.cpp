@@ -97,7 +97,8 @@ PixelCounts& PixelCounts::operator+=(const PixelCounts& other) {
 }
 
 PixelCounts pack_tile(const GBuffer& gbuffer, const glm::dvec3& eye, const Recipe& recipe, std::size_t first,
-                      std::size_t count, std::size_t stride, float* planes, std::int32_t* material_index) {
+                      std::size_t count, std::size_t padded_count, std::size_t stride, float* planes,
+                      std::int32_t* material_index) {
   PixelCounts counts;
   for (std::size_t t = 0; t < count; ++t) {
     const std::size_t i = first + t;
@@ -125,6 +126,10 @@ PixelCounts pack_tile(const GBuffer& gbuffer, const glm::dvec3& eye, const Recip
   if (recipe.per_pixel_kd) for (const Plane& channel : gbuffer.kd) copy_plane(channel);
   if (recipe.per_pixel_ks) for (const Plane& channel : gbuffer.ks) copy_plane(channel);
   if (recipe.per_pixel_shininess) copy_plane(gbuffer.shininess);
+  std::fill(material_index + count, material_index + padded_count, PHONGCL_BACKGROUND);
+  for (int plane = 0; plane < recipe.plane_count(); ++plane) {
+    std::fill(planes + plane * stride + count, planes + plane * stride + padded_count, 0.0f);
+  }
   return counts;
 }
 

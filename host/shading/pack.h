@@ -33,10 +33,12 @@ struct PixelCounts {
 
 // Packs pixels [first, first + count) into float planes of `stride` values each (plane order in
 // kernels/layout.h, then the recipe's per-pixel material planes) and the material index of each
-// pixel (PHONGCL_BACKGROUND when not shaded). Positions are stored relative to the eye, subtracted
-// in double so that scenes far from the origin keep their precision.
+// pixel (PHONGCL_BACKGROUND when not shaded); slots [count, padded_count) become background
+// padding, so the kernel's SIMD lanes never read stale memory. Positions are stored relative to
+// the eye, subtracted in double so that scenes far from the origin keep their precision.
 PixelCounts pack_tile(const GBuffer& gbuffer, const glm::dvec3& eye, const Recipe& recipe, std::size_t first,
-                      std::size_t count, std::size_t stride, float* planes, std::int32_t* material_index);
+                      std::size_t count, std::size_t padded_count, std::size_t stride, float* planes,
+                      std::int32_t* material_index);
 
 // Converts packed float planes to half for the half-storage variant. Normals are first scaled by
 // their largest component so that no length overflows half. Throws InputError (naming the

@@ -41,23 +41,30 @@ std::size_t tile_pixels(const DeviceInfo& device, const Recipe& recipe, std::siz
   return std::max<std::size_t>(tile, 1);
 }
 
-constexpr std::size_t kTermValuesPerPixel = 9;  // ambient, diffuse, specular RGB
+std::size_t round_up(std::size_t value, std::size_t multiple) { return (value + multiple - 1) / multiple * multiple; }
 
-// Scatters the kernel's per-pixel terms into the three term images, alpha from the combined image.
-void copy_terms(cl::CommandQueue& queue, const cl::Buffer& terms, std::size_t first, std::size_t count,
-                ShadeResult& result) {
-  const auto* values = static_cast<const float*>(
-      queue.enqueueMapBuffer(terms, CL_TRUE, CL_MAP_READ, 0, count * kTermValuesPerPixel * sizeof(cl_float)));
-  Image* images[] = {&result.terms.ambient, &result.terms.diffuse, &result.terms.specular};
-  for (std::size_t t = 0; t < count; ++t) {
-    const std::size_t i = first + t;
-    for (int term = 0; term < 3; ++term) {
-      float* out = images[term]->pixel(i);
-      std::copy_n(values + kTermValuesPerPixel * t + 3 * term, 3, out);
-      out[3] = result.image.pixel(i)[3];
-    }
+// The kernel writes planes (R, G, B, A, then the terms); images are interleaved RGBA.
+void interleave(const float* planes, std::size_t stride, std::size_t count, int channels, float* rgba) {
+  for (int c = 0; c < channels; ++c) {
+    const float* plane = planes + c * stride;
+    for (std::size_t t = 0; t < count; ++t) rgba[4 * t + c] = plane[t];
   }
-  queue.enqueueUnmapMemObject(terms, const_cast<float*>(values));
+}
+
+constexpr int kTermPlanes = 9;  // ambient, diffuse, specular RGB
+
+// Copies the kernel's term planes into the three term images, alpha from the combined image.
+void copy_terms(cl::CommandQueue& queue, const cl::Buffer& terms, std::size_t stride, std::size_t first,
+                std::size_t count, ShadeResult& result) {
+  const auto* planes = static_cast<const float*>(
+      queue.enqueueMapBuffer(terms, CL_TRUE, CL_MAP_READ, 0, kTermPlanes * stride * sizeof(cl_float)));
+  Image* images[] = {&result.terms.ambient, &result.terms.diffuse, &result.terms.specular};
+  for (int term = 0; term < 3; ++term) {
+    float* out = images[term]->pixel(first);
+    interleave(planes + 3 * term * stride, stride, count, 3, out);
+    for (std::size_t t = 0; t < count; ++t) out[4 * t + 3] = result.image.pixel(first + t)[3];
+  }
+  queue.enqueueUnmapMemObject(terms, const_cast<float*>(planes));
 }
 
 }  // namespace
@@ -83,33 +90,35 @@ ShadeResult PhongShader::shade(const Scene& scene, const GBuffer& gbuffer, const
 
   const std::size_t pixels = gbuffer.pixel_count();
   const bool half = recipe.precision == Precision::half_storage;
-  const std::size_t tile = tile_pixels(compute_.device.info, recipe, pixels, options.max_tile_pixels);
-  const std::size_t plane_values = tile * recipe.plane_count();
+  const std::size_t lanes = static_cast<std::size_t>(recipe.lanes);
+  // Every plane holds `stride` values, a multiple of the kernel's lanes; tiles are padded to it.
+  const std::size_t stride = round_up(tile_pixels(compute_.device.info, recipe, pixels, options.max_tile_pixels), lanes);
+  const std::size_t plane_bytes = stride * recipe.plane_count() * (half ? sizeof(cl_half) : sizeof(cl_float));
   // ALLOC_HOST_PTR + map/unmap: on a CPU device packing writes straight into device memory.
   const cl_mem_flags input_flags = CL_MEM_READ_ONLY | CL_MEM_ALLOC_HOST_PTR;
-  cl::Buffer planes(context, input_flags, plane_values * (half ? sizeof(cl_half) : sizeof(cl_float)));
-  cl::Buffer material_index(context, input_flags, tile * sizeof(cl_int));
-  cl::Buffer output(context, CL_MEM_WRITE_ONLY | CL_MEM_ALLOC_HOST_PTR, tile * 4 * sizeof(cl_float));
-  const std::size_t term_values = recipe.write_terms ? tile * kTermValuesPerPixel : 1;
-  cl::Buffer terms(context, CL_MEM_WRITE_ONLY | CL_MEM_ALLOC_HOST_PTR, term_values * sizeof(cl_float));
-  std::vector<float> half_staging(half ? plane_values : 0);
+  const cl_mem_flags output_flags = CL_MEM_WRITE_ONLY | CL_MEM_ALLOC_HOST_PTR;
+  cl::Buffer planes(context, input_flags, plane_bytes);
+  cl::Buffer material_index(context, input_flags, stride * sizeof(cl_int));
+  cl::Buffer output(context, output_flags, 4 * stride * sizeof(cl_float));
+  cl::Buffer terms(context, output_flags, (recipe.write_terms ? kTermPlanes * stride : 1) * sizeof(cl_float));
+  std::vector<float> half_staging(half ? stride * recipe.plane_count() : 0);
   std::size_t flushed_to_zero = 0;
 
   result.image = image_like(gbuffer);
   if (recipe.write_terms) {
     result.terms = {image_like(gbuffer), image_like(gbuffer), image_like(gbuffer)};
   }
-  for (std::size_t first = 0; first < pixels; first += tile, ++result.tiles) {
-    const std::size_t count = std::min(tile, pixels - first);
+  for (std::size_t first = 0; first < pixels; first += stride, ++result.tiles) {
+    const std::size_t count = std::min(stride, pixels - first);
+    const std::size_t padded = round_up(count, lanes);
     const auto pack_start = Clock::now();
-    void* mapped_planes = queue.enqueueMapBuffer(planes, CL_TRUE, CL_MAP_WRITE_INVALIDATE_REGION, 0,
-                                                 plane_values * (half ? sizeof(cl_half) : sizeof(cl_float)));
+    void* mapped_planes = queue.enqueueMapBuffer(planes, CL_TRUE, CL_MAP_WRITE_INVALIDATE_REGION, 0, plane_bytes);
     auto* mapped_index = static_cast<cl_int*>(
-        queue.enqueueMapBuffer(material_index, CL_TRUE, CL_MAP_WRITE_INVALIDATE_REGION, 0, tile * sizeof(cl_int)));
+        queue.enqueueMapBuffer(material_index, CL_TRUE, CL_MAP_WRITE_INVALIDATE_REGION, 0, stride * sizeof(cl_int)));
     float* float_planes = half ? half_staging.data() : static_cast<float*>(mapped_planes);
-    result.counts += pack_tile(gbuffer, scene.camera.eye, recipe, first, count, tile, float_planes, mapped_index);
+    result.counts += pack_tile(gbuffer, scene.camera.eye, recipe, first, count, padded, stride, float_planes, mapped_index);
     if (half) {
-      flushed_to_zero += convert_planes_to_half(gbuffer, recipe, first, count, tile, float_planes,
+      flushed_to_zero += convert_planes_to_half(gbuffer, recipe, first, padded, stride, float_planes,
                                                 static_cast<std::uint16_t*>(mapped_planes));
     }
     result.timings.pack_ms += milliseconds(pack_start, Clock::now());
@@ -118,19 +127,20 @@ ShadeResult PhongShader::shade(const Scene& scene, const GBuffer& gbuffer, const
     queue.enqueueUnmapMemObject(planes, mapped_planes, nullptr, &unmap_planes);
     queue.enqueueUnmapMemObject(material_index, mapped_index, nullptr, &unmap_index);
     const cl::Event launched =
-        kernel(cl::EnqueueArgs(queue, cl::NDRange(count)), planes, static_cast<cl_uint>(tile), material_index,
-               materials, point_lights, recipe.point_lights, directional_lights, recipe.directional_lights,
-               uniforms.ambient[0], uniforms.ambient[1], uniforms.ambient[2], uniforms.radiance_scale_a,
-               uniforms.radiance_scale_b, uniforms.background[0], uniforms.background[1], uniforms.background[2], output, terms);
+        kernel(cl::EnqueueArgs(queue, cl::NDRange(padded / lanes)), planes, static_cast<cl_uint>(stride),
+               material_index, materials, point_lights, recipe.point_lights, directional_lights,
+               recipe.directional_lights, uniforms.ambient[0], uniforms.ambient[1], uniforms.ambient[2],
+               uniforms.radiance_scale_a, uniforms.radiance_scale_b, uniforms.background[0], uniforms.background[1],
+               uniforms.background[2], output, terms);
 
     cl::Event map_output;
     const auto* shaded = static_cast<const float*>(
-        queue.enqueueMapBuffer(output, CL_TRUE, CL_MAP_READ, 0, count * 4 * sizeof(cl_float), nullptr, &map_output));
+        queue.enqueueMapBuffer(output, CL_TRUE, CL_MAP_READ, 0, 4 * stride * sizeof(cl_float), nullptr, &map_output));
     const auto copy_start = Clock::now();
-    std::memcpy(result.image.pixel(first), shaded, count * 4 * sizeof(float));
+    interleave(shaded, stride, count, 4, result.image.pixel(first));
     const double copy_ms = milliseconds(copy_start, Clock::now());
     queue.enqueueUnmapMemObject(output, const_cast<float*>(shaded));
-    if (recipe.write_terms) copy_terms(queue, terms, first, count, result);
+    if (recipe.write_terms) copy_terms(queue, terms, stride, first, count, result);
     queue.finish();
 
     result.timings.upload_ms += event_milliseconds(unmap_planes) + event_milliseconds(unmap_index);

@@ -95,6 +95,7 @@ int Recipe::plane_count() const {
 std::string Recipe::build_options() const {
   std::string options = "-cl-std=CL1.2";
   auto define = [&options](const std::string& name) { options += " -D" + name; };
+  define("PHONGCL_LANES=" + std::to_string(lanes));
   if (point_code) define("POINT_LIGHTS");
   if (directional_code) define("DIRECTIONAL_LIGHTS");
   if (point_count_in_code) define("POINT_COUNT=" + std::to_string(point_lights));
@@ -162,6 +163,11 @@ Recipe make_recipe(const Scene& scene, const GBuffer& gbuffer, const DeviceInfo&
                              std::to_string(recipe.directional_lights) + " directional lights counted at run time");
   }
   decide_memory(recipe, scene, device);
+  // PoCL does not vectorise this kernel across work-items by itself, so on a CPU each work-item
+  // shades one SIMD register's worth of pixels; GPUs want one pixel per work-item.
+  recipe.lanes = device.is_cpu ? kCpuLanes : 1;
+  recipe.reasons.push_back("lanes: " + std::to_string(recipe.lanes) + " pixel" + (recipe.lanes > 1 ? "s" : "") +
+                           " per work-item (" + (device.is_cpu ? "CPU: explicit SIMD" : "GPU: one pixel each") + ")");
   return recipe;
 }
 

@@ -29,12 +29,17 @@ struct Recipe {
   bool per_pixel_ka = false, per_pixel_kd = false, per_pixel_ks = false, per_pixel_shininess = false;
   bool uniforms_in_constant = false;  // lights and materials in __constant memory
   bool write_terms = false;
+  int lanes = 1;                      // pixels per work-item (explicit SIMD on CPU devices)
   std::vector<std::string> reasons;   // one line per decision, for --explain
 
   int plane_count() const;  // G-buffer planes the device buffer holds
   std::string build_options() const;
   std::string summary() const;  // one line: "precise, specialised: 2 point (unrolled) + 1 directional, ..."
 };
+
+// Pixels per work-item on CPU devices: one 256-bit register of floats, the width PoCL's built-ins
+// (exp2, log2) are vectorised for; 16 lanes made PoCL call a scalar log2.
+inline constexpr int kCpuLanes = 8;
 
 // Lights up to this many of a type become compile-time constants.
 inline constexpr int kUnrollLightLimit = 16;
