@@ -24,8 +24,8 @@ inline float log_positive(float x, float one_minus_x) {
   const bool high = f > 1.41421356f;
   f = high ? f * 0.5f : f;
   e = high ? e + 1 : e;
-  // For x > sqrt(1/2) the reduction is the identity (e = 0, f = x): use 1 - x as given instead.
-  const bool near_one = one_minus_x < 0.29f;
+  // Within 0.29 of 1 the reduction is the identity (e = 0, f = x): use 1 - x as given instead.
+  const bool near_one = std::fabs(one_minus_x) < 0.29f;
   const float numerator = near_one ? -one_minus_x : f - 1.0f;  // f - 1 is exact (Sterbenz)
   const float denominator = near_one ? 2.0f - one_minus_x : f + 1.0f;
   const float exponent = near_one ? 0.0f : static_cast<float>(e);
