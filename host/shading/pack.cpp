@@ -96,11 +96,14 @@ PixelCounts& PixelCounts::operator+=(const PixelCounts& other) {
   return *this;
 }
 
-PixelCounts pack_tile(const GBuffer& gbuffer, const glm::dvec3& eye, const Recipe& recipe, std::size_t first,
-                      std::size_t count, std::size_t padded_count, std::size_t stride, float* planes,
-                      std::int32_t* material_index) {
+namespace {
+
+// Packs tile slots [begin, end): pixel first + t goes to slot t of every plane.
+PixelCounts pack_range(const GBuffer& gbuffer, const glm::dvec3& eye, const Recipe& recipe, std::size_t first,
+                       std::size_t begin, std::size_t end, std::size_t stride, float* planes,
+                       std::int32_t* material_index) {
   PixelCounts counts;
-  for (std::size_t t = 0; t < count; ++t) {
+  for (std::size_t t = begin; t < end; ++t) {
     const std::size_t i = first + t;
     const PixelClass pixel_class = classify_pixel(gbuffer, i);
     counts.add(pixel_class);
@@ -108,24 +111,47 @@ PixelCounts pack_tile(const GBuffer& gbuffer, const glm::dvec3& eye, const Recip
   }
   for (int axis = 0; axis < 3; ++axis) {
     float* position = planes + (PLANE_PX + axis) * stride;
-    float* normal = planes + (PLANE_NX + axis) * stride;
     const float* source_position = gbuffer.position[axis].data() + first;
-    const float* source_normal = gbuffer.normal[axis].data() + first;
     const double eye_axis = eye[axis];
-    for (std::size_t t = 0; t < count; ++t) {
+    for (std::size_t t = begin; t < end; ++t) {
       position[t] = static_cast<float>(static_cast<double>(source_position[t]) - eye_axis);
     }
-    std::copy_n(source_normal, count, normal);
   }
-  float* next_plane = planes + PLANE_GEOMETRY_COUNT * stride;
+  float* next_plane = planes + PLANE_NX * stride;
   auto copy_plane = [&](const Plane& channel) {
-    std::copy_n(channel.data() + first, count, next_plane);
+    std::copy(channel.data() + first + begin, channel.data() + first + end, next_plane + begin);
     next_plane += stride;
   };
+  for (const Plane& channel : gbuffer.normal) copy_plane(channel);
   if (recipe.per_pixel_ka) for (const Plane& channel : gbuffer.ka) copy_plane(channel);
   if (recipe.per_pixel_kd) for (const Plane& channel : gbuffer.kd) copy_plane(channel);
   if (recipe.per_pixel_ks) for (const Plane& channel : gbuffer.ks) copy_plane(channel);
   if (recipe.per_pixel_shininess) copy_plane(gbuffer.shininess);
+  return counts;
+}
+
+}  // namespace
+
+PixelCounts pack_tile(const GBuffer& gbuffer, const glm::dvec3& eye, const Recipe& recipe, std::size_t first,
+                      std::size_t count, std::size_t padded_count, std::size_t stride, float* planes,
+                      std::int32_t* material_index) {
+  // Packing is part of every frame's end-to-end time: spread it over the cores in chunks large
+  // enough that the threads stream whole cache lines.
+  constexpr std::size_t kChunk = 1 << 15;
+  const auto chunks = static_cast<std::ptrdiff_t>((count + kChunk - 1) / kChunk);
+  PixelCounts counts;
+#pragma omp parallel
+  {
+    PixelCounts local;
+#pragma omp for schedule(static)
+    for (std::ptrdiff_t chunk = 0; chunk < chunks; ++chunk) {
+      const std::size_t begin = static_cast<std::size_t>(chunk) * kChunk;
+      local += pack_range(gbuffer, eye, recipe, first, begin, std::min(count, begin + kChunk), stride, planes,
+                          material_index);
+    }
+#pragma omp critical
+    counts += local;
+  }
   std::fill(material_index + count, material_index + padded_count, PHONGCL_BACKGROUND);
   for (int plane = 0; plane < recipe.plane_count(); ++plane) {
     std::fill(planes + plane * stride + count, planes + plane * stride + padded_count, 0.0f);
