@@ -106,6 +106,36 @@ TEST(ExrImage, HalfRoundTripWithinHalfPrecision) {
     EXPECT_NEAR(read.rgba[i], written.rgba[i], std::abs(written.rgba[i]) * std::ldexp(1.0f, -11)) << i;
 }
 
+TEST(ExrImage, LayeredExrNamesEachLayersChannels) {
+  TempDir dir;
+  Image combined = ramp(5, 3), diffuse = ramp(5, 3);
+  combined.data_window = diffuse.data_window = {2, 4, 6, 6};
+  for (float& v : diffuse.rgba) v *= 2.0f;
+  write_layered_exr({{"", &combined, true}, {"diffuse", &diffuse, false}}, dir / "layers.exr");
+  Imf::InputFile in((dir / "layers.exr").c_str());
+  std::vector<std::string> names;
+  for (auto it = in.header().channels().begin(); it != in.header().channels().end(); ++it) names.emplace_back(it.name());
+  EXPECT_EQ(names, (std::vector<std::string>{"A", "B", "G", "R", "diffuse.B", "diffuse.G", "diffuse.R"}));
+  EXPECT_EQ(in.header().dataWindow().min.x, 2);
+
+  std::vector<float> green(combined.pixel_count());
+  Imf::FrameBuffer frame_buffer;
+  frame_buffer.insert("diffuse.G", Imf::Slice::Make(Imf::FLOAT, green.data(), in.header().dataWindow()));
+  in.setFrameBuffer(frame_buffer);
+  in.readPixels(4, 6);
+  for (std::size_t i = 0; i < green.size(); ++i) ASSERT_EQ(green[i], diffuse.pixel(i)[1]) << i;
+  // The unnamed layer is what read_exr (and compositors by default) see.
+  EXPECT_EQ(read_exr(dir / "layers.exr").rgba, combined.rgba);
+}
+
+TEST(ExrImage, LayersOfDifferentSizesAreRejected) {
+  TempDir dir;
+  const Image combined = ramp(5, 3), other = ramp(4, 3);
+  EXPECT_THROW(write_layered_exr({{"", &combined, true}, {"diffuse", &other, false}}, dir / "layers.exr"),
+               std::invalid_argument);
+  EXPECT_FALSE(fs::exists(dir / "layers.exr"));
+}
+
 TEST(ExrImage, MissingAlphaReadsAsOpaque) {
   TempDir dir;
   const fs::path file = dir / "rgb.exr";

@@ -695,22 +695,25 @@ TEST(LayoutsCli, RendererFilesShadeWithOnlySceneAndGBuffer) {
   EXPECT_NE(native.out.find("  layout     phongcl (P, N, material)\n"), std::string::npos) << native.out;
   const Image expected = read_exr(dir / "native_lit.exr");
 
+  write_gbuffer(in_camera_space(g, scene.camera), dir / "camera.exr");
+
   struct Case {
-    const char *file, *announced;
+    const char *file, *flags, *announced;
   };
-  for (const Case& c : {Case{"short.exr", "layout     blender (view layer 'ViewLayer': Position, Normal, DiffCol, GlossCol, IndexMA"},
-                        Case{"long.exr", "layout     blender (view layer 'ViewLayer': Position, Normal, Diffuse Color, Glossy Color, Material Index"},
-                        Case{"depth.exr", "positions from depth), depth = distance along the ray"},
-                        Case{"aov.exr", "layout     aov (P, N, material)"}}) {
+  for (const Case& c : {Case{"short.exr", "", "layout     blender (view layer 'ViewLayer': Position, Normal, DiffCol, GlossCol, IndexMA"},
+                        Case{"long.exr", "", "layout     blender (view layer 'ViewLayer': Position, Normal, Diffuse Color, Glossy Color, Material Index"},
+                        Case{"depth.exr", "", "positions from depth), depth = distance along the ray"},
+                        Case{"aov.exr", "", "layout     aov (P, N, material)"},
+                        Case{"camera.exr", "--space camera", "space      camera"}}) {
     SCOPED_TRACE(c.file);
     const CliRun run = run_phongcl("shade " + scene_arg + " --gbuffer " + quoted(dir / c.file) + " --out " +
-                                    quoted(dir / "lit.exr") + " --aov " + quoted(dir / "aov_out.exr"), dir);
+                                    quoted(dir / "lit.exr") + " --aov " + quoted(dir / "aov_out.exr") + " " + c.flags, dir);
     ASSERT_EQ(run.status, 0) << run.err;
     EXPECT_NE(run.out.find(c.announced), std::string::npos) << run.out;
     EXPECT_NE(run.out.find("aov_out.exr (ambient, diffuse, specular + combined, float32)"), std::string::npos) << run.out;
     const ErrorStats stats = compare_images(read_exr(dir / "lit.exr"), expected, 1e-6, testing::shaded_mask(g));
-    // Per-pixel colours instead of the table, or positions rebuilt from depth (a few ulps of P):
-    // well inside the kernel's own bound.
+    // Per-pixel colours instead of the table, positions rebuilt from depth or moved into camera
+    // space (a few ulps of P and N): well inside the kernel's own bound.
     EXPECT_LE(stats.max_rel, 5e-4) << testing::describe_worst(stats);
     const ErrorStats combined = compare_images(read_exr(dir / "aov_out.exr"), read_exr(dir / "lit.exr"), 1e-6);
     EXPECT_EQ(combined.max_abs, 0.0) << "the AOV file's R G B A is the combined image";
