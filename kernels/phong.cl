@@ -77,7 +77,12 @@ inline realv gather_field(UNIFORM_SPACE const MaterialRecord* table, const int* 
 #else
 #define MATERIAL_RECORD (&materials[lane_material[0]])
 #endif
-#define MATERIAL_FIELD(field) ((realv)((const UNIFORM_SPACE float*)MATERIAL_RECORD)[field])
+/* Through a function returning a private value: clang 15 (PoCL 3.1) crashes on a vector literal
+ * cast straight from a __constant lvalue. */
+inline real material_scalar(UNIFORM_SPACE const MaterialRecord* record, int field) {
+  return ((const UNIFORM_SPACE float*)record)[field];
+}
+#define MATERIAL_FIELD(field) ((realv)material_scalar(MATERIAL_RECORD, field))
 #endif
 #define MATERIAL_FIELD3(field) make_vec3(MATERIAL_FIELD(field), MATERIAL_FIELD((field) + 1), MATERIAL_FIELD((field) + 2))
 
