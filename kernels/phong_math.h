@@ -31,6 +31,7 @@ typedef int intv;
 #define VSTORE_FLOAT(v, i, p) ((p)[i] = (v))
 #define TO_REALV(x) ((real)(x))
 #define TO_FLOATV(x) ((float)(x))
+#define ANY_LANE(condition) (condition)
 #else
 typedef PHONGCL_XCAT(PHONGCL_REAL, PHONGCL_LANES) realv;
 typedef PHONGCL_XCAT(float, PHONGCL_LANES) floatv;
@@ -41,6 +42,7 @@ typedef PHONGCL_XCAT(int, PHONGCL_LANES) intv;
 #define VSTORE_FLOAT(v, i, p) PHONGCL_XCAT(vstore, PHONGCL_LANES)(v, i, p)
 #define TO_REALV(x) PHONGCL_XCAT(PHONGCL_XCAT(convert_, PHONGCL_REAL), PHONGCL_LANES)(x)
 #define TO_FLOATV(x) PHONGCL_XCAT(convert_float, PHONGCL_LANES)(x)
+#define ANY_LANE(condition) any(condition)
 #endif
 
 /* Per-lane choice without branches: `condition` is a comparison of realv values. */
@@ -64,18 +66,29 @@ inline realv dot3(vec3 a, vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
  * squares overflow or underflow float lose the direction (the cost of this variant). */
 inline vec3 unit_or_zero(vec3 v) {
   realv length_sq = dot3(v, v);
-  return scale3(v, SELECT(length_sq > 0, native_rsqrt(length_sq), 0));
+  /* FLT_MIN, not 0: under -cl-fast-relaxed-math a denormal length_sq (components ~1e-23) may be
+   * flushed inside native_rsqrt, giving Inf and then NaN; such a vector is treated as zero. */
+  return scale3(v, SELECT(length_sq >= FLT_MIN, native_rsqrt(length_sq), 0));
 }
 #else
 /* normalize() that neither overflows nor underflows: divide by the largest |component| first, so
  * components of 1e30 (squares overflow float) or 1e-40 (squares vanish) still give a unit vector.
  * A zero vector stays zero: the documented policy for degenerate inputs (README). */
-inline vec3 unit_or_zero(vec3 v) {
+inline vec3 unit_or_zero_rescaled(vec3 v) {
   realv largest = fmax(fabs(v.x), fmax(fabs(v.y), fabs(v.z)));
   realv nonzero = SELECT(largest > 0, largest, 1);
   vec3 scaled = make_vec3(v.x / nonzero, v.y / nonzero, v.z / nonzero);
   realv length_sq = dot3(scaled, scaled);
   return scale3(scaled, SELECT(length_sq > 0, rsqrt(length_sq), 0));
+}
+
+/* The same result, cheaply when every lane's squared length is comfortably inside the normal
+ * range (the rescaling costs three divisions); the rescaled path only when a lane needs it. */
+inline vec3 unit_or_zero(vec3 v) {
+  const realv length_sq = dot3(v, v);
+  const real lowest = 1e-30f, highest = 1e30f;
+  if (ANY_LANE(!(length_sq >= lowest && length_sq <= highest))) return unit_or_zero_rescaled(v);
+  return scale3(v, rsqrt(length_sq));
 }
 #endif
 
