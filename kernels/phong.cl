@@ -43,6 +43,26 @@ typedef struct {
   vec3 diffuse, specular;
 } LightSums;
 
+/* Lights per block of the compensated sum (see the light loops). */
+#define LIGHT_BLOCK 16
+
+/* sum += value, with the rounding error carried in compensation (Kahan). */
+inline void kahan_add(realv* sum, realv* compensation, realv value) {
+  const realv corrected = value - *compensation;
+  const realv next = *sum + corrected;
+  *compensation = (next - *sum) - corrected;
+  *sum = next;
+}
+
+inline void add_block(LightSums* sums, LightSums* compensation, const LightSums* block) {
+  kahan_add(&sums->diffuse.x, &compensation->diffuse.x, block->diffuse.x);
+  kahan_add(&sums->diffuse.y, &compensation->diffuse.y, block->diffuse.y);
+  kahan_add(&sums->diffuse.z, &compensation->diffuse.z, block->diffuse.z);
+  kahan_add(&sums->specular.x, &compensation->specular.x, block->specular.x);
+  kahan_add(&sums->specular.y, &compensation->specular.y, block->specular.y);
+  kahan_add(&sums->specular.z, &compensation->specular.z, block->specular.z);
+}
+
 /* Adds one light's contribution, with l the unit vector towards the light. */
 inline void add_light(LightSums* sums, vec3 n, vec3 v, vec3 l, const UNIFORM_SPACE float* color, realv shininess) {
   const realv ndl = dot3(n, l);
@@ -129,19 +149,32 @@ __kernel void phong_shade(
   const vec3 v = unit_or_zero(make_vec3(-p.x, -p.y, -p.z));
 
   const realv zero = 0;
-  LightSums sums = {{zero, zero, zero}, {zero, zero, zero}};
+  /* Lights are summed in blocks of LIGHT_BLOCK in plain float, and the block sums compensated
+   * (Kahan): the error stays a few ulp plus one block's however many lights there are (10,000 lights,
+   * one of 1 then 9,999 of 3e-8: plain float 3.0e-4 relative, blocked Kahan 4.5e-7). Unrolled
+   * counts up to 16 are one block. -cl-fast-relaxed-math may fold the compensation away (fast). */
+  const LightSums no_light = {{zero, zero, zero}, {zero, zero, zero}};
+  LightSums sums = no_light, compensation = no_light;
 #ifdef POINT_LIGHTS
-  for (int k = 0; k < POINT_LOOP_COUNT; ++k) {
-    UNIFORM_SPACE const PointLight* light = &point_lights[k];
-    const vec3 position = make_vec3(light->position[0], light->position[1], light->position[2]);
-    add_light(&sums, n, v, unit_or_zero(sub3(position, p)), light->color, shininess);
+  for (int first = 0; first < POINT_LOOP_COUNT; first += LIGHT_BLOCK) {
+    LightSums block = no_light;
+    for (int k = first; k < min(first + LIGHT_BLOCK, POINT_LOOP_COUNT); ++k) {
+      UNIFORM_SPACE const PointLight* light = &point_lights[k];
+      const vec3 position = make_vec3(light->position[0], light->position[1], light->position[2]);
+      add_light(&block, n, v, unit_or_zero(sub3(position, p)), light->color, shininess);
+    }
+    add_block(&sums, &compensation, &block);
   }
 #endif
 #ifdef DIRECTIONAL_LIGHTS
-  for (int k = 0; k < DIRECTIONAL_LOOP_COUNT; ++k) {
-    UNIFORM_SPACE const DirectionalLight* light = &directional_lights[k];
-    const vec3 l = make_vec3(light->to_light[0], light->to_light[1], light->to_light[2]);
-    add_light(&sums, n, v, l, light->color, shininess);
+  for (int first = 0; first < DIRECTIONAL_LOOP_COUNT; first += LIGHT_BLOCK) {
+    LightSums block = no_light;
+    for (int k = first; k < min(first + LIGHT_BLOCK, DIRECTIONAL_LOOP_COUNT); ++k) {
+      UNIFORM_SPACE const DirectionalLight* light = &directional_lights[k];
+      const vec3 l = make_vec3(light->to_light[0], light->to_light[1], light->to_light[2]);
+      add_light(&block, n, v, l, light->color, shininess);
+    }
+    add_block(&sums, &compensation, &block);
   }
 #endif
 
