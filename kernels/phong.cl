@@ -106,9 +106,11 @@ inline real material_scalar(UNIFORM_SPACE const MaterialRecord* record, int fiel
 #endif
 #define MATERIAL_FIELD3(field) make_vec3(MATERIAL_FIELD(field), MATERIAL_FIELD((field) + 1), MATERIAL_FIELD((field) + 2))
 
-/* Undoes the host's radiance scaling by 2^e = a * b: two power-of-two factors, each a normal float,
- * so the result overflows only when the exact one does. */
-inline floatv unscale(realv value, float a, float b) { return TO_FLOATV(value * a) * b; }
+/* Undoes the host's radiance scaling by 2^e = a * b (two power-of-two factors, each a normal
+ * float) with one ldexp: exact, one rounding, so the result overflows only when the exact one does.
+ * Not (value * a) * b: -cl-fast-relaxed-math may reassociate that into value * (a * b), and a * b
+ * = 2^128 overflows (3e38 lights gave +Inf for a finite 1.5e38, and 0 * Inf = NaN in dark pixels). */
+inline floatv unscale(realv value, float a, float b) { return TO_FLOATV(ldexp(value, ilogb(a) + ilogb(b))); }
 
 inline void store3(vec3 value, float a, float b, size_t group, __global float* restrict out, uint plane_stride) {
   VSTORE_FLOAT(unscale(value.x, a, b), group, out);
