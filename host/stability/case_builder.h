@@ -1,0 +1,64 @@
+#pragma once
+// What the catalogue's files share: a starting scene, the way a case is completed (oracle values,
+// absolute floor) and the tolerances, each justified once here.
+#include <string>
+
+#include "stability/gbuffer_builder.h"
+#include "stability/stability_case.h"
+
+namespace phongcl {
+
+// Eye at the origin, so rebasing positions on the host is exact and the kernel sees exactly the
+// floats the case wrote; no ambient, no lights; material 0 is (ka, kd, ks, q).
+Scene starting_scene(double ka, double kd, double ks, double shininess);
+
+// Fills exact (the oracle, pixel by pixel) and abs_floor (1e-6 of the brightest light or ambient
+// colour, since shading is linear in them) unless the case set a smaller floor already.
+StabilityCase complete(StabilityCase c);
+
+// --- Tolerances. u = 2^-24 = 6e-8, the float rounding unit. `amplification` is the case's
+// condition number (1 for plain shading; stiff_amplification for x^q): each variant's bound is a
+// base for the fixed chain of operations plus 16 rounding units times the amplification (a few
+// roundings feed the amplified quantity; 16 leaves a factor of about 4 over them).
+
+// The double reference: rounds its result to float (u), and takes pow(v.r, q) directly, so at
+// v.r near 1 it has fast's amplification with the double unit 2^-53 in place of u.
+Expectation reference_expectation(double direct_amplification = 1.0);
+
+// double: the same float inputs, double arithmetic; what remains is the float rounding of the
+// host's packing (positions relative to the eye, directional l; exact in the cases that put the
+// eye at the origin) and of the result.
+// `packing_amplification` is what the float rounding of the packed inputs is amplified by (0 where
+// the case makes them exact), `amplification` what the double arithmetic's own rounding is.
+Expectation double_expectation(double amplification = 1.0, double packing_amplification = 0.0);
+
+// precise: float arithmetic, full-accuracy built-ins. A shaded value is a chain of ~20 float
+// operations (normalise ~3 u per component, dot products ~2 u, one log and one exp), ~30 u = 2e-6;
+// the base 1e-5 leaves a factor of 5.
+Expectation precise_expectation(double amplification = 1.0);
+
+// fast: -cl-fast-relaxed-math and native_* built-ins, whose accuracy OpenCL leaves to the
+// implementation (PoCL's are within ~1e-6), base 1e-4. fast takes log(v.r) directly, so near
+// v.r = 1 it keeps 1 - v.r only to u absolute, and the result's error is q u / (1 - v.r) times its
+// share of the exponent: pass fast_amplification. Where even 4 u times that exceeds 5% the
+// variant promises only a finite result (no accuracy at all is what it keeps there).
+Expectation fast_expectation(double amplification = 1.0);
+
+// half-storage: the G-buffer planes are rounded to half (relative 2^-11 = 4.9e-4) before the same
+// float math as precise. Where every value the case stores is exact in half (small integers,
+// powers of two) that rounding is nothing and precise's bound holds; otherwise `inexact` applies.
+Expectation half_expectation(const GBuffer& gbuffer, double amplification, const Expectation& inexact);
+
+// x^q's condition number for the precise arithmetic: a relative error e in x (x < 0.5, where the
+// kernel takes log x) or in 1 - x (x >= 0.5, where it takes log1p of -(1 - x) = -|v - r|^2/2)
+// moves the result by q |ln x| e, or q e for small x. Results below 1e-6 are measured against the
+// absolute floor, so the amplification shrinks with them.
+double stiff_amplification(long double x, double shininess);
+// A highlight's condition number for direction errors: an error e (radians) in v, l or n moves
+// the exponent q |v - r|^2 / 2 by q |v - r| e, twice that for n (r turns twice as fast). Where the
+// highlight is above the floor (exponent < 14), |v - r| < sqrt(28 / q): at most 2 sqrt(28 q) e.
+double highlight_amplification(double shininess);
+// The same for fast, which takes log x from x itself: an absolute error u in x is q u / x.
+double fast_amplification(long double x, double shininess);
+
+}  // namespace phongcl

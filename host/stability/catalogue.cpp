@@ -1,0 +1,13 @@
+#include "stability/catalogue.h"
+
+namespace phongcl {
+
+std::vector<StabilityCase> stability_catalogue() {
+  std::vector<StabilityCase> cases;
+  for (auto* group : {&stiff_exponent_cases, &geometry_cases, &range_cases}) {
+    for (StabilityCase& c : group()) cases.push_back(std::move(c));
+  }
+  return cases;
+}
+
+}  // namespace phongcl

@@ -1,0 +1,70 @@
+#include "stability/exact_shade.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "reference/reference.h"
+
+namespace phongcl {
+
+namespace {
+
+using Vec = std::array<long double, 3>;
+
+Vec widen(const glm::dvec3& x) { return {x.x, x.y, x.z}; }
+Vec sub(const Vec& a, const Vec& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+Vec scale(const Vec& a, long double s) { return {a[0] * s, a[1] * s, a[2] * s}; }
+long double dot(const Vec& a, const Vec& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+// The policy the catalogue holds every implementation to: zero stays zero; any other finite
+// vector, however large or denormal, becomes a unit vector (largest component divided out first).
+Vec unit_or_zero(const Vec& x) {
+  const long double largest = std::max({std::fabs(x[0]), std::fabs(x[1]), std::fabs(x[2])});
+  if (largest == 0) return {0, 0, 0};
+  const Vec scaled = scale(x, 1 / largest);
+  return scale(scaled, 1 / std::sqrt(dot(scaled, scaled)));
+}
+
+// max(0, v.r)^q with pow(0, 0) = 1. Near the peak the logarithm comes from 1 - v.r = |v - r|^2/2,
+// so even this oracle does not lose 1 - v.r to cancellation when q is 1e8.
+long double specular_factor(const Vec& v, const Vec& r, long double q) {
+  if (q == 0) return 1;
+  const long double cos_vr = dot(v, r);
+  if (!(cos_vr > 0)) return 0;
+  const Vec v_minus_r = sub(v, r);
+  const long double one_minus_cos = dot(v_minus_r, v_minus_r) / 2;
+  return std::exp(q * (one_minus_cos < 0.5L ? std::log1p(-one_minus_cos) : std::log(cos_vr)));
+}
+
+}  // namespace
+
+ExactColor exact_shade_pixel(const Scene& scene, const GBuffer& gbuffer, std::size_t index) {
+  if (classify_pixel(gbuffer, index) != PixelClass::shaded) return widen(scene.background);
+  // reference_surface only resolves which material values apply (table or per-pixel): no arithmetic.
+  const SurfacePoint point = reference_surface(scene, gbuffer, index);
+  const Vec position = widen(point.position);
+  const Vec n = unit_or_zero(widen(point.normal));
+  const Vec v = unit_or_zero(sub(widen(scene.camera.eye), position));
+
+  Vec diffuse{0, 0, 0}, specular{0, 0, 0};
+  for (const Light& light : scene.lights) {
+    const Vec l = light.type == LightType::point ? unit_or_zero(sub(widen(light.position), position))
+                                                 : scale(unit_or_zero(widen(light.direction)), -1);
+    const long double ndl = dot(n, l);
+    if (!(ndl > 0)) continue;
+    const Vec r = sub(scale(n, 2 * ndl), l);
+    const long double spec = specular_factor(v, r, point.shininess);
+    for (int c = 0; c < 3; ++c) {
+      diffuse[c] += static_cast<long double>(light.color[c]) * ndl;
+      specular[c] += static_cast<long double>(light.color[c]) * spec;
+    }
+  }
+  ExactColor color;
+  for (int c = 0; c < 3; ++c) {
+    color[c] = static_cast<long double>(point.ka[c]) * scene.ambient[c] + static_cast<long double>(point.kd[c]) * diffuse[c] +
+               static_cast<long double>(point.ks[c]) * specular[c];
+  }
+  return color;
+}
+
+}  // namespace phongcl

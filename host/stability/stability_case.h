@@ -1,0 +1,59 @@
+#pragma once
+// One entry of the stability catalogue: a tiny scene and G-buffer, what each precision variant
+// must produce, and why. The catalogue is data; run_catalogue (stability/run_catalogue.h) runs it.
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "gbuffer/gbuffer.h"
+#include "scene/scene.h"
+#include "shading/precision.h"
+#include "stability/exact_shade.h"
+
+namespace phongcl {
+
+// What one precision variant must do on a case.
+struct Expectation {
+  enum class Kind {
+    within,       // every value within `relative` of the oracle (relative_error in exact_error.h)
+    finite_only,  // the variant makes no accuracy promise here (why says which); no NaN, right background
+    refused,      // shade() throws InputError: the variant cannot represent the input
+  };
+  Kind kind = Kind::within;
+  double relative = 0.0;
+  bool warns = false;  // ShadeResult::warnings must say something
+  std::string why;     // the justification, printed in the report
+
+  static Expectation within(double relative, std::string why) { return {Kind::within, relative, false, std::move(why)}; }
+  static Expectation finite_only(std::string why) { return {Kind::finite_only, 0.0, false, std::move(why)}; }
+  static Expectation refused(std::string why) { return {Kind::refused, 0.0, false, std::move(why)}; }
+  Expectation with_warning() const {
+    Expectation warned = *this;
+    warned.warns = true;
+    return warned;
+  }
+};
+
+struct VariantExpectations {
+  Expectation double_precision, precise, fast, half_storage;
+  const Expectation& operator[](Precision precision) const;
+};
+
+struct StabilityCase {
+  std::string name;   // "stiff q=1e6 v.r=1-1e-7"
+  std::string group;  // "stiff exponents", "degenerate vectors", ...
+  std::string what;   // the input and the defined result, one line
+  Scene scene;
+  GBuffer gbuffer;
+  // The oracle's value of every pixel (exact_shade_pixel), or a value the case defines
+  // analytically (pow(0, 0) = 1, back-facing = 0); the report shows pixel 0's red channel.
+  std::vector<ExactColor> exact;
+  // Relative errors are taken against max(|exact|, abs_floor): 1e-6 of the scene's brightest light
+  // or ambient colour, since shading is linear in them (the product's 1e-6 floor at unit lights).
+  double abs_floor = 1e-6;
+  std::size_t nonfinite_pixels = 0;  // pixels ShadeResult::counts must report as non-finite
+  VariantExpectations expect;
+  Expectation reference = Expectation::within(1e-6, "float rounding of the result");  // the double reference
+};
+
+}  // namespace phongcl
