@@ -32,10 +32,6 @@ Scene starting_scene(double ka, double kd, double ks, double shininess) {
   Scene scene;
   scene.camera.eye = {0.0, 0.0, 0.0};
   scene.materials.push_back({"case material", glm::dvec3(ka), glm::dvec3(kd), glm::dvec3(ks), shininess});
-  // A second, unused material keeps the kernel on its material-table path: PoCL 3.1's compiler
-  // crashes (SIGSEGV) building the 8-lane kernel with -DSINGLE_MATERIAL (since ec5e532). Remove
-  // this once that is fixed; until then single-material scenes cannot be shaded at all.
-  scene.materials.push_back({"unused", glm::dvec3(0.0), glm::dvec3(0.0), glm::dvec3(0.0), 1.0});
   return scene;
 }
 
