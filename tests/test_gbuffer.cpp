@@ -24,6 +24,8 @@
 #include "common/error.h"
 #include "gbuffer/gbuffer.h"
 
+#include "temp_dir.h"
+
 namespace phongcl {
 namespace {
 
@@ -33,19 +35,8 @@ constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 constexpr float kInf = std::numeric_limits<float>::infinity();
 
 // A fresh directory per test, removed afterwards.
-struct TempDir {
-  fs::path path;
-  TempDir() {
-    static std::atomic<int> counter{0};
-    path = fs::temp_directory_path() /
-           ("phongcl_test_gbuffer_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
-    fs::create_directories(path);
-  }
-  ~TempDir() {
-    std::error_code ignored;
-    fs::remove_all(path, ignored);
-  }
-  fs::path operator/(const std::string& name) const { return path / name; }
+struct TempDir : testing::TempDir {
+  TempDir() : testing::TempDir("gbuffer") {}
 };
 
 // Distinct, non-representable-in-half values per channel and pixel, so a swapped channel, a

@@ -37,25 +37,16 @@
 #include "scene/camera_space.h"
 #include "shading_support.h"
 
+#include "temp_dir.h"
+
 namespace phongcl {
 namespace {
 
 namespace fs = std::filesystem;
 
 // A fresh directory per test, removed afterwards.
-struct TempDir {
-  fs::path path;
-  TempDir() {
-    static std::atomic<int> counter{0};
-    path = fs::temp_directory_path() /
-           ("phongcl_test_layouts_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
-    fs::create_directories(path);
-  }
-  ~TempDir() {
-    std::error_code ignored;
-    fs::remove_all(path, ignored);
-  }
-  fs::path operator/(const std::string& name) const { return path / name; }
+struct TempDir : testing::TempDir {
+  TempDir() : testing::TempDir("layouts") {}
 };
 
 const fs::path kSourceDir = PHONGCL_SOURCE_DIR;
