@@ -99,7 +99,11 @@ class Scale {
 
 struct Box {
   double x0, y0, x1, y1;
-  bool overlaps(const Box& other) const { return x0 < other.x1 && other.x0 < x1 && y0 < other.y1 && other.y0 < y1; }
+  // With a small gap, so neighbouring labels do not read as one.
+  bool overlaps(const Box& other) const {
+    constexpr double gap = 4;
+    return x0 < other.x1 + gap && other.x0 < x1 + gap && y0 < other.y1 + gap && other.y0 < y1 + gap;
+  }
 };
 
 // Places labels one by one at the first nearby spot that stays in the plot and clear of
@@ -111,7 +115,7 @@ class LabelPlacer {
   std::string place(double px, double py, const std::string& label) {
     const double width = kCharWidth * static_cast<double>(label.size()), height = kFontSize;
     struct Spot { double dx, dy; };  // offset of the label box's left edge and baseline
-    const std::array<Spot, 12> spots = {{{8, 4}, {-8 - width, 4}, {-width / 2, -8}, {-width / 2, 16},
+    const std::array<Spot, 12> spots = {{{11, 4}, {-11 - width, 4}, {-width / 2, -8}, {-width / 2, 16},
                                          {8, -8}, {8, 16}, {-8 - width, -8}, {-8 - width, 16},
                                          {8, 18}, {8, -12}, {-width / 2, -20}, {-width / 2, 28}}};
     Spot chosen = spots.front();
