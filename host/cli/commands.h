@@ -10,6 +10,7 @@ void add_shade_command(CLI::App& app);
 void add_reference_command(CLI::App& app);
 void add_compare_command(CLI::App& app);
 void add_devices_command(CLI::App& app);
+void add_bench_command(CLI::App& app);
 void add_stability_command(CLI::App& app);
 
 }  // namespace phongcl::cli

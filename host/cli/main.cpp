@@ -14,6 +14,7 @@ int main(int argc, char** argv) {
   phongcl::cli::add_reference_command(app);
   phongcl::cli::add_compare_command(app);
   phongcl::cli::add_devices_command(app);
+  phongcl::cli::add_bench_command(app);
   phongcl::cli::add_stability_command(app);
   try {
     app.parse(argc, argv);

@@ -1,0 +1,24 @@
+#pragma once
+// `phongcl bench`: the error-against-run-time report (default) and, with --throughput, the
+// throughput comparison against C++ peers and the machine's limits.
+#include <string>
+
+#include "cli/inputs.h"
+
+namespace phongcl::cli {
+
+struct BenchArguments {
+  SceneInputs inputs;
+  std::string device;
+  int runs = 10;            // timed runs per variant, after one untimed warm-up
+  std::string report_dir;   // report.md, report.json, chart
+  bool throughput = false;
+  std::string lights;       // --throughput: light counts to sweep, e.g. "0,1,4,16,64,256"
+  std::string sizes;        // --throughput: image sizes to sweep, e.g. "256x256,1920x1080"
+  std::string json_file;    // --throughput: results as JSON
+};
+
+void run_error_vs_time_bench(const BenchArguments& args);  // bench_error_vs_time.cpp
+void run_throughput_bench(const BenchArguments& args);     // bench_throughput.cpp
+
+}  // namespace phongcl::cli
