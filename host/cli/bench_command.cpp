@@ -1,4 +1,4 @@
-// phongcl bench: registers the benchmark's options and runs the error-against-run-time report.
+// phongcl bench: registers the options both benchmarks share and picks one.
 #include <memory>
 
 #include "cli/bench_arguments.h"
@@ -8,13 +8,17 @@ namespace phongcl::cli {
 
 void add_bench_command(CLI::App& app) {
   auto args = std::make_shared<BenchArguments>();
-  CLI::App* command = app.add_subcommand("bench", "Measure every kernel variant: error against run time");
+  CLI::App* command = app.add_subcommand("bench", "Measure every kernel variant: error against run time, or throughput");
   args->inputs.add_options(*command);
   command->add_option("--device", args->device, "OpenCL device: index or name (default: first CPU device)");
   command->add_option("--runs", args->runs, "Timed runs per measurement, after one warm-up (default 10)")
       ->check(CLI::PositiveNumber);
   command->add_option("--report", args->report_dir, "Directory for report.md, report.json and the chart");
-  command->callback([args] { run_error_vs_time_bench(*args); });
+  command->add_flag("--throughput", args->throughput, "Compare throughput with C++ peers and the machine's limits");
+  command->add_option("--lights", args->lights, "--throughput: light counts to sweep (e.g. 0,1,4,16,64,256)");
+  command->add_option("--sizes", args->sizes, "--throughput: image sizes to sweep (e.g. 256x256,1920x1080)");
+  command->add_option("--json", args->json_file, "--throughput: write the results as JSON");
+  command->callback([args] { args->throughput ? run_throughput_bench(*args) : run_error_vs_time_bench(*args); });
 }
 
 }  // namespace phongcl::cli
