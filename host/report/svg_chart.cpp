@@ -46,8 +46,9 @@ class Scale {
   Scale(const ChartAxis& axis, double data_min, double data_max, double pixel_from, double pixel_to)
       : log_(axis.log_scale), pixel_from_(pixel_from), pixel_to_(pixel_to) {
     if (log_) {
-      lo_ = std::floor(std::log10(data_min));
-      hi_ = std::max(std::ceil(std::log10(data_max)), lo_ + 1);
+      // A tenth of a decade of room, so points near a decade do not sit on the frame.
+      lo_ = std::floor(std::log10(data_min) - 0.1);
+      hi_ = std::max(std::ceil(std::log10(data_max) + 0.1), lo_ + 1);
       const int decades = static_cast<int>(hi_ - lo_);
       const int every = decades > 8 ? (decades + 7) / 8 : 1;  // at most about eight labelled decades
       for (int k = static_cast<int>(lo_); k <= static_cast<int>(hi_); ++k) {
@@ -106,11 +107,11 @@ struct Box {
   }
 };
 
-// Places labels one by one at the first nearby spot that stays in the plot and clear of
-// markers and labels placed before it; falls back to the right of the point.
+// Places labels one by one at the first nearby spot that stays in the plot and clear of the
+// obstacles (markers, lines) and the labels placed before it; falls back to the right of the point.
 class LabelPlacer {
  public:
-  LabelPlacer(Box plot, std::vector<Box> markers) : plot_(plot), taken_(std::move(markers)) {}
+  LabelPlacer(Box plot, std::vector<Box> obstacles) : plot_(plot), taken_(std::move(obstacles)) {}
 
   std::string place(double px, double py, const std::string& label) {
     const double width = kCharWidth * static_cast<double>(label.size()), height = kFontSize;
@@ -230,16 +231,26 @@ std::string render_svg(const Chart& chart) {
          ") rotate(-90)\" text-anchor=\"middle\" font-size=\"13\">" + escape_xml(chart.y.label) + "</text>\n";
 
   // Lines under markers, markers under labels.
-  std::vector<Box> marker_boxes;
+  // What labels must keep clear of: markers, and lines sampled every few pixels.
+  std::vector<Box> obstacles;
   for (std::size_t i = 0; i < chart.series.size(); ++i) {
     const ChartSeries& series = chart.series[i];
     if (series.line && series.points.size() > 1) {
       svg += "<polyline class=\"series-line\" fill=\"none\" stroke=\"" + color_of(i) + "\" stroke-width=\"1.5\" points=\"";
       for (const auto& p : series.points) svg += number(xs.pixel(p.x)) + "," + number(ys.pixel(p.y)) + " ";
       svg += "\"/>\n";
+      for (std::size_t k = 1; k < series.points.size(); ++k) {
+        const double x0 = xs.pixel(series.points[k - 1].x), y0 = ys.pixel(series.points[k - 1].y);
+        const double x1 = xs.pixel(series.points[k].x), y1 = ys.pixel(series.points[k].y);
+        const int steps = 1 + static_cast<int>(std::hypot(x1 - x0, y1 - y0) / 4);
+        for (int t = 0; t <= steps; ++t) {
+          const double x = x0 + (x1 - x0) * t / steps, y = y0 + (y1 - y0) * t / steps;
+          obstacles.push_back({x - 1, y - 1, x + 1, y + 1});
+        }
+      }
     }
     if (series.marker != MarkerShape::none)
-      for (const auto& p : series.points) marker_boxes.push_back({xs.pixel(p.x) - 6, ys.pixel(p.y) - 6, xs.pixel(p.x) + 6, ys.pixel(p.y) + 6});
+      for (const auto& p : series.points) obstacles.push_back({xs.pixel(p.x) - 6, ys.pixel(p.y) - 6, xs.pixel(p.x) + 6, ys.pixel(p.y) + 6});
   }
   for (std::size_t i = 0; i < chart.series.size(); ++i) {
     const ChartSeries& series = chart.series[i];
@@ -251,7 +262,7 @@ std::string render_svg(const Chart& chart) {
     }
     svg += "</g>\n";
   }
-  LabelPlacer placer(plot, marker_boxes);
+  LabelPlacer placer(plot, obstacles);
   svg += "<g class=\"labels\" fill=\"#222\">\n";
   for (const auto& series : chart.series)
     for (const auto& p : series.points)
