@@ -92,12 +92,16 @@ inline vec3 unit_or_zero(vec3 v) {
 }
 #endif
 
-/* log2(1 - e) to a few ulp for small e, from the vectorised log2: u = 1 - e rounds, but
- * log2(u) * e / (1 - u) corrects for the rounding (Goldberg's log1p trick); u == 1 only when e
- * is below half an ulp of 1, where log2(1 - e) = -e / ln 2 to float precision. */
-inline realv log2_one_minus(realv e) {
-  realv u = 1 - e;
-  return SELECT(u == 1, -e * (real)M_LOG2E, log2(u) * (e / (1 - u)));
+/* log2 of the specular base, one vectorised log2 per lane. Near the peak (e = 1 - v.r < 0.5) it is
+ * log2(1 - e) to a few ulp: u = 1 - e rounds, but log2(u) * e / (1 - u) corrects for the rounding
+ * (Goldberg's log1p trick), and u == 1 only when e is below half an ulp of 1, where
+ * log2(1 - e) = -e / ln 2 to float precision. Elsewhere log2(cos_vr) is the accurate one. */
+inline realv log2_specular_base(realv cos_vr, realv e) {
+  const realv u = 1 - e;
+  const realv near_peak = SELECT(e < (real)0.5, 1, 0);
+  const realv logarithm = log2(SELECT(near_peak != 0, u, cos_vr));
+  const realv corrected = SELECT(near_peak != 0 && u != 1, logarithm * (e / (1 - u)), logarithm);
+  return SELECT(near_peak != 0 && u == 1, -e * (real)M_LOG2E, corrected);
 }
 
 /* max(0, v.r)^q with pow(0, 0) = 1 (OpenCL powr(0, 0) is NaN, so no powr).
@@ -109,7 +113,7 @@ inline realv specular_power(realv cos_vr, realv one_minus_cos, realv q) {
 #ifdef PHONGCL_FAST
   realv power = native_exp2(q * native_log2(cos_vr));
 #else
-  realv power = exp2(q * SELECT(one_minus_cos < (real)0.5, log2_one_minus(one_minus_cos), log2(cos_vr)));
+  realv power = exp2(q * log2_specular_base(cos_vr, one_minus_cos));
 #endif
   return SELECT(q == 0, 1, SELECT(cos_vr > 0, power, 0));
 }

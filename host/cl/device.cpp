@@ -28,6 +28,7 @@ DeviceInfo read_info(const cl::Platform& platform, const cl::Device& device, int
   info.max_allocation = device.getInfo<CL_DEVICE_MAX_MEM_ALLOC_SIZE>();
   info.max_constant_buffer = device.getInfo<CL_DEVICE_MAX_CONSTANT_BUFFER_SIZE>();
   info.max_constant_args = device.getInfo<CL_DEVICE_MAX_CONSTANT_ARGS>();
+  info.preferred_float_width = device.getInfo<CL_DEVICE_PREFERRED_VECTOR_WIDTH_FLOAT>();
   return info;
 }
 

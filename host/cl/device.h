@@ -15,6 +15,7 @@ struct DeviceInfo {
   unsigned compute_units = 0;
   unsigned long long global_memory = 0, max_allocation = 0, max_constant_buffer = 0;
   unsigned max_constant_args = 0;
+  unsigned preferred_float_width = 1;  // floats per SIMD register the device prefers
 };
 
 struct Device {

