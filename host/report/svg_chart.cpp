@@ -115,22 +115,30 @@ class LabelPlacer {
 
   std::string place(double px, double py, const std::string& label) {
     const double width = kCharWidth * static_cast<double>(label.size()), height = kFontSize;
-    struct Spot { double dx, dy; };  // offset of the label box's left edge and baseline
-    const std::array<Spot, 12> spots = {{{11, 4}, {-11 - width, 4}, {-width / 2, -8}, {-width / 2, 16},
-                                         {8, -8}, {8, 16}, {-8 - width, -8}, {-8 - width, 16},
-                                         {8, 18}, {8, -12}, {-width / 2, -20}, {-width / 2, 28}}};
+    // Text anchored at (px + dx, py + dy): the renderer's real text width then only changes how
+    // far the label reaches away from its point, never which point it seems to belong to.
+    enum Anchor { start, middle, end };
+    struct Spot { double dx, dy; Anchor anchor; };
+    const std::array<Spot, 12> spots = {{{11, 4, start}, {-11, 4, end}, {0, -9, middle}, {0, 17, middle},
+                                         {8, -8, start}, {8, 16, start}, {-8, -8, end}, {-8, 16, end},
+                                         {8, 18, start}, {8, -12, start}, {0, -21, middle}, {0, 29, middle}}};
+    auto box_of = [&](const Spot& spot) {
+      const double x = px + spot.dx - (spot.anchor == middle ? width / 2 : spot.anchor == end ? width : 0);
+      return Box{x, py + spot.dy - height, x + width, py + spot.dy + 2};
+    };
     Spot chosen = spots.front();
     for (const Spot& spot : spots) {
-      const Box box{px + spot.dx, py + spot.dy - height, px + spot.dx + width, py + spot.dy + 2};
+      const Box box = box_of(spot);
       const bool inside = box.x0 >= plot_.x0 && box.x1 <= plot_.x1 && box.y0 >= plot_.y0 && box.y1 <= plot_.y1;
       if (inside && std::none_of(taken_.begin(), taken_.end(), [&](const Box& t) { return t.overlaps(box); })) {
         chosen = spot;
         break;
       }
     }
-    taken_.push_back({px + chosen.dx, py + chosen.dy - height, px + chosen.dx + width, py + chosen.dy + 2});
-    return "<text class=\"label\" x=\"" + number(px + chosen.dx) + "\" y=\"" + number(py + chosen.dy) + "\">" +
-           escape_xml(label) + "</text>\n";
+    taken_.push_back(box_of(chosen));
+    static constexpr const char* anchor_names[] = {"start", "middle", "end"};
+    return "<text class=\"label\" x=\"" + number(px + chosen.dx) + "\" y=\"" + number(py + chosen.dy) +
+           "\" text-anchor=\"" + anchor_names[chosen.anchor] + "\">" + escape_xml(label) + "</text>\n";
   }
 
  private:
