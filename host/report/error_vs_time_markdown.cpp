@@ -9,15 +9,9 @@ namespace phongcl {
 
 namespace {
 
-std::string format(const char* pattern, double value) {
-  char text[48];
-  std::snprintf(text, sizeof text, pattern, value);
-  return text;
-}
-
-std::string milliseconds(double ms) { return format(ms < 10 ? "%.3f" : "%.2f", ms); }
-std::string scientific(double value) { return format("%.2e", value); }
-std::string decibels(double db) { return std::isinf(db) ? "inf" : format("%.1f", db); }
+std::string milliseconds(double ms) { return format_cell(ms < 10 ? "%.3f" : "%.2f", ms); }
+std::string scientific(double value) { return format_cell("%.2e", value); }
+std::string decibels(double db) { return std::isinf(db) ? "inf" : format_cell("%.1f", db); }
 
 std::string worst_pixel(const ErrorStats& e) {
   char text[96];
@@ -63,7 +57,7 @@ std::string render_markdown(const ErrorVsTimeReport& report) {
           "(the program comes from the in-memory cache after the warm-up)\n";
   text += "- **End to end**: wall clock of pack + upload + kernel + download, build excluded\n";
   text += "- **Error**: against the double-precision scalar reference on every shaded pixel, channels R, G, B; "
-          "relative error = |test - expected| / max(|expected|, " + format("%g", report.relative_error_floor) +
+          "relative error = |test - expected| / max(|expected|, " + format_cell("%g", report.relative_error_floor) +
           "); PSNR against the peak expected value\n";
   text += "- **Kernels**: (S) specialised to the scene (what it does not need compiled out), (G) general "
           "(everything compiled in)\n";
@@ -84,7 +78,7 @@ std::string render_markdown(const ErrorVsTimeReport& report) {
     const VariantMeasurement& v = variants[i];
     table.rows.push_back({v.precision, v.kernel_kind(), milliseconds(v.kernel_median_ms), milliseconds(v.kernel_min_ms),
                           milliseconds(v.end_to_end_median_ms),
-                          format("%.2fx", v.kernel_median_ms / baseline->kernel_median_ms),
+                          format_cell("%.2fx", v.kernel_median_ms / baseline->kernel_median_ms),
                           scientific(v.error.max_abs), scientific(v.error.max_rel), scientific(v.error.rmse),
                           decibels(v.error.psnr_db), worst_pixel(v.error), std::to_string(v.error.nonfinite_mismatches),
                           front[i] ? "yes" : ""});
@@ -99,7 +93,7 @@ std::string render_markdown(const ErrorVsTimeReport& report) {
     if (!general) continue;
     speedups += "\n- " + v.precision + ": " + milliseconds(v.kernel_median_ms) + " ms specialised vs " +
                 milliseconds(general->kernel_median_ms) + " ms general (" +
-                format("%.2fx", v.kernel_median_ms / general->kernel_median_ms) + ")";
+                format_cell("%.2fx", v.kernel_median_ms / general->kernel_median_ms) + ")";
   }
   if (!speedups.empty()) text += "\nSpecialised against general kernel, median kernel time:\n" + speedups + "\n";
   text += "\n![Max relative error against median kernel time](error_vs_time.svg)\n";

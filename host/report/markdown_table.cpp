@@ -1,6 +1,7 @@
 #include "report/markdown_table.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <stdexcept>
 
 namespace phongcl {
@@ -64,6 +65,12 @@ std::string MarkdownTable::render() const {
   }
   text += '\n';
   for (std::size_t r = 1; r < cells.size(); ++r) append_line(cells[r]);
+  return text;
+}
+
+std::string format_cell(const char* pattern, double value) {
+  char text[48];
+  std::snprintf(text, sizeof text, pattern, value);
   return text;
 }
 

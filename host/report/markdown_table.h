@@ -18,4 +18,7 @@ struct MarkdownTable {
   std::string render() const;
 };
 
+// One number as table text, with a printf pattern for a double ("%.2e", "%.1f").
+std::string format_cell(const char* pattern, double value);
+
 }  // namespace phongcl

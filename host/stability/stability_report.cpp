@@ -6,19 +6,15 @@
 
 #include <nlohmann/json.hpp>
 
+#include "report/markdown_table.h"
+
 namespace phongcl {
 
 namespace {
 
-std::string format(const char* pattern, double value) {
-  char text[48];
-  std::snprintf(text, sizeof text, pattern, value);
-  return text;
-}
+std::string value_text(long double value) { return format_cell("%.7g", static_cast<double>(value)); }
 
-std::string value_text(long double value) { return format("%.7g", static_cast<double>(value)); }
-
-std::string error_text(double error) { return std::isinf(error) ? "inf" : format("%.1e", error); }
+std::string error_text(double error) { return std::isinf(error) ? "inf" : format_cell("%.1e", error); }
 
 // "0.9999999 (3.1e-07 <= 1.0e-05)", "refused", "n/a (no fp64)"; FAIL and the problem when it failed.
 std::string variant_cell(const VariantOutcome& v, bool with_bound) {
@@ -87,7 +83,7 @@ std::string stability_markdown(const StabilityRun& run, const std::vector<BarFig
       << "| bar | variant | max relative error | |\n|---|---|---|---|\n";
   for (const BarFigure& bar : bars) {
     out << "| " << bar.bar << " | " << to_string(bar.precision) << " | "
-        << (std::isinf(bar.max_rel) ? std::string("refused (beyond half's range)") : format("%.2e", bar.max_rel))
+        << (std::isinf(bar.max_rel) ? std::string("refused (beyond half's range)") : format_cell("%.2e", bar.max_rel))
         << (bar.nan_values ? ", NaN!" : "") << " | " << (bar.judged ? (bar.passed() ? "pass" : "FAIL") : "reported") << " |\n";
   }
   std::string group;
