@@ -96,13 +96,11 @@ ShadeResult PhongShader::shade(const Scene& scene, const GBuffer& gbuffer, const
   // Every plane holds `stride` values, a multiple of the kernel's lanes; tiles are padded to it.
   const std::size_t stride = round_up(tile_pixels(compute_.device.info, recipe, pixels, options.max_tile_pixels), lanes);
   const std::size_t plane_bytes = stride * recipe.plane_count() * (half ? sizeof(cl_half) : sizeof(cl_float));
-  // ALLOC_HOST_PTR + map/unmap: on a CPU device packing writes straight into device memory.
-  const cl_mem_flags input_flags = CL_MEM_READ_ONLY | CL_MEM_ALLOC_HOST_PTR;
-  const cl_mem_flags output_flags = CL_MEM_WRITE_ONLY | CL_MEM_ALLOC_HOST_PTR;
-  cl::Buffer planes(context, input_flags, plane_bytes);
-  cl::Buffer material_index(context, input_flags, stride * sizeof(cl_int));
-  cl::Buffer output(context, output_flags, 4 * stride * sizeof(cl_float));
-  cl::Buffer terms(context, output_flags, (recipe.write_terms ? kTermPlanes * stride : 1) * sizeof(cl_float));
+  const cl::Buffer& planes = planes_.at_least(context, plane_bytes);
+  const cl::Buffer& material_index = material_index_.at_least(context, stride * sizeof(cl_int));
+  const cl::Buffer& output = output_.at_least(context, 4 * stride * sizeof(cl_float));
+  const cl::Buffer& terms =
+      terms_.at_least(context, (recipe.write_terms ? kTermPlanes * stride : 1) * sizeof(cl_float));
   std::vector<float> half_staging(half ? stride * recipe.plane_count() : 0);
   std::size_t flushed_to_zero = 0;
 

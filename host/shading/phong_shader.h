@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "cl/program_cache.h"
+#include "cl/reusable_buffer.h"
 #include "image/image.h"
 #include "shading/pack.h"
 #include "shading/recipe.h"
@@ -41,7 +42,7 @@ class PhongShader {
 
   // Checks material indices against the scene (InputError), builds or reuses the kernel the
   // recipe asks for, and shades every pixel. Frames larger than the device's largest allocation
-  // are shaded in tiles of whole pixel ranges.
+  // are shaded in tiles of whole pixel ranges. Device buffers are kept for the next frame.
   ShadeResult shade(const Scene& scene, const GBuffer& gbuffer, const ShadeOptions& options);
 
   const ComputeContext& compute() const { return compute_; }
@@ -49,6 +50,11 @@ class PhongShader {
  private:
   ComputeContext compute_;
   ProgramCache& cache_;
+  // ALLOC_HOST_PTR + map/unmap: on a CPU device packing writes straight into device memory.
+  ReusableBuffer planes_{CL_MEM_READ_ONLY | CL_MEM_ALLOC_HOST_PTR};
+  ReusableBuffer material_index_{CL_MEM_READ_ONLY | CL_MEM_ALLOC_HOST_PTR};
+  ReusableBuffer output_{CL_MEM_WRITE_ONLY | CL_MEM_ALLOC_HOST_PTR};
+  ReusableBuffer terms_{CL_MEM_WRITE_ONLY | CL_MEM_ALLOC_HOST_PTR};
 };
 
 }  // namespace phongcl
