@@ -5,8 +5,10 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 
 #include "cli_runner.h"
+#include "gbuffer/gbuffer.h"
 
 namespace phongcl {
 namespace {
@@ -190,19 +192,43 @@ TEST_F(Cli, KernelBuildFailureShowsTheBuildLog) {
 }
 
 TEST_F(Cli, UnwritableOutputDirectoryFailsCleanly) {
-  if (!testing::have_opencl_device()) GTEST_SKIP() << "no OpenCL device";
-  const CliRun run = run_phongcl(std::string("shade --scene ") + kDefaultScene + " --out " + path("missing-dir/lit.exr"));
-  EXPECT_NE(run.exit_code, 0);
-  EXPECT_NE(run.err.find("lit.exr"), std::string::npos) << run.err;
+  const std::string out = existing_output();
+  expect_clean_failure(run_phongcl(std::string("shade --scene ") + kDefaultScene + " --out " + path("missing-dir/lit.exr")),
+                       "missing-dir", out);
   EXPECT_FALSE(fs::exists(path("missing-dir")));
+  // A PNG or AOV that cannot be written must not cost the existing --out.
+  expect_clean_failure(run_phongcl(std::string("shade --scene ") + kDefaultScene + " --out " + out + " --png " +
+                                   path("missing-dir/lit.png")),
+                       "lit.png", out);
+  expect_clean_failure(run_phongcl(std::string("shade --scene ") + kDefaultScene + " --out " + out + " --aov " +
+                                   path("missing-dir/terms.exr")),
+                       "terms.exr", out);
+}
+
+TEST_F(Cli, BadFlagsAreOneLineErrors) {
+  const std::string out = existing_output();
+  expect_clean_failure(run_phongcl(std::string("shade --scene ") + kDefaultScene + " --out " + out + " --precision bogus"),
+                       "--precision", out);
+  expect_clean_failure(run_phongcl(std::string("shade --scene ") + kDefaultScene + " --out " + out +
+                                   " --device 99999999999999999999"),
+                       "--device", out);
 }
 
 TEST_F(Cli, NonFinitePixelsAreCountedNotFatal) {
   if (!testing::have_opencl_device()) GTEST_SKIP() << "no OpenCL device";
-  // Covered in depth by the G-buffer and shading suites; here: the summary line a user sees.
-  const CliRun run = run_phongcl(std::string("shade --scene ") + kDefaultScene + " --out " + path("lit.exr"));
+  GBuffer gbuffer = read_gbuffer(fs::path(PHONGCL_SOURCE_DIR) / "scenes/default/gbuffer.exr");
+  std::size_t shaded = 0;
+  for (std::size_t i = 0; i < gbuffer.pixel_count() && shaded < 3; ++i) {
+    if (classify_pixel(gbuffer, i) != PixelClass::shaded) continue;
+    gbuffer.normal[shaded][i] = std::numeric_limits<float>::quiet_NaN();  // three pixels, one axis each
+    ++shaded;
+  }
+  write_gbuffer(gbuffer, path("nan.exr"));
+  const CliRun run = run_phongcl(std::string("shade --scene ") + kDefaultScene + " --gbuffer " + path("nan.exr") +
+                                 " --out " + path("lit.exr"));
   ASSERT_EQ(run.exit_code, 0) << run.err;
-  EXPECT_EQ(run.out.find("non-finite"), std::string::npos) << "the bundled G-buffer is all finite: " << run.out;
+  EXPECT_NE(run.out.find("3 pixels had non-finite normals and were left unshaded"), std::string::npos) << run.out;
+  EXPECT_TRUE(fs::exists(path("lit.exr")));
 }
 
 }  // namespace

@@ -1,7 +1,12 @@
 #include "cli/outputs.h"
 
+#include <unistd.h>
+
+#include <filesystem>
 #include <map>
 #include <stdexcept>
+
+#include "common/error.h"
 
 namespace phongcl::cli {
 
@@ -9,7 +14,26 @@ namespace {
 const std::map<std::string, ToneMap> kToneMaps{{"clamp", ToneMap::clamp}, {"reinhard", ToneMap::reinhard}, {"aces", ToneMap::aces}};
 
 std::string pixel_type_name(bool half) { return half ? " (half)" : " (float32)"; }
+
+// Fails before any work is done when an output could not be written: a missing or read-only
+// directory, or a directory where the file should be.
+void check_destination(const std::string& file) {
+  if (file.empty()) return;
+  namespace fs = std::filesystem;
+  const fs::path path(file);
+  const fs::path directory = path.parent_path().empty() ? fs::path(".") : path.parent_path();
+  if (fs::is_directory(path)) throw InputError(path, "cannot write: it is a directory");
+  if (!fs::is_directory(directory)) throw InputError(path, "cannot write: directory " + directory.string() + " does not exist");
+  if (::access(directory.c_str(), W_OK) != 0) throw InputError(path, "cannot write: directory " + directory.string() + " is not writable");
+}
 }  // namespace
+
+void ImageOutputs::check_destinations() const {
+  if (exr_file.empty() && png_file.empty() && aov_file.empty()) {
+    throw std::invalid_argument("nothing to write: give --out, --png or --aov");
+  }
+  for (const std::string* file : {&exr_file, &png_file, &aov_file}) check_destination(*file);
+}
 
 void ImageOutputs::add_options(CLI::App& command) {
   command.add_option("--out", exr_file, "Output EXR (R G B A)");
@@ -26,29 +50,29 @@ void ImageOutputs::add_aov_option(CLI::App& command) {
                      "Also write a multilayer EXR: ambient.RGB, diffuse.RGB, specular.RGB and the combined R G B A");
 }
 
+// The --out EXR is written last, so a failure on another output leaves an existing --out as it was.
 std::string ImageOutputs::write(const Image& image) const {
   if (exr_file.empty() && png_file.empty()) throw std::invalid_argument("nothing to write: give --out and/or --png");
-  std::string written;
-  if (!exr_file.empty()) {
-    write_exr(image, exr_file, half ? ExrPixelType::half : ExrPixelType::float32);
-    written = exr_file + pixel_type_name(half);
-  }
+  std::string png_written;
   if (!png_file.empty()) {
     write_png(image, png_file, DisplaySettings{exposure, kToneMaps.at(tone_map)});
-    written += (written.empty() ? "" : ", ") + png_file + " (sRGB, " + tone_map + ")";
+    png_written = png_file + " (sRGB, " + tone_map + ")";
   }
-  return written;
+  if (exr_file.empty()) return png_written;
+  write_exr(image, exr_file, half ? ExrPixelType::half : ExrPixelType::float32);
+  return exr_file + pixel_type_name(half) + (png_written.empty() ? "" : ", " + png_written);
 }
 
 std::string ImageOutputs::write(const Image& image, const TermLayers& terms) const {
   if (aov_file.empty()) return write(image);
-  const std::string written = exr_file.empty() && png_file.empty() ? "" : write(image) + ", ";
   write_layered_exr({{"", &image, true},
                      {"ambient", &terms.ambient, false},
                      {"diffuse", &terms.diffuse, false},
                      {"specular", &terms.specular, false}},
                     aov_file, half ? ExrPixelType::half : ExrPixelType::float32);
-  return written + aov_file + " (ambient, diffuse, specular + combined, " + (half ? "half" : "float32") + ")";
+  const std::string aov_written =
+      aov_file + " (ambient, diffuse, specular + combined, " + (half ? "half" : "float32") + ")";
+  return exr_file.empty() && png_file.empty() ? aov_written : write(image) + ", " + aov_written;
 }
 
 }  // namespace phongcl::cli

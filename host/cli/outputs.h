@@ -25,7 +25,9 @@ struct ImageOutputs {
   void add_options(CLI::App& command);
   void add_aov_option(CLI::App& command);  // only for commands that can produce the terms
   bool wants_terms() const { return !aov_file.empty(); }
-  // Each file is written atomically; returns "lit.exr (float32), lit.png" for the summary.
+  // Throws (naming the file) when an output could not be written, before any work is done.
+  void check_destinations() const;
+  // Each file is written atomically, the --out EXR last; returns "lit.exr (float32), lit.png".
   std::string write(const Image& image) const;
   // The same, plus --aov: layers ambient.*, diffuse.*, specular.* (R G B) and the combined R G B A.
   std::string write(const Image& image, const TermLayers& terms) const;

@@ -19,6 +19,7 @@ struct ReferenceArguments {
 };
 
 void run_reference(const ReferenceArguments& args) {
+  args.outputs.check_destinations();
   const Scene scene = args.inputs.load_scene();
   const GBuffer gbuffer = args.inputs.load_gbuffer(scene);
   check_materials(gbuffer, scene.materials.size());

@@ -32,6 +32,7 @@ void print_unshaded(const PixelCounts& counts) {
 }
 
 void run_shade(const ShadeArguments& args) {
+  args.outputs.check_destinations();
   const Scene scene = args.inputs.load_scene();
   const LoadedGBuffer loaded = args.inputs.load_described_gbuffer(scene);
   const GBuffer& gbuffer = loaded.gbuffer;
