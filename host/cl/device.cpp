@@ -97,8 +97,8 @@ Device pick_device(const std::string& selector) {
     return cpu != devices.end() ? *cpu : devices.front();
   }
   if (std::all_of(selector.begin(), selector.end(), [](unsigned char c) { return std::isdigit(c); })) {
-    const auto index = std::stoul(selector);
-    if (index < devices.size()) return devices[index];
+    // More digits than any device count has is simply out of range (and would overflow stoul).
+    if (selector.size() <= 6 && std::stoul(selector) < devices.size()) return devices[std::stoul(selector)];
     throw std::runtime_error("--device " + selector + ": there are only " + std::to_string(devices.size()) +
                              " OpenCL devices (see `phongcl devices`)");
   }

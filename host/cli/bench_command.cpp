@@ -12,7 +12,7 @@ void add_bench_command(CLI::App& app) {
   args->inputs.add_options(*command);
   command->add_option("--device", args->device, "OpenCL device: index or name (default: first CPU device)");
   command->add_option("--runs", args->runs, "Timed runs per measurement, after one warm-up (default 10)")
-      ->check(CLI::PositiveNumber);
+      ->check(CLI::Range(1, 1000000));
   command->add_option("--report", args->report_dir, "Directory for report.md, report.json and the chart");
   command->add_flag("--throughput", args->throughput, "Compare throughput with C++ peers and the machine's limits");
   command->add_option("--lights", args->lights, "--throughput: light counts to sweep (e.g. 0,1,4,16,64,256)");

@@ -40,7 +40,11 @@ void run_compare(const CompareArguments& args) {
       args.abs_floor, stats.rmse, stats.psnr_db, stats.worst_x, stats.worst_y, channel_names[stats.worst_channel],
       stats.worst_test, stats.worst_expected);
   if (stats.nonfinite_mismatches > 0) std::printf("  non-finite mismatches: %zu\n", stats.nonfinite_mismatches);
-  if (args.tolerance >= 0.0 && (stats.max_rel > args.tolerance || stats.nonfinite_mismatches > 0)) {
+  if (args.tolerance >= 0.0 && stats.nonfinite_mismatches > 0) {
+    throw std::runtime_error("compare: " + std::to_string(stats.nonfinite_mismatches) +
+                             " values are non-finite in one image and not the other");
+  }
+  if (args.tolerance >= 0.0 && stats.max_rel > args.tolerance) {
     throw std::runtime_error("compare: max relative error " + std::to_string(stats.max_rel) + " exceeds --tolerance " +
                              std::to_string(args.tolerance));
   }

@@ -19,8 +19,14 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
     return 0;
+  } catch (const CLI::CallForHelp& help) {
+    return app.exit(help);
+  } catch (const CLI::CallForAllHelp& help) {
+    return app.exit(help);
   } catch (const CLI::ParseError& error) {
-    return app.exit(error);
+    // One line, like every other error; --help has the usage.
+    std::cerr << "phongcl: " << error.what() << " (see --help)\n";
+    return 2;
   } catch (const cl::BuildError& error) {
     std::cerr << "phongcl: kernel build failed: " << phongcl::cl_error_name(error.err()) << "\n";
     for (const auto& [device, log] : error.getBuildLog()) {
