@@ -116,6 +116,7 @@ BuiltProgram ProgramCache::build(const ComputeContext& compute, const std::strin
         out << key.size() << '\n' << key;
         out.write(reinterpret_cast<const char*>(binaries.front().data()),
                   static_cast<std::streamsize>(binaries.front().size()));
+        out.close();  // a failure in the final flush must not leave a truncated binary in the cache
         if (!out) throw std::runtime_error("write failed");
       });
     } catch (const std::exception& error) {

@@ -116,10 +116,18 @@ ShadeResult PhongShader::shade(const Scene& scene, const GBuffer& gbuffer, const
     auto* mapped_index = static_cast<cl_int*>(
         queue.enqueueMapBuffer(material_index, CL_TRUE, CL_MAP_WRITE_INVALIDATE_REGION, 0, stride * sizeof(cl_int)));
     float* float_planes = half ? half_staging.data() : static_cast<float*>(mapped_planes);
-    result.counts += pack_tile(gbuffer, scene.camera.eye, recipe, first, count, padded, stride, float_planes, mapped_index);
-    if (half) {
-      flushed_to_zero += convert_planes_to_half(gbuffer, recipe, first, padded, stride, float_planes,
-                                                static_cast<std::uint16_t*>(mapped_planes));
+    try {
+      result.counts += pack_tile(gbuffer, scene.camera.eye, recipe, first, count, padded, stride, float_planes, mapped_index);
+      if (half) {
+        flushed_to_zero += convert_planes_to_half(gbuffer, recipe, first, padded, stride, float_planes,
+                                                  static_cast<std::uint16_t*>(mapped_planes));
+      }
+    } catch (...) {
+      // The buffers outlive this frame: leave them unmapped (a value beyond half's range throws).
+      queue.enqueueUnmapMemObject(planes, mapped_planes);
+      queue.enqueueUnmapMemObject(material_index, mapped_index);
+      queue.finish();
+      throw;
     }
     result.timings.pack_ms += milliseconds(pack_start, Clock::now());
 
