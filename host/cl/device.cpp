@@ -8,6 +8,8 @@
 #include <filesystem>
 #include <stdexcept>
 
+#include "common/writable_directory.h"
+
 namespace phongcl {
 
 namespace {
@@ -37,12 +39,6 @@ std::string lower(std::string text) {
   return text;
 }
 
-bool is_writable_dir_or_creatable(const std::filesystem::path& dir) {
-  std::error_code ec;
-  std::filesystem::create_directories(dir, ec);
-  return !ec && ::access(dir.c_str(), W_OK) == 0;
-}
-
 // PoCL keeps compiled kernels in $POCL_CACHE_DIR, else $XDG_CACHE_HOME/pocl, else ~/.cache/pocl, and
 // when it cannot create that directory it reports zero devices without a word. Point it at a
 // private temporary directory instead when the default is not usable (HOME unset or read-only).
@@ -53,9 +49,9 @@ void ensure_pocl_cache_dir() {
   std::filesystem::path dir;
   if (xdg && *xdg) dir = std::filesystem::path(xdg) / "pocl";
   else if (home && *home) dir = std::filesystem::path(home) / ".cache" / "pocl";
-  if (!dir.empty() && is_writable_dir_or_creatable(dir)) return;
+  if (!dir.empty() && ensure_writable_directory(dir)) return;
   const auto fallback = std::filesystem::temp_directory_path() / ("phongcl-pocl-cache-" + std::to_string(::getuid()));
-  if (is_writable_dir_or_creatable(fallback)) ::setenv("POCL_CACHE_DIR", fallback.c_str(), 0);
+  if (ensure_writable_directory(fallback)) ::setenv("POCL_CACHE_DIR", fallback.c_str(), 0);
 }
 
 }  // namespace

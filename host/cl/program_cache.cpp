@@ -1,7 +1,5 @@
 #include "cl/program_cache.h"
 
-#include <unistd.h>
-
 #include <chrono>
 #include <cstdint>
 #include <cstdlib>
@@ -10,6 +8,7 @@
 #include <sstream>
 
 #include "common/atomic_file.h"
+#include "common/writable_directory.h"
 
 namespace phongcl {
 
@@ -33,12 +32,6 @@ std::string fnv1a_hex(const std::string& text) {
 std::string cache_key(const DeviceInfo& device, const std::string& source, const std::string& options) {
   return device.platform + "\n" + device.platform_version + "\n" + device.name + "\n" + device.driver_version +
          "\n" + device.device_version + "\n" + options + "\n" + source;
-}
-
-bool usable_directory(const fs::path& dir) {
-  std::error_code ec;
-  fs::create_directories(dir, ec);
-  return !ec && ::access(dir.c_str(), W_OK) == 0;
 }
 
 double milliseconds_since(std::chrono::steady_clock::time_point start) {
@@ -76,7 +69,7 @@ fs::path ProgramCache::default_directory() {
   if (const char* own = std::getenv("PHONGCL_CACHE_DIR"); own && *own) dir = own;
   else if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg) dir = fs::path(xdg) / "phongcl";
   else if (const char* home = std::getenv("HOME"); home && *home) dir = fs::path(home) / ".cache" / "phongcl";
-  return !dir.empty() && usable_directory(dir) ? dir : fs::path();
+  return !dir.empty() && ensure_writable_directory(dir) ? dir : fs::path();
 }
 
 BuiltProgram ProgramCache::build(const ComputeContext& compute, const std::string& source, const std::string& options) {
