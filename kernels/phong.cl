@@ -7,6 +7,7 @@
  *   POINT_COUNT=n, DIRECTIONAL_COUNT=n compile-time light counts (loops unroll), else run-time
  *   SPECULAR, AMBIENT                  terms present
  *   SINGLE_MATERIAL                    every shaded pixel uses materials[0]: no per-pixel fetch
+ *   MATERIAL_COUNT=n                   a table of n <= PHONGCL_LANES materials: selects, no gather
  *   PLANE_KA=k PLANE_KD=k PLANE_KS=k PLANE_Q=k   per-pixel material planes and where they are
  *   UNIFORM_SPACE=__constant|__global  where the light and material tables live
  *   HALF_STORAGE                       G-buffer planes stored as half (vload_half)
@@ -63,9 +64,9 @@ inline void add_block(LightSums* sums, LightSums* compensation, const LightSums*
   kahan_add(&sums->specular.z, &compensation->specular.z, block->specular.z);
 }
 
-/* Adds one light's contribution, with l the unit vector towards the light. */
-inline void add_light(LightSums* sums, vec3 n, vec3 v, vec3 l, const UNIFORM_SPACE float* color, realv shininess) {
-  const realv ndl = dot3(n, l);
+/* Adds one light's contribution, with l the unit vector towards the light and ndl = n.l. */
+inline void add_light(LightSums* sums, vec3 n, vec3 v, vec3 l, realv ndl, const UNIFORM_SPACE float* color,
+                      realv shininess) {
   const realv lit_ndl = SELECT(ndl > 0, ndl, 0); /* back-facing or grazing: nothing from this light */
   sums->diffuse.x += color[0] * lit_ndl;
   sums->diffuse.y += color[1] * lit_ndl;
@@ -81,9 +82,28 @@ inline void add_light(LightSums* sums, vec3 n, vec3 v, vec3 l, const UNIFORM_SPA
 #endif
 }
 
-#if !defined(SINGLE_MATERIAL) && PHONGCL_LANES > 1
+/* One field of a material record; `field` is a float offset within MaterialRecord (layout.h).
+ * Through a function returning a private value: clang 15 (PoCL 3.1) crashes on a vector literal
+ * cast straight from a __constant lvalue. */
+inline real material_scalar(UNIFORM_SPACE const MaterialRecord* record, int field) {
+  return ((const UNIFORM_SPACE float*)record)[field];
+}
+
+#if defined(MATERIAL_COUNT)
+/* A table of MATERIAL_COUNT <= PHONGCL_LANES entries: each lane's field is picked by comparing its
+ * index with every entry (uniform loads and selects). PoCL lowers per-lane gathers, and shuffles
+ * with a variable mask, through per-work-item private memory: 7 of the 11 ms of a 1080p frame
+ * without lights. Background lanes (index -1) get entry 0. */
+inline realv select_field(UNIFORM_SPACE const MaterialRecord* table, intv index, int field) {
+  const realv lane_index = TO_REALV(index);
+  realv value = (realv)material_scalar(&table[0], field);
+  for (int m = 1; m < MATERIAL_COUNT; ++m) value = SELECT(lane_index == (real)m, material_scalar(&table[m], field), value);
+  return value;
+}
+#define MATERIAL_FIELD(field) select_field(materials, index, field)
+#elif !defined(SINGLE_MATERIAL) && PHONGCL_LANES > 1
 /* One field of each lane's material record: a gather through private memory (no dynamic lane
- * indexing in OpenCL C). `field` is a float offset within MaterialRecord (layout.h). */
+ * indexing in OpenCL C). */
 inline realv gather_field(UNIFORM_SPACE const MaterialRecord* table, const int* index, int field) {
   real values[PHONGCL_LANES];
   for (int k = 0; k < PHONGCL_LANES; ++k) values[k] = ((const UNIFORM_SPACE float*)&table[index[k]])[field];
@@ -97,20 +117,20 @@ inline realv gather_field(UNIFORM_SPACE const MaterialRecord* table, const int* 
 #else
 #define MATERIAL_RECORD (&materials[lane_material[0]])
 #endif
-/* Through a function returning a private value: clang 15 (PoCL 3.1) crashes on a vector literal
- * cast straight from a __constant lvalue. */
-inline real material_scalar(UNIFORM_SPACE const MaterialRecord* record, int field) {
-  return ((const UNIFORM_SPACE float*)record)[field];
-}
 #define MATERIAL_FIELD(field) ((realv)material_scalar(MATERIAL_RECORD, field))
 #endif
 #define MATERIAL_FIELD3(field) make_vec3(MATERIAL_FIELD(field), MATERIAL_FIELD((field) + 1), MATERIAL_FIELD((field) + 2))
 
 /* Undoes the host's radiance scaling by 2^e = a * b (two power-of-two factors, each a normal
- * float) with one ldexp: exact, one rounding, so the result overflows only when the exact one does.
- * Not (value * a) * b: -cl-fast-relaxed-math may reassociate that into value * (a * b), and a * b
- * = 2^128 overflows (3e38 lights gave +Inf for a finite 1.5e38, and 0 * Inf = NaN in dark pixels). */
+ * float): (value * a) * b is exact up to one rounding, and overflows only when the exact result
+ * does. Under -cl-fast-relaxed-math the compiler may reassociate that into value * (a * b), and
+ * a * b = 2^128 overflows (3e38 lights gave +Inf for a finite 1.5e38, and 0 * Inf = NaN in dark
+ * pixels), so the fast variant uses ldexp, which no flag rewrites. */
+#ifdef PHONGCL_FAST
 inline floatv unscale(realv value, float a, float b) { return TO_FLOATV(ldexp(value, ilogb(a) + ilogb(b))); }
+#else
+inline floatv unscale(realv value, float a, float b) { return TO_FLOATV(value * a * b); }
+#endif
 
 inline void store3(vec3 value, float a, float b, size_t group, __global float* restrict out, uint plane_stride) {
   VSTORE_FLOAT(unscale(value.x, a, b), group, out);
@@ -134,8 +154,8 @@ __kernel void phong_shade(
   const size_t group = get_global_id(0);
   const intv index = VLOAD_INT(group, material_index);
   const intv background = index == PHONGCL_BACKGROUND;
-#ifndef SINGLE_MATERIAL
   /* Background lanes read material 0 and are replaced by the background colour at the end. */
+#if !defined(SINGLE_MATERIAL) && !defined(MATERIAL_COUNT)
   int lane_material[PHONGCL_LANES];
   for (int k = 0; k < PHONGCL_LANES; ++k) lane_material[k] = max(material_index[group * PHONGCL_LANES + k], 0);
 #endif
@@ -163,7 +183,10 @@ __kernel void phong_shade(
     for (int k = first; k < min(first + LIGHT_BLOCK, POINT_LOOP_COUNT); ++k) {
       UNIFORM_SPACE const PointLight* light = &point_lights[k];
       const vec3 position = make_vec3(light->position[0], light->position[1], light->position[2]);
-      add_light(&block, n, v, unit_or_zero(sub3(position, p)), light->color, shininess);
+      const vec3 to_light = rescaled(sub3(position, p));
+      const realv inverse = inverse_length(to_light);
+      /* n.l from the unnormalised vector, in parallel with the square root: the loop is latency-bound */
+      add_light(&block, n, v, scale3(to_light, inverse), dot3(n, to_light) * inverse, light->color, shininess);
     }
     add_block(&sums, &compensation, &block);
   }
@@ -174,7 +197,7 @@ __kernel void phong_shade(
     for (int k = first; k < min(first + LIGHT_BLOCK, DIRECTIONAL_LOOP_COUNT); ++k) {
       UNIFORM_SPACE const DirectionalLight* light = &directional_lights[k];
       const vec3 l = make_vec3(light->to_light[0], light->to_light[1], light->to_light[2]);
-      add_light(&block, n, v, l, light->color, shininess);
+      add_light(&block, n, v, l, dot3(n, l), light->color, shininess);
     }
     add_block(&sums, &compensation, &block);
   }

@@ -32,6 +32,9 @@ typedef int intv;
 #define TO_REALV(x) ((real)(x))
 #define TO_FLOATV(x) ((float)(x))
 #define ANY_LANE(condition) (condition)
+#define AS_INTV(x) as_int(x)
+#define AS_FLOATV(x) as_float(x)
+#define INT_TO_FLOATV(x) convert_float(x)
 #else
 typedef PHONGCL_XCAT(PHONGCL_REAL, PHONGCL_LANES) realv;
 typedef PHONGCL_XCAT(float, PHONGCL_LANES) floatv;
@@ -43,6 +46,9 @@ typedef PHONGCL_XCAT(int, PHONGCL_LANES) intv;
 #define TO_REALV(x) PHONGCL_XCAT(PHONGCL_XCAT(convert_, PHONGCL_REAL), PHONGCL_LANES)(x)
 #define TO_FLOATV(x) PHONGCL_XCAT(convert_float, PHONGCL_LANES)(x)
 #define ANY_LANE(condition) any(condition)
+#define AS_INTV(x) PHONGCL_XCAT(as_int, PHONGCL_LANES)(x)
+#define AS_FLOATV(x) PHONGCL_XCAT(as_float, PHONGCL_LANES)(x)
+#define INT_TO_FLOATV(x) PHONGCL_XCAT(convert_float, PHONGCL_LANES)(x)
 #endif
 
 /* Per-lane choice without branches: `condition` is a comparison of realv values. */
@@ -61,60 +67,102 @@ inline vec3 sub3(vec3 a, vec3 b) { return make_vec3(a.x - b.x, a.y - b.y, a.z - 
 inline vec3 scale3(vec3 a, realv s) { return make_vec3(a.x * s, a.y * s, a.z * s); }
 inline realv dot3(vec3 a, vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
 
-#ifdef PHONGCL_FAST
-/* Fast variant: no rescaling, native reciprocal square root. Zero stays zero; components whose
- * squares overflow or underflow float lose the direction (the cost of this variant). */
-inline vec3 unit_or_zero(vec3 v) {
-  realv length_sq = dot3(v, v);
-  /* FLT_MIN, not 0: under -cl-fast-relaxed-math a denormal length_sq (components ~1e-23) may be
-   * flushed inside native_rsqrt, giving Inf and then NaN; such a vector is treated as zero. */
-  return scale3(v, SELECT(length_sq >= FLT_MIN, native_rsqrt(length_sq), 0));
-}
-#else
-/* normalize() that neither overflows nor underflows: divide by the largest |component| first, so
- * components of 1e30 (squares overflow float) or 1e-40 (squares vanish) still give a unit vector.
- * A zero vector stays zero: the documented policy for degenerate inputs (README). */
-inline vec3 unit_or_zero_rescaled(vec3 v) {
-  realv largest = fmax(fabs(v.x), fmax(fabs(v.y), fabs(v.z)));
-  realv nonzero = SELECT(largest > 0, largest, 1);
-  vec3 scaled = make_vec3(v.x / nonzero, v.y / nonzero, v.z / nonzero);
-  realv length_sq = dot3(scaled, scaled);
-  return scale3(scaled, SELECT(length_sq > 0, rsqrt(length_sq), 0));
+#ifdef PHONGCL_DOUBLE
+/* v divided by its largest |component| (v itself when zero). */
+inline vec3 rescaled(vec3 v) {
+  const realv largest = fmax(fabs(v.x), fmax(fabs(v.y), fabs(v.z)));
+  const realv nonzero = SELECT(largest > 0, largest, 1);
+  return make_vec3(v.x / nonzero, v.y / nonzero, v.z / nonzero);
 }
 
-/* The same result, cheaply when every lane's squared length is comfortably inside the normal
- * range (the rescaling costs three divisions); the rescaled path only when a lane needs it. */
-inline vec3 unit_or_zero(vec3 v) {
-  const realv length_sq = dot3(v, v);
-  const real lowest = 1e-30f, highest = 1e30f;
-  if (ANY_LANE(!(length_sq >= lowest && length_sq <= highest))) return unit_or_zero_rescaled(v);
-  return scale3(v, rsqrt(length_sq));
-}
-#endif
-
-/* log2 of the specular base, one vectorised log2 per lane. Near the peak (e = 1 - v.r < 0.5) it is
+/* q * log2 of the specular base, one log2 per lane. Near the peak (e = 1 - v.r < 0.5) it is
  * log2(1 - e) to a few ulp: u = 1 - e rounds, but log2(u) * e / (1 - u) corrects for the rounding
  * (Goldberg's log1p trick), and u == 1 only when e is below half an ulp of 1, where
- * log2(1 - e) = -e / ln 2 to float precision. Elsewhere log2(cos_vr) is the accurate one. */
-inline realv log2_specular_base(realv cos_vr, realv e) {
+ * log2(1 - e) = -e / ln 2 to double precision. Elsewhere log2(cos_vr) is the accurate one. */
+inline realv specular_exponent(realv cos_vr, realv e, realv q) {
   const realv u = 1 - e;
   const realv near_peak = SELECT(e < (real)0.5, 1, 0);
   const realv logarithm = log2(SELECT(near_peak != 0, u, cos_vr));
   const realv corrected = SELECT(near_peak != 0 && u != 1, logarithm * (e / (1 - u)), logarithm);
-  return SELECT(near_peak != 0 && u == 1, -e * (real)M_LOG2E, corrected);
+  return q * SELECT(near_peak != 0 && u == 1, -e * (real)M_LOG2E, corrected);
+}
+inline realv exp2_nonpositive(realv y) { return exp2(y); }
+#else
+/* v scaled by the power of two that brings its largest |component| into [1, 2), from the exponent
+ * bits: exact, and no branches or divisions. */
+inline vec3 rescaled(vec3 v) {
+  /* |x| as bits orders like |x| (non-negative floats); NaN and Inf give the largest exponent. */
+  const intv largest = max(AS_INTV(fabs(v.x)), max(AS_INTV(fabs(v.y)), AS_INTV(fabs(v.z))));
+  const intv exponent = min(largest >> 23, 253); /* 2^(127 - e) stays a normal float */
+  return scale3(v, AS_FLOATV((254 - exponent) << 23));
+}
+
+/* q * log2(1 - e) for 0 <= e < 1, as straight-line code (PoCL's log2 is a table lookup with scalar
+ * gathers, and a call that spills every vector register). Cephes logf: x = 2^k f, f in
+ * [sqrt(1/2), sqrt(2)), ln f = m - m^2/2 + m^3 P(m) with m = f - 1 exact, about 1 ulp.
+ * Near the peak (e < 0.29) m = -e itself: no rounding of 1 - e, whose error x^q would multiply
+ * by q. Far from the peak the base is cos_vr = v.r as the caller computed it.
+ * The light loop is latency-bound, so the polynomial is evaluated with Estrin's scheme (half the
+ * depth of Horner's) and q is folded into the last two steps. */
+inline realv specular_exponent(realv cos_vr, realv e, realv q) {
+  const intv subnormal = cos_vr < FLT_MIN;
+  const intv bits = AS_INTV(SELECT(subnormal, cos_vr * 0x1p23f, cos_vr));
+  const intv high = (bits & 0x007fffff) > 0x3504f3; /* mantissa above sqrt(2) - 1: halve f */
+  const intv exponent = (bits >> 23) - 127 - (subnormal & 23) - high; /* true is -1 per lane */
+  const realv f = AS_FLOATV(((bits & 0x007fffff) | 0x3f800000) - (high & 0x00800000));
+  const intv near_peak = e < 0.29f;
+  const realv m = SELECT(near_peak, -e, f - 1);
+  const realv qk = SELECT(near_peak, 0, q * INT_TO_FLOATV(exponent));
+  const realv q_log2e = q * (real)M_LOG2E;
+  const realv m2 = m * m, m4 = m2 * m2;
+  const realv p01 = 3.3333331174E-1f - 2.4999993993E-1f * m, p23 = 2.0000714765E-1f - 1.6668057665E-1f * m;
+  const realv p45 = 1.4249322787E-1f - 1.2420140846E-1f * m, p67 = 1.1676998740E-1f - 1.1514610310E-1f * m;
+  const realv p = (p01 + m2 * p23) + m4 * ((p45 + m2 * p67) + m4 * 7.0376836292E-2f);
+  /* q (k + log2(e) (m + m^2 (m P - 1/2))) */
+  return (m2 * q_log2e) * (m * p - 0.5f) + (m * q_log2e + qk);
+}
+
+/* 2^y for y <= 0 (Cephes exp2f on the fraction, about 1 ulp), and 0 where 2^y is below the
+ * smallest normal float, 2^-126: subnormal results cost a microcode assist per operation on x86
+ * (half the frame's time at 16 lights) and GPUs flush them anyway. The rounding to an integer goes
+ * through the bits of y + 1.5 * 2^23, which -cl-fast-relaxed-math cannot fold away. */
+inline realv exp2_nonpositive(realv y) {
+  const intv k = AS_INTV(y + 0x1.8p23f) - 0x4b400000; /* nearest integer */
+  const realv r = y - INT_TO_FLOATV(k);                /* [-0.5, 0.5], exact */
+  const realv r2 = r * r;
+  const realv p = (6.931472028550421E-1f + 2.402264791363012E-1f * r) +
+                  r2 * ((5.550332471162809E-2f + 9.618437357674640E-3f * r) +
+                        r2 * (1.339887440266574E-3f + 1.535336188319500E-4f * r));
+  const realv scale = AS_FLOATV((k + 127) << 23); /* 2^k */
+  return SELECT(y >= -126.0f, scale + (r * scale) * p, 0);
+}
+#endif
+
+/* 1 / |v| for a rescaled v, 0 for the zero vector. */
+inline realv inverse_length(vec3 scaled) {
+  const realv length_sq = dot3(scaled, scaled);
+#ifdef PHONGCL_FAST
+  const realv inverse = native_rsqrt(length_sq);
+#else
+  const realv inverse = rsqrt(length_sq);
+#endif
+  return SELECT(length_sq > 0, inverse, 0);
+}
+
+/* normalize() that neither overflows nor underflows: components of 1e30 (squares overflow float)
+ * or 1e-40 (squares vanish) still give a unit vector. A zero vector stays zero: the documented
+ * policy for degenerate inputs (README). */
+inline vec3 unit_or_zero(vec3 v) {
+  const vec3 scaled = rescaled(v);
+  return scale3(scaled, inverse_length(scaled));
 }
 
 /* max(0, v.r)^q with pow(0, 0) = 1 (OpenCL powr(0, 0) is NaN, so no powr).
  * Near the highlight peak v.r rounds towards 1 and x^q multiplies that rounding error by q, so the
  * logarithm is taken from one_minus_cos = 1 - v.r, which the caller computes without cancellation
- * as |v - r|^2 / 2 (v and r unit vectors). Far from the peak, log2(v.r) is the accurate one.
- * exp2/log2 rather than pow or exp/log1p: PoCL vectorises those, not the others. */
+ * as |v - r|^2 / 2 (v and r unit vectors). Far from the peak, log2(v.r) is the accurate one. */
 inline realv specular_power(realv cos_vr, realv one_minus_cos, realv q) {
-#ifdef PHONGCL_FAST
-  realv power = native_exp2(q * native_log2(cos_vr));
-#else
-  realv power = exp2(q * log2_specular_base(cos_vr, one_minus_cos));
-#endif
+  const realv power = exp2_nonpositive(specular_exponent(cos_vr, one_minus_cos, q));
   return SELECT(q == 0, 1, SELECT(cos_vr > 0, power, 0));
 }
 

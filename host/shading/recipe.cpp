@@ -55,6 +55,7 @@ void decide_lights(Recipe& recipe) {
   recipe.reasons.push_back(describe("directional", recipe.directional_lights, recipe.directional_count_in_code));
 }
 
+// Needs recipe.lanes.
 void decide_materials(Recipe& recipe, const Scene& scene, const GBuffer& gbuffer) {
   recipe.per_pixel_ka = gbuffer.has_per_pixel_ka();
   recipe.per_pixel_kd = gbuffer.has_per_pixel_kd();
@@ -62,9 +63,13 @@ void decide_materials(Recipe& recipe, const Scene& scene, const GBuffer& gbuffer
   recipe.per_pixel_shininess = gbuffer.has_per_pixel_shininess();
   const bool table_needed = !(recipe.per_pixel_ka && recipe.per_pixel_kd && recipe.per_pixel_ks && recipe.per_pixel_shininess);
   recipe.single_material = recipe.specialised && scene.materials.size() <= 1;
+  recipe.material_count = static_cast<int>(scene.materials.size());
+  recipe.material_selects = recipe.specialised && table_needed && !recipe.single_material && recipe.lanes > 1 &&
+                            recipe.material_count <= recipe.lanes;
   std::string line = "materials: ";
   if (!table_needed) line += "all per-pixel channels (Ka, Kd, Ks, shininess)";
   else if (recipe.single_material) line += "single material, no per-pixel fetch";
+  else if (recipe.material_selects) line += std::to_string(recipe.material_count) + " in a table, count compiled in (per-lane selects, no gather)";
   else line += std::to_string(scene.materials.size()) + " in a table, indexed per pixel";
   if (table_needed && (recipe.per_pixel_ka || recipe.per_pixel_kd || recipe.per_pixel_ks || recipe.per_pixel_shininess)) {
     line += "; per-pixel overrides:";
@@ -113,6 +118,7 @@ std::string Recipe::build_options() const {
   if (specular) define("SPECULAR");
   if (ambient) define("AMBIENT");
   if (single_material) define("SINGLE_MATERIAL");
+  if (material_selects) define("MATERIAL_COUNT=" + std::to_string(material_count));
   int plane = PLANE_GEOMETRY_COUNT;
   auto place = [&](bool present, const char* name, int planes) {
     if (!present) return;
@@ -158,6 +164,7 @@ Recipe make_recipe(const Scene& scene, const GBuffer& gbuffer, const DeviceInfo&
   recipe.write_terms = options.write_terms;
   recipe.reasons.push_back("precision: " + to_string(options.precision));
   count_lights(recipe, scene);
+  recipe.lanes = lanes_for(device);
   decide_materials(recipe, scene, gbuffer);
   if (recipe.specialised) {
     decide_lights(recipe);
@@ -173,7 +180,6 @@ Recipe make_recipe(const Scene& scene, const GBuffer& gbuffer, const DeviceInfo&
                              std::to_string(recipe.directional_lights) + " directional lights counted at run time");
   }
   decide_memory(recipe, scene, device);
-  recipe.lanes = lanes_for(device);
   recipe.reasons.push_back("lanes: " + std::to_string(recipe.lanes) + " pixel" + (recipe.lanes > 1 ? "s" : "") +
                            " per work-item (" +
                            (device.is_cpu ? "CPU: explicit SIMD, the device's preferred float vector width"

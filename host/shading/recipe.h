@@ -26,6 +26,8 @@ struct Recipe {
   bool point_code = true, directional_code = true;                      // light types compiled in
   bool specular = true, ambient = true;
   bool single_material = false;  // no per-pixel material fetch
+  bool material_selects = false;  // table of <= lanes materials: per-lane selects, no gather
+  int material_count = 0;
   bool per_pixel_ka = false, per_pixel_kd = false, per_pixel_ks = false, per_pixel_shininess = false;
   bool uniforms_in_constant = false;  // lights and materials in __constant memory
   bool write_terms = false;
