@@ -35,22 +35,21 @@ inline float log_positive(float x, float one_minus_x) {
   return exponent * kLn2High + (exponent * kLn2Low + atanh_series);
 }
 
-// 2^k for integer k in [-126, 127], built from the exponent bits.
+// 2^k for integer k in [-126, 127], built from the exponent bits (a normal float).
 inline float power_of_two(std::int32_t k) { return std::bit_cast<float>((k + 127) << 23); }
 
-// e^y for y <= 88; 0 below e^-104 (under float's smallest subnormal).
+// e^y for y <= 88; 0 where e^y is below float's smallest normal, 2^-126 (e^-87.34): as in the
+// kernel, since each operation on a subnormal takes a microcode assist on x86.
+inline constexpr float kLnSmallestNormal = -87.3365448f;
 inline float exp_float(float y) {
-  const float clamped = y < -104.0f ? -104.0f : y;
+  const float clamped = y < kLnSmallestNormal ? kLnSmallestNormal : y;
   const float k = std::floor(clamped * 1.44269504f + 0.5f);  // nearest integer to y / ln 2
   const float r = (clamped - k * kLn2High) - k * kLn2Low;    // |r| <= ln2 / 2, Cody-Waite
   // Taylor series of e^r to r^7: truncation below 1e-8 relative on |r| <= 0.347.
   const float p =
       1.0f + r * (1.0f + r * (1.0f / 2 + r * (1.0f / 6 + r * (1.0f / 24 + r * (1.0f / 120 + r * (1.0f / 720 + r * (1.0f / 5040)))))));
-  // 2^k in two normal factors, so results down to the subnormals are scaled correctly.
-  const std::int32_t ki = static_cast<std::int32_t>(k);
-  const std::int32_t half_k = ki >> 1;
-  const float scaled = p * power_of_two(half_k) * power_of_two(ki - half_k);
-  return y < -104.0f ? 0.0f : scaled;
+  const float scaled = p * power_of_two(static_cast<std::int32_t>(k));  // k >= -126
+  return y < kLnSmallestNormal ? 0.0f : scaled;
 }
 
 }  // namespace phongcl::peer_math
