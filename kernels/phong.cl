@@ -72,7 +72,10 @@ inline void add_light(LightSums* sums, vec3 n, vec3 v, vec3 l, realv ndl, const 
   sums->diffuse.y += color[1] * lit_ndl;
   sums->diffuse.z += color[2] * lit_ndl;
 #ifdef SPECULAR
-  const vec3 r = sub3(scale3(n, 2 * ndl), l);
+  /* r = 2(n.l)n - l with one rounding per component: near the highlight peak v - r is exact, so
+   * r's rounding is all the error in 1 - v.r, which the specular power multiplies by q. */
+  const realv two_ndl = 2 * ndl;
+  const vec3 r = make_vec3(fma(n.x, two_ndl, -l.x), fma(n.y, two_ndl, -l.y), fma(n.z, two_ndl, -l.z));
   const vec3 v_minus_r = sub3(v, r);
   const realv spec = specular_power(dot3(v, r), (real)0.5 * dot3(v_minus_r, v_minus_r), shininess);
   const realv lit_spec = SELECT(ndl > 0, spec, 0);
