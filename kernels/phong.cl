@@ -100,6 +100,7 @@ inline real material_scalar(UNIFORM_SPACE const MaterialRecord* record, int fiel
 inline realv select_field(UNIFORM_SPACE const MaterialRecord* table, intv index, int field) {
   const realv lane_index = TO_REALV(index);
   realv value = (realv)material_scalar(&table[0], field);
+#pragma unroll /* so the index comparisons are shared by every field */
   for (int m = 1; m < MATERIAL_COUNT; ++m) value = SELECT(lane_index == (real)m, material_scalar(&table[m], field), value);
   return value;
 }
