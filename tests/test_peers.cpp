@@ -9,6 +9,7 @@
 #include "peers/light_sweep.h"
 #include "peers/machine_limits.h"
 #include "peers/peers.h"
+#include "peers/work_model.h"
 #include "shading_support.h"
 
 namespace phongcl {
@@ -204,6 +205,16 @@ TEST(MachineLimits, MeasurementsArePositive) {
   EXPECT_GT(measure_triad_bandwidth(1 << 20, 1), 0.1);
   EXPECT_GT(measure_fma_peak(1), 1.0);
   EXPECT_FALSE(cpu_model_name().empty());
+}
+
+TEST(WorkModel, UnlitPixelsNeedNeitherGeometryNorLightMath) {
+  // Without lights L_o = ka La: the material index in, RGBA out, three multiplies.
+  EXPECT_EQ(bytes_per_pixel(false, 0), 20.0);
+  EXPECT_EQ(flops_per_pixel(0, 0), 3.0);
+  // With lights P and N are read too, as float or half planes.
+  EXPECT_EQ(bytes_per_pixel(false, 1), 44.0);
+  EXPECT_EQ(bytes_per_pixel(true, 16), 32.0);
+  EXPECT_EQ(flops_per_pixel(1, 1), kFlopsPerLitPixel + kFlopsPerPointLight + kFlopsPerDirectionalLight);
 }
 
 }  // namespace

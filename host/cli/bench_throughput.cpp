@@ -140,7 +140,7 @@ class ThroughputBench {
             return elapsed_ms(start) * scale;
           },
           rows.step > 1 ? kMinimumRuns : runs_);
-      ThroughputResult& r = add("cpp-scalar", "float", gbuffer, lights, time, kBytesPerPixelFloatPlanes, flops, 1.0);
+      ThroughputResult& r = add("cpp-scalar", "float", gbuffer, lights, time, bytes_per_pixel(false, points + directionals), flops, 1.0);
       r.timed_row_step = rows.step;
       record_error(r, rows, rows.max_rel_err_of_rows(output));
     }
@@ -154,7 +154,7 @@ class ThroughputBench {
             return elapsed_ms(start);
           },
           runs_);
-      ThroughputResult& r = add("cpp-simd", "float", gbuffer, lights, time, kBytesPerPixelFloatPlanes, flops, 1.0);
+      ThroughputResult& r = add("cpp-simd", "float", gbuffer, lights, time, bytes_per_pixel(false, points + directionals), flops, 1.0);
       record_error(r, rows, rows.max_rel_err_of_frame(output));
     }
     for (Precision precision : all_precisions()) {
@@ -173,7 +173,7 @@ class ThroughputBench {
       const bool half = precision == Precision::half_storage;
       const double peak_share = precision == Precision::double_precision ? 0.5 : 1.0;  // 8 double lanes, not 16
       ThroughputResult& r = add("opencl", to_string(precision), gbuffer, lights, kernel,
-                                half ? kBytesPerPixelHalfPlanes : kBytesPerPixelFloatPlanes, flops, peak_share);
+                                bytes_per_pixel(half, points + directionals), flops, peak_share);
       r.end_to_end = summarize(end_to_end);
       record_error(r, rows, rows.max_rel_err_of_frame(last.image));
     }

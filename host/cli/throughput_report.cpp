@@ -158,7 +158,8 @@ void write_throughput_report(const std::string& directory, const MachineLimits& 
         "- Lights: the scene's lights replaced by N generated ones (half point, half directional, deterministic).\n"
         "  Sizes other than the G-buffer's own are a nearest-neighbour resample of it.\n"
         "- Roofline bound = min(bandwidth / bytes per pixel, FMA peak / flops per pixel); bytes are compulsory\n"
-        "  traffic (inputs read once, RGBA float written once), flops the formula's work counted on the peers'\n"
+        "  traffic (the inputs the formula needs read once: P and N only with lights; RGBA float written once),\n"
+        "  flops the formula's work counted on the peers'\n"
         "  code (host/peers/work_model.h), the same for every implementation; the double variant's peak is half.\n"
         "- max rel err: against the double-precision reference on shaded pixels (1e-6 absolute floor), over every\n"
         "  n-th row where the reference would be too slow on the whole frame (\"rows 1/n\").\n\n";

@@ -5,12 +5,14 @@
 // same work shows a lower fraction of its bound.
 namespace phongcl {
 
-// Bytes per pixel: compulsory traffic, each input read once and the output written once; uniform
-// tables stay in cache and write-allocate reads are not counted (the STREAM convention, as for
-// the measured bandwidth). Float planes: P, N (24) + material index (4) + RGBA float out (16).
-inline constexpr double kBytesPerPixelFloatPlanes = 6 * 4 + 4 + 16;
-// Half-storage planes: P, N as half (12) + index (4) + RGBA float out (16).
-inline constexpr double kBytesPerPixelHalfPlanes = 6 * 2 + 4 + 16;
+// Bytes per pixel: compulsory traffic, each input the formula needs read once and the output
+// written once; uniform tables stay in cache and write-allocate reads are not counted (the STREAM
+// convention, as for the measured bandwidth). Material index (4) + RGBA float out (16), and with
+// any light P and N (float 24, half 12); without lights L_o = ka La needs neither.
+inline double bytes_per_pixel(bool half_planes, int lights) {
+  const double geometry = lights > 0 ? 6.0 * (half_planes ? 2 : 4) : 0.0;
+  return geometry + 4 + 16;
+}
 
 // Flops counted on the peers' code (peers/phong_pixel.h, peers/float_math.h): add, subtract,
 // multiply, min/max, compare, select, convert, divide and square root = 1, FMA = 2.
@@ -22,11 +24,13 @@ inline constexpr double kBytesPerPixelHalfPlanes = 6 * 2 + 4 + 16;
 //   accumulate: 6 FMA                                                                       = 12
 inline constexpr double kFlopsPerDirectionalLight = 91 + 12;
 inline constexpr double kFlopsPerPointLight = 3 + 17 + kFlopsPerDirectionalLight;  // l = unit(L - P)
-//   per pixel: -P 3, n and v 2 x 17, ka La + kd D + ks S 3 x 2 FMA = 12
-inline constexpr double kFlopsPerPixel = 3 + 2 * 17 + 12;
+//   per pixel: -P 3, n and v 2 x 17, ka La + kd D + ks S 3 x 2 FMA = 12; without lights ka La = 3
+inline constexpr double kFlopsPerLitPixel = 3 + 2 * 17 + 12;
+inline constexpr double kFlopsPerUnlitPixel = 3;
 
 inline double flops_per_pixel(int point_lights, int directional_lights) {
-  return kFlopsPerPixel + point_lights * kFlopsPerPointLight + directional_lights * kFlopsPerDirectionalLight;
+  if (point_lights + directional_lights == 0) return kFlopsPerUnlitPixel;
+  return kFlopsPerLitPixel + point_lights * kFlopsPerPointLight + directional_lights * kFlopsPerDirectionalLight;
 }
 
 // Pixels per second that the machine's bandwidth and FMA peak allow for this much work per pixel.
