@@ -30,16 +30,21 @@ void check_materials(const GBuffer& g, std::size_t material_count) {
   // marks the pixel as shaded.
   const bool table_needed = !(g.has_per_pixel_ka() && g.has_per_pixel_kd() && g.has_per_pixel_ks() &&
                               g.has_per_pixel_shininess());
+  const bool shininess_stored = g.has_per_pixel_shininess();
   for (std::size_t i = 0; i < g.pixel_count(); ++i) {
-    if (classify_pixel(g, i) != PixelClass::shaded) continue;
+    // The cheap tests first: classify_pixel (is the pixel shaded at all?) only where one fails.
     const float material = g.material[i];
+    const bool suspicious = material != std::floor(material) ||
+                            (table_needed && static_cast<double>(material) >= static_cast<double>(material_count)) ||
+                            (shininess_stored && g.shininess[i] < 0.0f);
+    if (!suspicious || classify_pixel(g, i) != PixelClass::shaded) continue;
     if (material != std::floor(material))
       throw InputError(g.source, pixel_name(g, i) + "material index " + number(material) + " is not an integer");
     if (table_needed && static_cast<double>(material) >= static_cast<double>(material_count))
       throw InputError(g.source, pixel_name(g, i) + "material index " + number(material) +
                                      " out of range (scene has " + std::to_string(material_count) +
                                      " materials)");
-    if (g.has_per_pixel_shininess() && g.shininess[i] < 0.0f)
+    if (shininess_stored && g.shininess[i] < 0.0f)
       throw InputError(g.source, pixel_name(g, i) + "shininess " + number(g.shininess[i]) + " is negative");
   }
 }
