@@ -64,20 +64,26 @@ inline void add_block(LightSums* sums, LightSums* compensation, const LightSums*
   kahan_add(&sums->specular.z, &compensation->specular.z, block->specular.z);
 }
 
-/* Adds one light's contribution, with l the unit vector towards the light and ndl = n.l. */
-inline void add_light(LightSums* sums, vec3 n, vec3 v, vec3 l, realv ndl, const UNIFORM_SPACE float* color,
+/* Adds one light's contribution. `toward` points at the light and `inverse` is 1 / |toward| (1 for
+ * a directional light's unit vector), so l = toward * inverse. Nothing here waits for that square
+ * root before it must: the loop is latency-bound, and a point light's chain was 50% longer. */
+inline void add_light(LightSums* sums, vec3 n, vec3 v, vec3 toward, realv inverse, const UNIFORM_SPACE float* color,
                       realv shininess) {
+  const realv n_dot = dot3(n, toward);
+  const realv ndl = n_dot * inverse;
   const realv lit_ndl = SELECT(ndl > 0, ndl, 0); /* back-facing or grazing: nothing from this light */
   sums->diffuse.x += color[0] * lit_ndl;
   sums->diffuse.y += color[1] * lit_ndl;
   sums->diffuse.z += color[2] * lit_ndl;
 #ifdef SPECULAR
-  /* r = 2(n.l)n - l with one rounding per component: near the highlight peak v - r is exact, so
-   * r's rounding is all the error in 1 - v.r, which the specular power multiplies by q. */
-  const realv two_ndl = 2 * ndl;
-  const vec3 r = make_vec3(fma(n.x, two_ndl, -l.x), fma(n.y, two_ndl, -l.y), fma(n.z, two_ndl, -l.z));
-  const vec3 v_minus_r = sub3(v, r);
-  const realv spec = specular_power(dot3(v, r), (real)0.5 * dot3(v_minus_r, v_minus_r), shininess);
+  /* r = 2(n.l)n - l = -inverse * w, w = toward - 2(n.toward)n with one rounding per component.
+   * Near the highlight peak v - r = v + inverse * w has one rounding too (fma), so w's rounding is
+   * all the error in 1 - v.r, which the specular power multiplies by q. */
+  const realv two_n_dot = 2 * n_dot;
+  const vec3 w = make_vec3(fma(-two_n_dot, n.x, toward.x), fma(-two_n_dot, n.y, toward.y), fma(-two_n_dot, n.z, toward.z));
+  const vec3 v_minus_r = make_vec3(fma(inverse, w.x, v.x), fma(inverse, w.y, v.y), fma(inverse, w.z, v.z));
+  const realv cos_vr = -inverse * dot3(v, w);
+  const realv spec = specular_power(cos_vr, (real)0.5 * dot3(v_minus_r, v_minus_r), shininess);
   const realv lit_spec = SELECT(ndl > 0, spec, 0);
   sums->specular.x += color[0] * lit_spec;
   sums->specular.y += color[1] * lit_spec;
@@ -188,9 +194,7 @@ __kernel void phong_shade(
       UNIFORM_SPACE const PointLight* light = &point_lights[k];
       const vec3 position = make_vec3(light->position[0], light->position[1], light->position[2]);
       const vec3 to_light = rescaled(sub3(position, p));
-      const realv inverse = inverse_length(to_light);
-      /* n.l from the unnormalised vector, in parallel with the square root: the loop is latency-bound */
-      add_light(&block, n, v, scale3(to_light, inverse), dot3(n, to_light) * inverse, light->color, shininess);
+      add_light(&block, n, v, to_light, inverse_length(to_light), light->color, shininess);
     }
     add_block(&sums, &compensation, &block);
   }
@@ -201,7 +205,7 @@ __kernel void phong_shade(
     for (int k = first; k < min(first + LIGHT_BLOCK, DIRECTIONAL_LOOP_COUNT); ++k) {
       UNIFORM_SPACE const DirectionalLight* light = &directional_lights[k];
       const vec3 l = make_vec3(light->to_light[0], light->to_light[1], light->to_light[2]);
-      add_light(&block, n, v, l, dot3(n, l), light->color, shininess);
+      add_light(&block, n, v, l, 1, light->color, shininess);
     }
     add_block(&sums, &compensation, &block);
   }

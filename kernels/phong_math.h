@@ -102,24 +102,25 @@ inline vec3 rescaled(vec3 v) {
  * [sqrt(1/2), sqrt(2)), ln f = m - m^2/2 + m^3 P(m) with m = f - 1 exact, about 1 ulp.
  * Near the peak (e < 0.29) m = -e itself: no rounding of 1 - e, whose error x^q would multiply
  * by q. Far from the peak the base is cos_vr = v.r as the caller computed it.
- * The light loop is latency-bound, so the polynomial is evaluated with Estrin's scheme (half the
- * depth of Horner's) and q is folded into the last two steps. */
+ * The light loop is latency-bound, so the reduction has no compares (the bits are offset by those
+ * of sqrt(1/2), musl's way), the polynomial is in Estrin's form (half the depth of Horner's), and
+ * q is folded into the last two steps. */
 inline realv specular_exponent(realv cos_vr, realv e, realv q) {
-  const intv subnormal = cos_vr < FLT_MIN;
-  const intv bits = AS_INTV(SELECT(subnormal, cos_vr * 0x1p23f, cos_vr));
-  const intv high = (bits & 0x007fffff) > 0x3504f3; /* mantissa above sqrt(2) - 1: halve f */
-  const intv exponent = (bits >> 23) - 127 - (subnormal & 23) - high; /* true is -1 per lane */
-  const realv f = AS_FLOATV(((bits & 0x007fffff) | 0x3f800000) - (high & 0x00800000));
+  /* cos_vr * 2^23 is exact and a normal float even where cos_vr is subnormal. */
+  const intv offset_bits = AS_INTV(cos_vr * 0x1p23f) - 0x3f3504f3;
+  const intv exponent = (offset_bits >> 23) - 23;
+  const realv f = AS_FLOATV((offset_bits & 0x007fffff) + 0x3f3504f3);
   const intv near_peak = e < 0.29f;
   const realv m = SELECT(near_peak, -e, f - 1);
   const realv qk = SELECT(near_peak, 0, q * INT_TO_FLOATV(exponent));
   const realv q_log2e = q * (real)M_LOG2E;
-  const realv m2 = m * m, m4 = m2 * m2;
+  const realv m2 = m * m, m4 = m2 * m2, m5 = m4 * m;
   const realv p01 = 3.3333331174E-1f - 2.4999993993E-1f * m, p23 = 2.0000714765E-1f - 1.6668057665E-1f * m;
   const realv p45 = 1.4249322787E-1f - 1.2420140846E-1f * m, p67 = 1.1676998740E-1f - 1.1514610310E-1f * m;
-  const realv p = (p01 + m2 * p23) + m4 * ((p45 + m2 * p67) + m4 * 7.0376836292E-2f);
+  const realv low = p01 + m2 * p23, high = (p45 + m2 * p67) + m4 * 7.0376836292E-2f; /* P = low + m^4 high */
+  const realv mp_minus_half = m5 * high + (m * low - 0.5f);                          /* m P(m) - 1/2 */
   /* q (k + log2(e) (m + m^2 (m P - 1/2))) */
-  return (m2 * q_log2e) * (m * p - 0.5f) + (m * q_log2e + qk);
+  return (m2 * q_log2e) * mp_minus_half + (m * q_log2e + qk);
 }
 
 /* 2^y for y <= 0 (Cephes exp2f on the fraction, about 1 ulp), and 0 where 2^y is below the
