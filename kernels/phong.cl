@@ -193,8 +193,21 @@ __kernel void phong_shade(
     for (int k = first; k < min(first + LIGHT_BLOCK, POINT_LOOP_COUNT); ++k) {
       UNIFORM_SPACE const PointLight* light = &point_lights[k];
       const vec3 position = make_vec3(light->position[0], light->position[1], light->position[2]);
-      const vec3 to_light = rescaled(sub3(position, p));
-      add_light(&block, n, v, to_light, inverse_length(to_light), light->color, shininess);
+      vec3 toward = sub3(position, p);
+      realv inverse;
+#ifndef PHONGCL_DOUBLE
+      /* Nearly always |L - P|^2 is well inside float's range and needs no rescaling: the predicted
+       * branch takes the check off the latency-bound chain, and the rescaling with it. */
+      const realv length_sq = dot3(toward, toward);
+      if (all_lanes(length_sq >= 0x1p-100f && length_sq <= 0x1p100f)) {
+        inverse = rsqrt(length_sq);
+      } else
+#endif
+      {
+        toward = rescaled(toward);
+        inverse = inverse_length(toward);
+      }
+      add_light(&block, n, v, toward, inverse, light->color, shininess);
     }
     add_block(&sums, &compensation, &block);
   }

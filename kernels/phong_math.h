@@ -31,7 +31,6 @@ typedef int intv;
 #define VSTORE_FLOAT(v, i, p) ((p)[i] = (v))
 #define TO_REALV(x) ((real)(x))
 #define TO_FLOATV(x) ((float)(x))
-#define ANY_LANE(condition) (condition)
 #define AS_INTV(x) as_int(x)
 #define AS_FLOATV(x) as_float(x)
 #define INT_TO_FLOATV(x) convert_float(x)
@@ -45,10 +44,34 @@ typedef PHONGCL_XCAT(int, PHONGCL_LANES) intv;
 #define VSTORE_FLOAT(v, i, p) PHONGCL_XCAT(vstore, PHONGCL_LANES)(v, i, p)
 #define TO_REALV(x) PHONGCL_XCAT(PHONGCL_XCAT(convert_, PHONGCL_REAL), PHONGCL_LANES)(x)
 #define TO_FLOATV(x) PHONGCL_XCAT(convert_float, PHONGCL_LANES)(x)
-#define ANY_LANE(condition) any(condition)
 #define AS_INTV(x) PHONGCL_XCAT(as_int, PHONGCL_LANES)(x)
 #define AS_FLOATV(x) PHONGCL_XCAT(as_float, PHONGCL_LANES)(x)
 #define INT_TO_FLOATV(x) PHONGCL_XCAT(convert_float, PHONGCL_LANES)(x)
+#endif
+
+/* Whether every lane of a comparison's result is true, by halving the vector with ANDs: PoCL's
+ * all() and any() test the lanes one by one, each with a branch. */
+#if PHONGCL_LANES == 1
+inline int all_lanes(intv mask) { return mask; }
+#else
+inline int all_lanes(intv mask) {
+#if PHONGCL_LANES == 16
+  const int8 mask8 = mask.lo & mask.hi;
+#elif PHONGCL_LANES == 8
+  const int8 mask8 = mask;
+#endif
+#if PHONGCL_LANES >= 8
+  const int4 mask4 = mask8.lo & mask8.hi;
+#elif PHONGCL_LANES == 4
+  const int4 mask4 = mask;
+#endif
+#if PHONGCL_LANES >= 4
+  const int2 mask2 = mask4.lo & mask4.hi;
+#else
+  const int2 mask2 = mask;
+#endif
+  return (mask2.x & mask2.y) != 0;
+}
 #endif
 
 /* Per-lane choice without branches: `condition` is a comparison of realv values. */
