@@ -164,7 +164,11 @@ Recipe make_recipe(const Scene& scene, const GBuffer& gbuffer, const DeviceInfo&
   recipe.write_terms = options.write_terms;
   recipe.reasons.push_back("precision: " + to_string(options.precision));
   count_lights(recipe, scene);
-  recipe.lanes = lanes_for(device);
+  recipe.lanes = options.lanes > 0 ? options.lanes : lanes_for(device);
+  if (recipe.lanes > 16 || (recipe.lanes & (recipe.lanes - 1)) != 0) {
+    throw std::invalid_argument("lanes must be 1, 2, 4, 8 or 16 (OpenCL vector widths), not " +
+                                std::to_string(recipe.lanes));
+  }
   decide_materials(recipe, scene, gbuffer);
   if (recipe.specialised) {
     decide_lights(recipe);
@@ -182,8 +186,9 @@ Recipe make_recipe(const Scene& scene, const GBuffer& gbuffer, const DeviceInfo&
   decide_memory(recipe, scene, device);
   recipe.reasons.push_back("lanes: " + std::to_string(recipe.lanes) + " pixel" + (recipe.lanes > 1 ? "s" : "") +
                            " per work-item (" +
-                           (device.is_cpu ? "CPU: explicit SIMD, the device's preferred float vector width"
-                                          : "GPU: one pixel each") +
+                           (options.lanes > 0 ? "as asked"
+                            : device.is_cpu   ? "CPU: explicit SIMD, the device's preferred float vector width"
+                                              : "GPU: one pixel each") +
                            ")");
   return recipe;
 }

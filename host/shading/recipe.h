@@ -16,6 +16,7 @@ struct ShadeOptions {
   bool specialise = true;           // false: the general kernel, everything compiled in
   std::size_t max_tile_pixels = 0;  // 0: as large as the device allows
   bool write_terms = false;         // also return ambient, diffuse and specular separately (AOVs)
+  int lanes = 0;                    // pixels per work-item: 1, 2, 4, 8 or 16; 0: the device's choice
 };
 
 struct Recipe {
