@@ -212,6 +212,17 @@ TEST_F(Cli, BadFlagsAreOneLineErrors) {
   expect_clean_failure(run_phongcl(std::string("shade --scene ") + kDefaultScene + " --out " + out +
                                    " --device 99999999999999999999"),
                        "--device", out);
+  expect_clean_failure(run_phongcl(std::string("shade --scene ") + kDefaultScene + " --out " + out + " --lanes 3"),
+                       "--lanes", out);
+}
+
+TEST_F(Cli, LanesAreWhatWasAskedFor) {
+  if (!testing::have_opencl_device()) GTEST_SKIP() << "no OpenCL device";
+  const CliRun run =
+      run_phongcl(std::string("shade --scene ") + kDefaultScene + " --out " + path("lit.exr") + " --lanes 4 --explain");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(run.out.find("lanes: 4 pixels per work-item (as asked)"), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("-DPHONGCL_LANES=4"), std::string::npos) << run.out;
 }
 
 TEST_F(Cli, NonFinitePixelsAreCountedNotFatal) {

@@ -19,6 +19,7 @@ struct ShadeArguments {
   std::string device;
   std::string precision = "precise";
   bool no_specialise = false;
+  int lanes = 0;
   bool explain = false;
 };
 
@@ -37,6 +38,7 @@ void run_shade(const ShadeArguments& args) {
   const LoadedGBuffer loaded = args.inputs.load_described_gbuffer(scene);
   const GBuffer& gbuffer = loaded.gbuffer;
   ShadeOptions options{parse_precision(args.precision), !args.no_specialise};
+  options.lanes = args.lanes;
   options.write_terms = args.outputs.wants_terms();
   ProgramCache cache(ProgramCache::default_directory());
   PhongShader shader(make_compute_context(pick_device(args.device)), cache);
@@ -85,6 +87,8 @@ void add_shade_command(CLI::App& app) {
   command->add_option("--precision", args->precision, "double, precise (default), fast or half-storage")
       ->check(CLI::IsMember({"double", "precise", "fast", "half-storage"}));
   command->add_flag("--no-specialise", args->no_specialise, "Use the general kernel with everything compiled in");
+  command->add_option("--lanes", args->lanes, "Pixels per work-item: 1, 2, 4, 8 or 16 (default: the device's preferred float width on CPUs, 1 on GPUs)")
+      ->check(CLI::IsMember({1, 2, 4, 8, 16}));
   command->add_flag("--explain", args->explain, "Print what was compiled in and out, and why, and the build options");
   command->callback([args] { run_shade(*args); });
 }
