@@ -58,9 +58,7 @@ Expectation precise_expectation(double amplification) {
 }
 
 Expectation fast_expectation(double amplification) {
-  if (4 * kFloatUnit * amplification > 0.05)
-    return Expectation::finite_only("q u / (1 - v.r) > 5%: fast keeps no accuracy here, only a finite result");
-  return Expectation::within(1e-4 + 16 * kFloatUnit * amplification, "native built-ins, times the amplification");
+  return Expectation::within(1e-4 + 16 * kFloatUnit * amplification, "relaxed math, times the amplification");
 }
 
 Expectation half_expectation(const GBuffer& gbuffer, double amplification, const Expectation& inexact) {
@@ -83,7 +81,7 @@ double stiff_amplification(long double x, double shininess) {
 
 double highlight_amplification(double shininess) { return 2.0 * std::sqrt(28.0 * shininess); }
 
-double fast_amplification(long double x, double shininess) {
+double direct_pow_amplification(long double x, double shininess) {
   if (!(x > 0) || shininess == 0) return 1.0;
   return 1.0 + static_cast<double>(shininess / x) * above_floor(std::pow(x, shininess));
 }

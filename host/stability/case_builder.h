@@ -37,11 +37,9 @@ Expectation double_expectation(double amplification = 1.0, double packing_amplif
 // the base 1e-5 leaves a factor of 5.
 Expectation precise_expectation(double amplification = 1.0);
 
-// fast: -cl-fast-relaxed-math and native_* built-ins, whose accuracy OpenCL leaves to the
-// implementation (PoCL's are within ~1e-6), base 1e-4. fast takes log(v.r) directly, so near
-// v.r = 1 it keeps 1 - v.r only to u absolute, and the result's error is q u / (1 - v.r) times its
-// share of the exponent: pass fast_amplification. Where even 4 u times that exceeds 5% the
-// variant promises only a finite result (no accuracy at all is what it keeps there).
+// fast: -cl-fast-relaxed-math on the same formulas as precise (1 - v.r from |v - r|^2 / 2, inline
+// log and exp, rescaled normalisation), which the compiler may reassociate and contract: base 1e-4
+// on precise's amplification.
 Expectation fast_expectation(double amplification = 1.0);
 
 // half-storage: the G-buffer planes are rounded to half (relative 2^-11 = 4.9e-4) before the same
@@ -58,7 +56,8 @@ double stiff_amplification(long double x, double shininess);
 // the exponent q |v - r|^2 / 2 by q |v - r| e, twice that for n (r turns twice as fast). Where the
 // highlight is above the floor (exponent < 14), |v - r| < sqrt(28 / q): at most 2 sqrt(28 q) e.
 double highlight_amplification(double shininess);
-// The same for fast, which takes log x from x itself: an absolute error u in x is q u / x.
-double fast_amplification(long double x, double shininess);
+// The same for an evaluation that takes log x from x itself (the reference's pow, in double): an
+// absolute error u in x is q u / x.
+double direct_pow_amplification(long double x, double shininess);
 
 }  // namespace phongcl
