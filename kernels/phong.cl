@@ -2,7 +2,7 @@
  *   L_o = ka*La + sum_i Li * [ kd*max(0, n.l_i) + ks*max(0, v.r_i)^q ],  r = 2(n.l)n - l
  * Only what the scene needs is compiled in. The host (host/shading/recipe.cpp) writes the options;
  * `phongcl shade --explain` prints them:
- *   PHONGCL_LANES=n                    pixels per work-item (8 on CPUs: one AVX register)
+ *   PHONGCL_LANES=n                    pixels per work-item (a CPU's preferred float width, 1 on GPUs)
  *   POINT_LIGHTS, DIRECTIONAL_LIGHTS   light types present
  *   POINT_COUNT=n, DIRECTIONAL_COUNT=n compile-time light counts (loops unroll), else run-time
  *   SPECULAR, AMBIENT                  terms present
