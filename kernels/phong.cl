@@ -11,7 +11,8 @@
  *   PLANE_KA=k PLANE_KD=k PLANE_KS=k PLANE_Q=k   per-pixel material planes and where they are
  *   UNIFORM_SPACE=__constant|__global  where the light and material tables live
  *   HALF_STORAGE                       G-buffer planes stored as half (vload_half)
- *   PHONGCL_DOUBLE, PHONGCL_FAST       arithmetic precision (see phong_math.h)
+ *   PHONGCL_DOUBLE                     fp64 arithmetic (see phong_math.h)
+ *   PHONGCL_FAST                       built with -cl-fast-relaxed-math (see unscale)
  *   WRITE_TERMS                        also write ambient, diffuse, specular separately (AOVs)
  * Every buffer is planar with `plane_stride` values per plane, a multiple of PHONGCL_LANES (the host
  * pads each tile with background pixels).

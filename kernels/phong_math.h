@@ -1,8 +1,8 @@
 /* Small vector math for the Phong kernel, robust on degenerate inputs, written once for any lane
  * count. A work-item shades PHONGCL_LANES pixels at once as OpenCL vectors (floatN): PoCL's
  * implicit work-item vectoriser gives up on this kernel (its SLP pass first packs the x/y/z math
- * into short vectors), while explicit floatN code compiles to full-width SIMD with vectorised
- * exp2/log2. PHONGCL_LANES=1 is the plain scalar kernel for GPUs. */
+ * into short vectors), while explicit floatN code compiles to full-width SIMD. PHONGCL_LANES=1 is
+ * the plain scalar kernel for GPUs. */
 #ifndef PHONGCL_PHONG_MATH_H
 #define PHONGCL_PHONG_MATH_H
 
@@ -32,6 +32,7 @@ typedef int intv;
 #define TO_REALV(x) ((real)(x))
 #define TO_FLOATV(x) ((float)(x))
 #define AS_INTV(x) as_int(x)
+#define AS_UINTV(x) as_uint(x)
 #define AS_FLOATV(x) as_float(x)
 #define INT_TO_FLOATV(x) convert_float(x)
 #else
@@ -45,6 +46,7 @@ typedef PHONGCL_XCAT(int, PHONGCL_LANES) intv;
 #define TO_REALV(x) PHONGCL_XCAT(PHONGCL_XCAT(convert_, PHONGCL_REAL), PHONGCL_LANES)(x)
 #define TO_FLOATV(x) PHONGCL_XCAT(convert_float, PHONGCL_LANES)(x)
 #define AS_INTV(x) PHONGCL_XCAT(as_int, PHONGCL_LANES)(x)
+#define AS_UINTV(x) PHONGCL_XCAT(as_uint, PHONGCL_LANES)(x)
 #define AS_FLOATV(x) PHONGCL_XCAT(as_float, PHONGCL_LANES)(x)
 #define INT_TO_FLOATV(x) PHONGCL_XCAT(convert_float, PHONGCL_LANES)(x)
 #endif
@@ -111,8 +113,9 @@ inline realv specular_exponent(realv cos_vr, realv e, realv q) {
 }
 inline realv exp2_nonpositive(realv y) { return exp2(y); }
 #else
-/* v scaled by the power of two that brings its largest |component| into [1, 2), from the exponent
- * bits: exact, and no branches or divisions. */
+/* v scaled by the power of two that brings its largest |component| into [1, 2) (near 1 for the
+ * extremes: subnormals, the top two exponents), from the exponent bits: exact, and no branches or
+ * divisions. */
 inline vec3 rescaled(vec3 v) {
   /* |x| as bits orders like |x| (non-negative floats); NaN and Inf give the largest exponent. */
   const intv largest = max(AS_INTV(fabs(v.x)), max(AS_INTV(fabs(v.y)), AS_INTV(fabs(v.z))));
@@ -130,13 +133,14 @@ inline vec3 rescaled(vec3 v) {
  * q is folded into the last two steps. */
 inline realv specular_exponent(realv cos_vr, realv e, realv q) {
   /* cos_vr * 2^23 is exact and a normal float even where cos_vr is subnormal. */
-  const intv offset_bits = AS_INTV(cos_vr * 0x1p23f) - 0x3f3504f3;
+  /* Unsigned arithmetic: where cos_vr <= 0 (selected away below) the difference wraps. */
+  const intv offset_bits = AS_INTV(AS_UINTV(cos_vr * 0x1p23f) - 0x3f3504f3u);
   const intv exponent = (offset_bits >> 23) - 23;
   const realv f = AS_FLOATV((offset_bits & 0x007fffff) + 0x3f3504f3);
   const intv near_peak = e < 0.29f;
   const realv m = SELECT(near_peak, -e, f - 1);
   const realv qk = SELECT(near_peak, 0, q * INT_TO_FLOATV(exponent));
-  const realv q_log2e = q * (real)M_LOG2E;
+  const realv q_log2e = q * M_LOG2E_F;
   const realv m2 = m * m, m4 = m2 * m2, m5 = m4 * m;
   const realv p01 = 3.3333331174E-1f - 2.4999993993E-1f * m, p23 = 2.0000714765E-1f - 1.6668057665E-1f * m;
   const realv p45 = 1.4249322787E-1f - 1.2420140846E-1f * m, p67 = 1.1676998740E-1f - 1.1514610310E-1f * m;
@@ -151,13 +155,14 @@ inline realv specular_exponent(realv cos_vr, realv e, realv q) {
  * (half the frame's time at 16 lights) and GPUs flush them anyway. The rounding to an integer goes
  * through the bits of y + 1.5 * 2^23, which -cl-fast-relaxed-math cannot fold away. */
 inline realv exp2_nonpositive(realv y) {
-  const intv k = AS_INTV(y + 0x1.8p23f) - 0x4b400000; /* nearest integer */
+  /* Unsigned arithmetic: y far below -126 (selected away below) wraps rather than overflows. */
+  const intv k = AS_INTV(AS_UINTV(y + 0x1.8p23f) - 0x4b400000u); /* nearest integer */
   const realv r = y - INT_TO_FLOATV(k);                /* [-0.5, 0.5], exact */
   const realv r2 = r * r;
   const realv p = (6.931472028550421E-1f + 2.402264791363012E-1f * r) +
                   r2 * ((5.550332471162809E-2f + 9.618437357674640E-3f * r) +
                         r2 * (1.339887440266574E-3f + 1.535336188319500E-4f * r));
-  const realv scale = AS_FLOATV((k + 127) << 23); /* 2^k */
+  const realv scale = AS_FLOATV((AS_UINTV(k) + 127u) << 23); /* 2^k */
   return SELECT(y >= -126.0f, scale + (r * scale) * p, 0);
 }
 #endif
@@ -165,12 +170,7 @@ inline realv exp2_nonpositive(realv y) {
 /* 1 / |v| for a rescaled v, 0 for the zero vector. */
 inline realv inverse_length(vec3 scaled) {
   const realv length_sq = dot3(scaled, scaled);
-#ifdef PHONGCL_FAST
-  const realv inverse = native_rsqrt(length_sq);
-#else
-  const realv inverse = rsqrt(length_sq);
-#endif
-  return SELECT(length_sq > 0, inverse, 0);
+  return SELECT(length_sq > 0, rsqrt(length_sq), 0);
 }
 
 /* normalize() that neither overflows nor underflows: components of 1e30 (squares overflow float)

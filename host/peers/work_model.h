@@ -18,11 +18,11 @@ inline double bytes_per_pixel(bool half_planes, int lights) {
 // multiply, min/max, compare, select, convert, divide and square root = 1, FMA = 2.
 //   unit_or_zero: max 2, scale 3, dot 5, compare 1, sqrt 1, divide 1, select 1, scale 3   = 17
 //   log_positive: 22 (reduction, selects, divide) + series 4 FMA = 8                      = 30
-//   exp_float: clamp 2, round 3, Cody-Waite 2 FMA = 4, series 7 FMA = 14, scale 4, select 1 = 28
-//   light_term: n.l 5, compare 1, r 7, v - r 3, v.r 5, |v-r|^2/2 6, q ln 1, log 30, exp 28,
-//               selects 5                                                                  = 91
+//   exp_float: clamp 2, round 3, Cody-Waite 2 FMA = 4, series 7 FMA = 14, scale 2, select 1 = 26
+//   light_term: n.l 5, compare 1, r 7, v - r 3, v.r 5, |v-r|^2/2 6, q ln 1, log 30, exp 26,
+//               selects 5                                                                  = 89
 //   accumulate: 6 FMA                                                                       = 12
-inline constexpr double kFlopsPerDirectionalLight = 91 + 12;
+inline constexpr double kFlopsPerDirectionalLight = 89 + 12;
 inline constexpr double kFlopsPerPointLight = 3 + 17 + kFlopsPerDirectionalLight;  // l = unit(L - P)
 //   per pixel: -P 3, n and v 2 x 17, ka La + kd D + ks S 3 x 2 FMA = 12; without lights ka La = 3
 inline constexpr double kFlopsPerLitPixel = 3 + 2 * 17 + 12;

@@ -148,6 +148,14 @@ PixelCounts pack_range(const GBuffer& gbuffer, const glm::dvec3& eye, const Reci
   if (recipe.per_pixel_kd) for (const Plane& channel : gbuffer.kd) copy_plane(channel);
   if (recipe.per_pixel_ks) for (const Plane& channel : gbuffer.ks) copy_plane(channel);
   if (recipe.per_pixel_shininess) copy_plane(gbuffer.shininess);
+  // Unshaded slots get P = N = 0: a ray miss's Inf would send its whole vector down the kernel's
+  // rescaling branch for every point light, and -cl-fast-relaxed-math assumes finite values.
+  if (counts.shaded != end - begin) {
+    for (std::size_t t = begin; t < end; ++t) {
+      if (material_index[t] != PHONGCL_BACKGROUND) continue;
+      for (int plane = PLANE_PX; plane < PLANE_GEOMETRY_COUNT; ++plane) planes[plane * stride + t] = 0.0f;
+    }
+  }
   return counts;
 }
 

@@ -7,8 +7,8 @@ namespace phongcl {
 
 enum class Precision {
   double_precision,  // fp64 arithmetic where the device has cl_khr_fp64
-  precise,           // float, full-accuracy built-ins (the default)
-  fast,              // -cl-fast-relaxed-math, native_* built-ins
+  precise,           // float, IEEE semantics (the default)
+  fast,              // float under -cl-fast-relaxed-math
   half_storage,      // G-buffer stored as half in device memory (half the bytes moved), float math
 };
 
