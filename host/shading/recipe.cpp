@@ -149,7 +149,7 @@ std::string Recipe::summary() const {
           lights(directional_lights, "directional", directional_count_in_code) + " lights";
   text += specular ? ", specular" : ", no specular";
   text += ambient ? ", ambient" : ", no ambient";
-  text += single_material ? ", single material" : ", material table";
+  text += single_material ? ", single material" : material_selects ? ", material table (selects)" : ", material table";
   if (plane_count() > PLANE_GEOMETRY_COUNT) text += ", per-pixel material channels";
   return text;
 }
