@@ -196,15 +196,12 @@ __kernel void phong_shade(
       const vec3 position = make_vec3(light->position[0], light->position[1], light->position[2]);
       vec3 toward = sub3(position, p);
       realv inverse;
-#ifndef PHONGCL_DOUBLE
       /* Nearly always |L - P|^2 is well inside float's range and needs no rescaling: the predicted
        * branch takes the check off the latency-bound chain, and the rescaling with it. */
       const realv length_sq = dot3(toward, toward);
-      if (all_lanes(length_sq >= 0x1p-100f && length_sq <= 0x1p100f)) {
+      if (all_lanes(LANE_MASK(length_sq >= 0x1p-100f && length_sq <= 0x1p100f))) {
         inverse = rsqrt(length_sq);
-      } else
-#endif
-      {
+      } else {
         toward = rescaled(toward);
         inverse = inverse_length(toward);
       }

@@ -51,8 +51,15 @@ typedef PHONGCL_XCAT(int, PHONGCL_LANES) intv;
 #define INT_TO_FLOATV(x) PHONGCL_XCAT(convert_float, PHONGCL_LANES)(x)
 #endif
 
-/* Whether every lane of a comparison's result is true, by halving the vector with ANDs: PoCL's
- * all() and any() test the lanes one by one, each with a branch. */
+/* A comparison of realv values as an intv mask (double comparisons give long lanes). */
+#if PHONGCL_LANES > 1 && defined(PHONGCL_DOUBLE)
+#define LANE_MASK(comparison) PHONGCL_XCAT(convert_int, PHONGCL_LANES)(comparison)
+#else
+#define LANE_MASK(comparison) (comparison)
+#endif
+
+/* Whether every lane of a mask is true, by halving the vector with ANDs: PoCL's all() and any()
+ * test the lanes one by one, each with a branch. */
 #if PHONGCL_LANES == 1
 inline int all_lanes(intv mask) { return mask; }
 #else
