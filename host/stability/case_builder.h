@@ -32,9 +32,9 @@ Expectation reference_expectation(double direct_amplification = 1.0);
 // the case makes them exact), `amplification` what the double arithmetic's own rounding is.
 Expectation double_expectation(double amplification = 1.0, double packing_amplification = 0.0);
 
-// precise: float arithmetic, full-accuracy built-ins. A shaded value is a chain of ~20 float
-// operations (normalise ~3 u per component, dot products ~2 u, one log and one exp), ~30 u = 2e-6;
-// the base 1e-5 leaves a factor of 5.
+// precise: float arithmetic, log and exp as polynomials good to about 1 ulp. A shaded value is a
+// chain of ~20 float operations (normalise ~3 u per component, dot products ~2 u, one log and one
+// exp), ~30 u = 2e-6; the base 1e-5 leaves a factor of 5.
 Expectation precise_expectation(double amplification = 1.0);
 
 // fast: -cl-fast-relaxed-math on the same formulas as precise (1 - v.r from |v - r|^2 / 2, inline
