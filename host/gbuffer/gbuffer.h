@@ -46,6 +46,9 @@ enum class PixelClass {
   nonfinite_material,    // NaN/Inf in material or any per-pixel material channel
 };
 PixelClass classify_pixel(const GBuffer& gbuffer, std::size_t index);
+// classify_pixel for pixels [first, first + count) into classes[0, count), fast where, as usual,
+// nearly every pixel is shaded.
+void classify_pixels(const GBuffer& gbuffer, std::size_t first, std::size_t count, PixelClass* classes);
 
 // Throws InputError (naming gbuffer.source and the first offending pixel) if a shaded pixel's
 // material index is not an integer in [0, material_count) or a per-pixel shininess is negative.

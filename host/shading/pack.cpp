@@ -98,37 +98,18 @@ PixelCounts& PixelCounts::operator+=(const PixelCounts& other) {
 
 namespace {
 
-// 0 in poison[t] where plane's value is finite, NaN otherwise: x * 0 is NaN exactly for NaN and
-// the infinities, and without branches the loop vectorises.
-void add_poison(const Plane& plane, std::size_t first, std::size_t begin, std::size_t end, float* poison) {
-  for (std::size_t t = begin; t < end; ++t) poison[t - begin] += plane[first + t] * 0.0f;
-}
-
 // Packs tile slots [begin, end): pixel first + t goes to slot t of every plane.
 PixelCounts pack_range(const GBuffer& gbuffer, const glm::dvec3& eye, const Recipe& recipe, std::size_t first,
                        std::size_t begin, std::size_t end, std::size_t stride, float* planes,
                        std::int32_t* material_index) {
-  // Most pixels are shaded: all values finite and a material >= 0. That test runs branch-free over
-  // whole planes; classify_pixel decides the class of the rest (the one definition of it).
-  std::vector<float> poison(end - begin, 0.0f);
-  for (const Planes3* group : {&gbuffer.position, &gbuffer.normal, &gbuffer.ka, &gbuffer.kd, &gbuffer.ks}) {
-    for (const Plane& plane : *group) {
-      if (!plane.empty()) add_poison(plane, first, begin, end, poison.data());
-    }
-  }
-  if (!gbuffer.shininess.empty()) add_poison(gbuffer.shininess, first, begin, end, poison.data());
+  std::vector<PixelClass> classes(end - begin);
+  classify_pixels(gbuffer, first + begin, end - begin, classes.data());
   PixelCounts counts;
   for (std::size_t t = begin; t < end; ++t) {
-    const std::size_t i = first + t;
-    const float material = gbuffer.material[i];
-    if (poison[t - begin] == 0.0f && material >= 0.0f && std::isfinite(material)) {
-      ++counts.shaded;
-      material_index[t] = static_cast<std::int32_t>(material);
-      continue;
-    }
-    const PixelClass pixel_class = classify_pixel(gbuffer, i);
+    const PixelClass pixel_class = classes[t - begin];
     counts.add(pixel_class);
-    material_index[t] = pixel_class == PixelClass::shaded ? static_cast<std::int32_t>(material) : PHONGCL_BACKGROUND;
+    material_index[t] =
+        pixel_class == PixelClass::shaded ? static_cast<std::int32_t>(gbuffer.material[first + t]) : PHONGCL_BACKGROUND;
   }
   for (int axis = 0; axis < 3; ++axis) {
     float* position = planes + (PLANE_PX + axis) * stride;
