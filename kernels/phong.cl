@@ -195,16 +195,7 @@ __kernel void phong_shade(
       UNIFORM_SPACE const PointLight* light = &point_lights[k];
       const vec3 position = make_vec3(light->position[0], light->position[1], light->position[2]);
       vec3 toward = sub3(position, p);
-      realv inverse;
-      /* Nearly always |L - P|^2 is well inside float's range and needs no rescaling: the predicted
-       * branch takes the check off the latency-bound chain, and the rescaling with it. */
-      const realv length_sq = dot3(toward, toward);
-      if (all_lanes(LANE_MASK(length_sq >= 0x1p-100f && length_sq <= 0x1p100f))) {
-        inverse = rsqrt(length_sq);
-      } else {
-        toward = rescaled(toward);
-        inverse = inverse_length(toward);
-      }
+      const realv inverse = inverse_length_in_range(&toward);
       add_light(&block, n, v, toward, inverse, light->color, shininess);
     }
     add_block(&sums, &compensation, &block);

@@ -180,6 +180,16 @@ inline realv inverse_length(vec3 scaled) {
   return SELECT(length_sq > 0, rsqrt(length_sq), 0);
 }
 
+/* 1 / |v|, where |v|^2 is comfortably inside float's range in every lane; elsewhere v is replaced
+ * by rescaled(v) first. The check is a branch, predicted taken: in the latency-bound light loop it
+ * keeps the rescaling off each light's dependency chain. */
+inline realv inverse_length_in_range(vec3* v) {
+  const realv length_sq = dot3(*v, *v);
+  if (all_lanes(LANE_MASK(length_sq >= 0x1p-100f && length_sq <= 0x1p100f))) return rsqrt(length_sq);
+  *v = rescaled(*v);
+  return inverse_length(*v);
+}
+
 /* normalize() that neither overflows nor underflows: components of 1e30 (squares overflow float)
  * or 1e-40 (squares vanish) still give a unit vector. A zero vector stays zero: the documented
  * policy for degenerate inputs (README). */
