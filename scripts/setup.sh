@@ -1,15 +1,24 @@
 #!/usr/bin/env bash
-# Installs the Debian 12 packages phongcl needs, only those missing (README "Dependencies" says why
-# each one is there). Safe to run again; uses sudo when not root.
+# Installs the Debian 12 packages phongcl needs, only those missing. Each scripts/packages/NAME.txt
+# is one group (a package per word, `#` starts a comment; README "Dependencies" says why each one is
+# there). `setup.sh` installs the core group, `setup.sh NAME...` those groups, `setup.sh all` every
+# group. Safe to run again; uses sudo when not root.
 set -euo pipefail
+cd "$(dirname "$0")/packages"
 
-packages=(
-  g++ cmake ninja-build pkg-config                         # toolchain
-  pocl-opencl-icd ocl-icd-opencl-dev opencl-headers opencl-clhpp-headers  # OpenCL: PoCL device, loader, C/C++ headers
-  libglm-dev libopenexr-dev libpng-dev                     # math, EXR and PNG files
-  nlohmann-json3-dev libcli11-dev                          # scene JSON, command line
-  libgtest-dev libbenchmark-dev                            # tests and benchmarks
-)
+groups=("$@")
+[ ${#groups[@]} -gt 0 ] || groups=(core)
+if [ "${groups[0]}" = all ]; then
+  groups=()
+  for list in *.txt; do groups+=("${list%.txt}"); done
+fi
+
+packages=()
+for group in "${groups[@]}"; do
+  [ -f "$group.txt" ] || { echo "phongcl setup: no package group '$group' (scripts/packages/$group.txt)" >&2; exit 2; }
+  read -r -a words <<<"$(sed 's/#.*//' "$group.txt" | tr '\n' ' ')"
+  packages+=("${words[@]}")
+done
 
 missing=()
 for package in "${packages[@]}"; do

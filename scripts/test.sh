@@ -1,9 +1,19 @@
 #!/usr/bin/env bash
-# README quick start 2: set up, build everything, and run every test (ctest).
+# README quick start 2: set up, build everything, run every test (ctest), then every check in
+# scripts/checks/ in name order (builds and runs of their own: sanitizers, fuzzing, a second OpenCL
+# implementation, services). Any failure fails the whole run.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-scripts/setup.sh
+scripts/setup.sh all
 scripts/build.sh -DPHONGCL_BUILD_TESTS=ON
 # A private PoCL kernel cache: CI machines may have no writable HOME.
 export POCL_CACHE_DIR="${POCL_CACHE_DIR:-$PWD/build/pocl-cache}"
 ctest --test-dir build --output-on-failure -j 2
+
+shopt -s nullglob
+for check in scripts/checks/*.sh; do
+  echo "== ${check#scripts/checks/}"
+  start=$SECONDS
+  bash "$check"
+  echo "== ${check#scripts/checks/}: passed in $((SECONDS - start)) s"
+done
