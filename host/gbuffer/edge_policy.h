@@ -29,4 +29,13 @@ const char* coverage_source_name(CoverageSource source);  // for the summary
 // they are filtered like the normal.
 CoverageSource estimate_coverage(GBuffer& gbuffer, const Plane& alpha);
 
+// Between two surfaces the filtered normal averages both (up to 80 degrees off the centre
+// sample's surface) and the colour passes mix both materials. A shaded pixel not next to the
+// background whose normal is shorter than 0.98 (a spread of about 16 degrees or more) takes the
+// normal and colours of the neighbour that lies on the centre sample's surface: among the 8
+// neighbours of the same material with an unmixed normal, the one whose tangent plane passes
+// closest to this pixel's position. Returns how many pixels were repaired. Call after
+// estimate_coverage (which reads the lengths next to the background).
+std::size_t repair_surface_edges(GBuffer& gbuffer);
+
 }  // namespace phongcl

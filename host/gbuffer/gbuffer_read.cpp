@@ -6,8 +6,8 @@
 #include <vector>
 
 #include "common/error.h"
+#include "exr/exr_channels.h"
 #include "gbuffer/edge_policy.h"
-#include "gbuffer/exr_channels.h"
 #include "gbuffer/gbuffer.h"
 #include "gbuffer/layout_presets.h"
 #include "gbuffer/layouts.h"
@@ -225,6 +225,8 @@ GBufferRead read_gbuffer(const std::filesystem::path& file, const ReadOptions& o
     if (sky > 0) read.description += ", " + std::to_string(sky) + " sky samples with a filtered normal as background";
     const CoverageSource coverage = estimate_coverage(g, alpha);
     if (coverage != CoverageSource::none) read.description += std::string(", coverage from ") + coverage_source_name(coverage);
+    const std::size_t repaired = repair_surface_edges(g);
+    if (repaired > 0) read.description += ", " + std::to_string(repaired) + " edge pixels between surfaces given their centre surface's normal";
   }
   if (material_pass && every_surface_is_material_zero(g))
     read.warnings.push_back("every surface pixel has material index 0: pass indices were probably never set (in "

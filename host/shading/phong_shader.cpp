@@ -23,11 +23,12 @@ cl::Buffer uniform_buffer(const cl::Context& context, std::vector<T> values) {
   return cl::Buffer(context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, values.size() * sizeof(T), values.data());
 }
 
+// phong.cl's phong_shade, argument for argument.
 using PhongKernel = cl::KernelFunctor<
-    /* G-buffer */ cl::Buffer, cl_uint, cl::Buffer,
-    /* scene */ cl::Buffer, cl::Buffer, cl_int, cl::Buffer, cl_int, cl_float, cl_float, cl_float, cl_float, cl_float,
-    cl_float, cl_float, cl_float,
-    /* output */ cl::Buffer, cl::Buffer>;
+    /* G-buffer planes, material index */ cl::Buffer, cl::Buffer,
+    /* materials, point lights, directional lights */ cl::Buffer, cl::Buffer, cl::Buffer,
+    /* per-frame scalars */ FrameScalars,
+    /* output planes, term planes */ cl::Buffer, cl::Buffer>;
 
 // Pixels per tile: the whole frame unless a buffer would exceed the device's largest allocation or
 // the tile's buffers its memory.
@@ -63,14 +64,12 @@ void premultiply_by_coverage(const Plane& coverage, std::size_t first, std::size
   }
 }
 
-constexpr int kTermPlanes = 9;  // ambient, diffuse, specular RGB
-
 // Copies the kernel's term planes into the three term images, alpha from the combined image
 // (premultiplied like it, so the terms still sum to it).
 void copy_terms(cl::CommandQueue& queue, const cl::Buffer& terms, std::size_t stride, std::size_t first,
                 std::size_t count, const Plane& coverage, ShadeResult& result) {
   const auto* planes = static_cast<const float*>(
-      queue.enqueueMapBuffer(terms, CL_TRUE, CL_MAP_READ, 0, kTermPlanes * stride * sizeof(cl_float)));
+      queue.enqueueMapBuffer(terms, CL_TRUE, CL_MAP_READ, 0, PHONGCL_TERM_PLANES * stride * sizeof(cl_float)));
   Image* images[] = {&result.terms.ambient, &result.terms.diffuse, &result.terms.specular};
   for (int term = 0; term < 3; ++term) {
     float* out = images[term]->pixel(first);
@@ -100,7 +99,7 @@ ShadeResult PhongShader::shade(const Scene& scene, const GBuffer& gbuffer, const
   const auto start = Clock::now();
   const cl::Context& context = compute_.context;
   cl::CommandQueue& queue = compute_.queue;
-  const UniformData uniforms = pack_uniforms(scene);
+  UniformData uniforms = pack_uniforms(scene);
   const cl::Buffer materials = uniform_buffer(context, uniforms.materials);
   const cl::Buffer point_lights = uniform_buffer(context, uniforms.point_lights);
   const cl::Buffer directional_lights = uniform_buffer(context, uniforms.directional_lights);
@@ -113,9 +112,10 @@ ShadeResult PhongShader::shade(const Scene& scene, const GBuffer& gbuffer, const
   const std::size_t plane_bytes = stride * recipe.plane_count() * (half ? sizeof(cl_half) : sizeof(cl_float));
   const cl::Buffer& planes = planes_.at_least(context, plane_bytes);
   const cl::Buffer& material_index = material_index_.at_least(context, stride * sizeof(cl_int));
-  const cl::Buffer& output = output_.at_least(context, 4 * stride * sizeof(cl_float));
+  const cl::Buffer& output = output_.at_least(context, PHONGCL_OUTPUT_PLANES * stride * sizeof(cl_float));
   const cl::Buffer& terms =
-      terms_.at_least(context, (recipe.write_terms ? kTermPlanes * stride : 1) * sizeof(cl_float));
+      terms_.at_least(context, (recipe.write_terms ? PHONGCL_TERM_PLANES * stride : 1) * sizeof(cl_float));
+  uniforms.scalars.plane_stride = static_cast<layout_uint>(stride);
   std::vector<float> half_staging(half ? stride * recipe.plane_count() : 0);
   std::size_t flushed_to_zero = 0;
 
@@ -150,15 +150,12 @@ ShadeResult PhongShader::shade(const Scene& scene, const GBuffer& gbuffer, const
     queue.enqueueUnmapMemObject(planes, mapped_planes, nullptr, &unmap_planes);
     queue.enqueueUnmapMemObject(material_index, mapped_index, nullptr, &unmap_index);
     const cl::Event launched =
-        kernel(cl::EnqueueArgs(queue, cl::NDRange(padded / lanes)), planes, static_cast<cl_uint>(stride),
-               material_index, materials, point_lights, recipe.point_lights, directional_lights,
-               recipe.directional_lights, uniforms.ambient[0], uniforms.ambient[1], uniforms.ambient[2],
-               uniforms.radiance_scale_a, uniforms.radiance_scale_b, uniforms.background[0], uniforms.background[1],
-               uniforms.background[2], output, terms);
+        kernel(cl::EnqueueArgs(queue, cl::NDRange(padded / lanes)), planes, material_index, materials, point_lights,
+               directional_lights, uniforms.scalars, output, terms);
 
     cl::Event map_output;
     const auto* shaded = static_cast<const float*>(
-        queue.enqueueMapBuffer(output, CL_TRUE, CL_MAP_READ, 0, 4 * stride * sizeof(cl_float), nullptr, &map_output));
+        queue.enqueueMapBuffer(output, CL_TRUE, CL_MAP_READ, 0, PHONGCL_OUTPUT_PLANES * stride * sizeof(cl_float), nullptr, &map_output));
     const auto copy_start = Clock::now();
     interleave(shaded, stride, count, 4, result.image.pixel(first));
     premultiply_by_coverage(gbuffer.coverage, first, count, result.image.pixel(first));
