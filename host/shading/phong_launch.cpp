@@ -42,9 +42,11 @@ DeviceUniforms upload_uniforms(const cl::Context& context, const UniformData& un
   return device;
 }
 
-cl::Event launch_phong(const cl::Program& program, cl::CommandQueue& queue, const TileBuffers& tile,
+cl::Kernel phong_kernel(const cl::Program& program) { return cl::Kernel(program, "phong_shade"); }
+
+cl::Event launch_phong(const cl::Kernel& phong_shade, cl::CommandQueue& queue, const TileBuffers& tile,
                        const DeviceUniforms& uniforms, std::size_t slots, int lanes) {
-  PhongKernel kernel(program, "phong_shade");
+  PhongKernel kernel(phong_shade);
   return kernel(cl::EnqueueArgs(queue, cl::NDRange(slots / static_cast<std::size_t>(lanes))), tile.planes,
                 tile.material_index, uniforms.materials, uniforms.point_lights, uniforms.directional_lights,
                 uniforms.scalars, tile.output, tile.terms);
