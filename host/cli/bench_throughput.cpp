@@ -1,5 +1,5 @@
 // phongcl bench --throughput: the OpenCL kernel in each precision variant against the C++ peers
-// (cpp-scalar, cpp-simd) on the same frames, with the machine's limits measured in the same run.
+// (cpp-scalar, cpp-simd, halide) on the same frames, with the machine's limits measured in the same run.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -7,6 +7,7 @@
 #include <fstream>
 #include <functional>
 #include <iostream>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
@@ -14,6 +15,7 @@
 #include "cli/bench_arguments.h"
 #include "cli/throughput_report.h"
 #include "common/atomic_file.h"
+#include "peers/halide_peer.h"
 #include "peers/light_sweep.h"
 #include "peers/peers.h"
 #include "peers/work_model.h"
@@ -119,8 +121,8 @@ struct SampledRows {
 
 class ThroughputBench {
  public:
-  ThroughputBench(int runs, MachineLimits machine, PhongShader& shader)
-      : runs_(runs), machine_(std::move(machine)), shader_(shader) {}
+  ThroughputBench(int runs, MachineLimits machine, PhongShader& shader, std::optional<std::filesystem::path> halide_peer)
+      : runs_(runs), machine_(std::move(machine)), shader_(shader), halide_peer_(std::move(halide_peer)) {}
 
   void run_case(const Scene& scene, const GBuffer& gbuffer, int lights) {
     int points = 0, directionals = 0;
@@ -144,8 +146,8 @@ class ThroughputBench {
       r.timed_row_step = rows.step;
       record_error(r, rows, rows.max_rel_err_of_rows(output));
     }
+    const PackedFrame frame = pack_frame(gbuffer, scene);
     {  // cpp-simd on the whole frame
-      const PackedFrame frame = pack_frame(gbuffer, scene);
       Image output = image_like(gbuffer);
       const RunStats time = measure(
           [&] {
@@ -156,6 +158,19 @@ class ThroughputBench {
           runs_);
       ThroughputResult& r = add("cpp-simd", "float", gbuffer, lights, time, bytes_per_pixel(false, points + directionals), flops, 1.0);
       record_error(r, rows, rows.max_rel_err_of_frame(output));
+    }
+    {  // halide on the whole frame, in its own process
+      const double bytes = bytes_per_pixel(false, points + directionals);
+      if (!halide_peer_) {
+        add_skipped("halide", gbuffer, lights, "Halide not installed (no " + std::string(kHalidePeerExecutable) + " beside phongcl)");
+      } else {
+        Image output = image_like(gbuffer);
+        const HalidePeerRun run = run_halide_peer(*halide_peer_, frame, packed, runs_, kMeasurementBudgetMs, output.rgba.data());
+        ThroughputResult& r = add("halide", "float", gbuffer, lights, summarize(run.times_ms), bytes, flops, 1.0);
+        r.schedule = run.schedule;
+        r.compile_ms = run.compile_ms;
+        record_error(r, rows, rows.max_rel_err_of_frame(output));
+      }
     }
     for (Precision precision : all_precisions()) {
       if (precision == Precision::double_precision && !shader_.compute().device.info.has_fp64) continue;
@@ -215,6 +230,17 @@ class ThroughputBench {
     return results_.back();
   }
 
+  void add_skipped(const std::string& impl, const GBuffer& gbuffer, int lights, const std::string& reason) {
+    ThroughputResult r;
+    r.impl = impl;
+    r.variant = "float";
+    r.lights = lights;
+    r.width = gbuffer.width;
+    r.height = gbuffer.height;
+    r.skipped = reason;
+    results_.push_back(r);
+  }
+
   static void record_error(ThroughputResult& r, const SampledRows& rows, double max_rel_err) {
     r.max_rel_err = max_rel_err;
     r.error_row_step = rows.step;
@@ -223,6 +249,7 @@ class ThroughputBench {
   int runs_;
   MachineLimits machine_;
   PhongShader& shader_;
+  std::optional<std::filesystem::path> halide_peer_;
   std::vector<ThroughputResult> results_;
 };
 
@@ -251,7 +278,10 @@ void run_throughput_bench(const BenchArguments& args) {
   std::cout << " " << machine.bandwidth_gbs << " GB/s, " << machine.fma_gflops << " GFLOP/s on " << machine.cores
             << " cores (" << machine.cpu << ")\n";
 
-  ThroughputBench bench(args.runs, machine, shader);
+  // The Halide peer is built beside phongcl when Halide is installed.
+  const auto halide_peer = find_halide_peer(std::filesystem::read_symlink("/proc/self/exe").parent_path());
+  std::cout << "  halide     " << (halide_peer ? halide_peer->string() : "not installed: its rows say SKIP") << "\n";
+  ThroughputBench bench(args.runs, machine, shader, halide_peer);
   for (const Case& c : cases) {
     std::cout << "  case       " << c.width << "x" << c.height << ", " << c.lights << " lights" << std::flush;
     const auto start = Clock::now();
@@ -259,7 +289,7 @@ void run_throughput_bench(const BenchArguments& args) {
     bench.run_case(with_generated_lights(scene, c.lights), frame, c.lights);
     std::cout << " (" << static_cast<int>(elapsed_ms(start) / 1000) << " s)\n";
   }
-  std::cout << "\n" << markdown_table(bench.results());
+  std::cout << "\n" << markdown_table(bench.results()) << halide_note(bench.results());
   if (!args.json_file.empty()) write_file(args.json_file, results_json(machine, bench.results()));
   if (!args.report_dir.empty()) {
     const std::string inputs = "`" + scene.source.string() + "` + `" + gbuffer.source.string() + "`";
