@@ -5,6 +5,7 @@
 #include <cstring>
 
 #include "cl/kernel_source.h"
+#include "shading/host_threads.h"
 
 namespace phongcl {
 
@@ -46,11 +47,11 @@ std::size_t round_up(std::size_t value, std::size_t multiple) { return (value + 
 // The kernel writes planes (R, G, B, A, then the terms); images are interleaved RGBA. On every core:
 // the copy is part of each frame's end-to-end time.
 void interleave(const float* planes, std::size_t stride, std::size_t count, int channels, float* rgba) {
-  const auto pixels = static_cast<std::ptrdiff_t>(count);
-#pragma omp parallel for schedule(static)
-  for (std::ptrdiff_t t = 0; t < pixels; ++t) {
-    for (int c = 0; c < channels; ++c) rgba[4 * t + c] = planes[c * stride + t];
-  }
+  for_each_core_range(count, 1 << 12, [&](std::size_t, std::size_t begin, std::size_t end) {
+    for (std::size_t t = begin; t < end; ++t) {
+      for (int c = 0; c < channels; ++c) rgba[4 * t + c] = planes[c * stride + t];
+    }
+  });
 }
 
 constexpr int kTermPlanes = 9;  // ambient, diffuse, specular RGB
