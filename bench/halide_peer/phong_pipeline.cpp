@@ -85,9 +85,9 @@ Tuple add_light(const FuncRef& sums, const Vec3& n, const Vec3& v, const Vec3& l
 
 const std::vector<Schedule>& schedules() {
   static const std::vector<Schedule> all = {
-      {"vector32", "parallel chunks; per 32 pixels (two independent AVX-512 chains), the lights loop with the sums in registers"},
-      {"vector16", "as vector32 with 16 pixels (one register per value)"},
-      {"vector64", "as vector32 with 64 pixels (four chains)"},
+      {"vector64", "parallel chunks; per 64 pixels (four independent AVX-512 chains), the lights loop with the sums in registers"},
+      {"vector32", "as vector64 with 32 pixels (two chains)"},
+      {"vector16", "as vector64 with 16 pixels (one register per value)"},
       {"tile256-lights-outer", "parallel chunks; per 256-pixel tile, each light a loop over 16 vectors of 16 (state in L1)"},
       {"tile1024-lights-outer", "as tile256-lights-outer with 1024-pixel tiles"},
   };

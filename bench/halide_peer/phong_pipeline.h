@@ -29,7 +29,8 @@ enum LightAttribute { kLightX, kLightY, kLightZ, kLightR, kLightG, kLightB, kLig
 struct Schedule {
   std::string name, description;
 };
-// Every schedule, the default (the fastest measured here) first.
+// Every schedule, the default first: the fastest here in CPU time per frame at 1 to 64 lights
+// (1080p; vector64 beat vector32 by 7-17% and the L1 tiles by 16-31%; README "Throughput").
 const std::vector<Schedule>& schedules();
 
 // rgba(c, i): 4 floats per pixel, the layout the kernel writes. Throws std::invalid_argument for an
