@@ -4,10 +4,14 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
 
 #include "common/error.h"
 #include "peers/halide_peer.h"
 #include "peers/packed_file.h"
+#include "cli_runner.h"
 #include "shading_support.h"
 #include "temp_dir.h"
 
@@ -90,13 +94,58 @@ TEST(HalidePeer, FailsWithItsOwnMessageOnBadInput) {
   const auto peer = halide_peer();
   if (!peer) GTEST_SKIP() << "Halide not installed: no phongcl-halide-peer";
   const testing::TempDir dir("halide_peer");
-  const std::string command = peer->string() + " --input " + (dir / "missing.packed").string() + " --output " + (dir / "out").string() +
-                              " 2>" + (dir / "err").string();
-  EXPECT_NE(std::system(command.c_str()), 0);
+  std::ostringstream command;
+  command << peer->string() << " --input " << (dir / "missing.packed").string() << " --output " << (dir / "out").string()
+          << " 2>" << (dir / "err").string();
+  EXPECT_NE(std::system(command.str().c_str()), 0);
   std::ifstream err(dir / "err");
   const std::string message((std::istreambuf_iterator<char>(err)), std::istreambuf_iterator<char>());
   EXPECT_NE(message.find("missing.packed: cannot open"), std::string::npos) << message;
   EXPECT_FALSE(std::filesystem::exists(dir / "out"));
+}
+
+// `phongcl bench --throughput` on a tiny frame, from `directory`'s copy of phongcl; its JSON rows.
+nlohmann::json throughput_rows(const std::filesystem::path& phongcl, const testing::TempDir& dir) {
+  std::ostringstream command;
+  command << "cd '" PHONGCL_SOURCE_DIR "' && '" << phongcl.string()
+          << "' bench --throughput --scene scenes/default/scene.json --sizes 48x32 --lights 1 --runs 1 --json '"
+          << (dir / "t.json").string() << "' </dev/null >'" << (dir / "out").string() << "' 2>&1";
+  EXPECT_EQ(std::system(command.str().c_str()), 0) << testing::read_text(dir / "out");
+  return nlohmann::json::parse(testing::read_text(dir / "t.json")).at("results");
+}
+
+const nlohmann::json* halide_row(const nlohmann::json& rows) {
+  for (const auto& row : rows) {
+    if (row.at("impl") == "halide") return &row;
+  }
+  return nullptr;
+}
+
+TEST(ThroughputBench, HalideRowHasMeasuredFiguresBesidePhongcl) {
+  if (!testing::have_opencl_device()) GTEST_SKIP() << "no OpenCL device";
+  if (!halide_peer()) GTEST_SKIP() << "Halide not installed: no phongcl-halide-peer";
+  const testing::TempDir dir("bench_halide");
+  const nlohmann::json rows = throughput_rows(PHONGCL_EXE, dir);
+  const nlohmann::json* row = halide_row(rows);
+  ASSERT_NE(row, nullptr) << rows.dump(1);
+  EXPECT_FALSE(row->contains("not_run")) << row->dump();
+  EXPECT_GT(row->at("median_ms").get<double>(), 0.0);
+  EXPECT_LE(row->at("max_rel_err").get<double>(), kRelTolerance);
+  EXPECT_GT(row->at("compile_ms").get<double>(), 0.0);
+  EXPECT_FALSE(row->at("schedule").get<std::string>().empty());
+}
+
+TEST(ThroughputBench, HalideRowSaysSkipWithoutThePeerAndHasNoFigures) {
+  if (!testing::have_opencl_device()) GTEST_SKIP() << "no OpenCL device";
+  const testing::TempDir dir("bench_no_halide");
+  const auto lone_phongcl = dir / "phongcl";  // a copy with no peer beside it
+  std::filesystem::copy_file(PHONGCL_EXE, lone_phongcl);
+  const nlohmann::json rows = throughput_rows(lone_phongcl, dir);
+  const nlohmann::json* row = halide_row(rows);
+  ASSERT_NE(row, nullptr) << rows.dump(1);
+  EXPECT_EQ(row->at("not_run").get<std::string>().rfind("SKIP: Halide not installed", 0), 0u) << row->dump();
+  EXPECT_TRUE(row->at("median_ms").is_null());
+  EXPECT_TRUE(row->at("max_rel_err").is_null());
 }
 
 }  // namespace

@@ -162,14 +162,19 @@ class ThroughputBench {
     {  // halide on the whole frame, in its own process
       const double bytes = bytes_per_pixel(false, points + directionals);
       if (!halide_peer_) {
-        add_skipped("halide", gbuffer, lights, "Halide not installed (no " + std::string(kHalidePeerExecutable) + " beside phongcl)");
+        add_not_run("halide", gbuffer, lights, "SKIP: Halide not installed (no " + std::string(kHalidePeerExecutable) + " beside phongcl)");
       } else {
         Image output = image_like(gbuffer);
-        const HalidePeerRun run = run_halide_peer(*halide_peer_, frame, packed, runs_, kMeasurementBudgetMs, output.rgba.data());
-        ThroughputResult& r = add("halide", "float", gbuffer, lights, summarize(run.times_ms), bytes, flops, 1.0);
-        r.schedule = run.schedule;
-        r.compile_ms = run.compile_ms;
-        record_error(r, rows, rows.max_rel_err_of_frame(output));
+        try {
+          const HalidePeerRun run = run_halide_peer(*halide_peer_, frame, packed, runs_, kMeasurementBudgetMs, output.rgba.data());
+          ThroughputResult& r = add("halide", "float", gbuffer, lights, summarize(run.times_ms), bytes, flops, 1.0);
+          r.schedule = run.schedule;
+          r.compile_ms = run.compile_ms;
+          record_error(r, rows, rows.max_rel_err_of_frame(output));
+        } catch (const std::runtime_error& e) {  // the other rows still count; this one says why it has no figures
+          std::cerr << "\n  halide     " << e.what() << "\n";
+          add_not_run("halide", gbuffer, lights, std::string("FAILED: ") + e.what());
+        }
       }
     }
     for (Precision precision : all_precisions()) {
@@ -230,14 +235,14 @@ class ThroughputBench {
     return results_.back();
   }
 
-  void add_skipped(const std::string& impl, const GBuffer& gbuffer, int lights, const std::string& reason) {
+  void add_not_run(const std::string& impl, const GBuffer& gbuffer, int lights, const std::string& reason) {
     ThroughputResult r;
     r.impl = impl;
     r.variant = "float";
     r.lights = lights;
     r.width = gbuffer.width;
     r.height = gbuffer.height;
-    r.skipped = reason;
+    r.not_run = reason;
     results_.push_back(r);
   }
 

@@ -72,8 +72,8 @@ std::string markdown_table(const std::vector<ThroughputResult>& results) {
                  ColumnAlign::right, ColumnAlign::right, ColumnAlign::right, ColumnAlign::right};
   const auto scalar = scalar_medians(results);
   for (const auto& r : results) {
-    if (!r.skipped.empty()) {
-      std::vector<std::string> row{size_of(r), std::to_string(r.lights), r.impl, r.variant, "SKIP: " + r.skipped};
+    if (!r.not_run.empty()) {
+      std::vector<std::string> row{size_of(r), std::to_string(r.lights), r.impl, r.variant, r.not_run};
       row.resize(table.headers.size());
       table.rows.push_back(row);
       continue;
@@ -113,9 +113,9 @@ std::string results_json(const MachineLimits& machine, const std::vector<Through
                      {"cpu", machine.cpu}};
   json["results"] = nlohmann::ordered_json::array();
   for (const auto& r : results) {
-    if (!r.skipped.empty()) {
+    if (!r.not_run.empty()) {
       json["results"].push_back({{"impl", r.impl}, {"variant", r.variant}, {"lights", r.lights}, {"width", r.width},
-                                 {"height", r.height}, {"skipped", r.skipped}, {"median_ms", nullptr}, {"min_ms", nullptr},
+                                 {"height", r.height}, {"not_run", r.not_run}, {"median_ms", nullptr}, {"min_ms", nullptr},
                                  {"max_ms", nullptr}, {"max_rel_err", nullptr}});
       continue;
     }
@@ -157,7 +157,7 @@ void write_throughput_report(const std::string& directory, const MachineLimits& 
   std::map<std::string, std::size_t> series_of;
   const std::string sweep_size = results.empty() ? "" : size_of(results.front());
   for (const auto& r : results) {
-    if (r.lights < 1 || size_of(r) != sweep_size || !r.skipped.empty()) continue;
+    if (r.lights < 1 || size_of(r) != sweep_size || !r.not_run.empty()) continue;
     const std::string name = r.impl + (r.impl == "opencl" ? " " + r.variant : "");
     auto [it, inserted] = series_of.emplace(name, chart.series.size());
     if (inserted) chart.series.push_back({name, {}, MarkerShape::circle, true, ""});
