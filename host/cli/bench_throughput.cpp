@@ -258,6 +258,14 @@ class ThroughputBench {
   std::vector<ThroughputResult> results_;
 };
 
+// /proc/loadavg's three averages, "n/a" where there is none: every figure here depends on it.
+std::string load_average() {
+  std::ifstream in("/proc/loadavg");
+  std::string one, five, fifteen;
+  if (!(in >> one >> five >> fifteen)) return "n/a";
+  return one + " " + five + " " + fifteen;
+}
+
 void write_file(const std::filesystem::path& file, const std::string& text) {
   if (file.has_parent_path()) std::filesystem::create_directories(file.parent_path());
   write_atomically(file, [&](const std::filesystem::path& temp) {
@@ -286,6 +294,8 @@ void run_throughput_bench(const BenchArguments& args) {
   // The Halide peer is built beside phongcl when Halide is installed.
   const auto halide_peer = find_halide_peer(std::filesystem::read_symlink("/proc/self/exe").parent_path());
   std::cout << "  halide     " << (halide_peer ? halide_peer->string() : "not installed: its rows say SKIP") << "\n";
+  const std::string load_at_start = load_average();
+  std::cout << "  load       " << load_at_start << " (1, 5, 15 min; the machine may be shared)\n";
   ThroughputBench bench(args.runs, machine, shader, halide_peer);
   for (const Case& c : cases) {
     std::cout << "  case       " << c.width << "x" << c.height << ", " << c.lights << " lights" << std::flush;
@@ -294,11 +304,12 @@ void run_throughput_bench(const BenchArguments& args) {
     bench.run_case(with_generated_lights(scene, c.lights), frame, c.lights);
     std::cout << " (" << static_cast<int>(elapsed_ms(start) / 1000) << " s)\n";
   }
-  std::cout << "\n" << markdown_table(bench.results()) << halide_note(bench.results());
-  if (!args.json_file.empty()) write_file(args.json_file, results_json(machine, bench.results()));
+  const std::string load = "load average " + load_at_start + " at the start, " + load_average() + " at the end";
+  std::cout << "\n" << markdown_table(bench.results()) << halide_note(bench.results()) << "  " << load << "\n";
+  if (!args.json_file.empty()) write_file(args.json_file, results_json(machine, bench.results(), load));
   if (!args.report_dir.empty()) {
     const std::string inputs = "`" + scene.source.string() + "` + `" + gbuffer.source.string() + "`";
-    write_throughput_report(args.report_dir, machine, device, inputs, bench.results());
+    write_throughput_report(args.report_dir, machine, device, inputs, load, bench.results());
     std::cout << "  wrote      " << args.report_dir << "/report.md, results.json, mpix_lights_vs_lights.svg\n";
   }
 }

@@ -105,12 +105,13 @@ std::string halide_note(const std::vector<ThroughputResult>& results) {
   return "halide: schedule " + schedules + "; JIT compile ms, not in the times: " + compile_times + "\n";
 }
 
-std::string results_json(const MachineLimits& machine, const std::vector<ThroughputResult>& results) {
+std::string results_json(const MachineLimits& machine, const std::vector<ThroughputResult>& results, const std::string& load) {
   nlohmann::ordered_json json;
   json["machine"] = {{"bandwidth_gbs", machine.bandwidth_gbs},
                      {"fma_gflops", machine.fma_gflops},
                      {"cores", machine.cores},
-                     {"cpu", machine.cpu}};
+                     {"cpu", machine.cpu},
+                     {"load", load}};
   json["results"] = nlohmann::ordered_json::array();
   for (const auto& r : results) {
     if (!r.not_run.empty()) {
@@ -145,7 +146,7 @@ std::string results_json(const MachineLimits& machine, const std::vector<Through
 }
 
 void write_throughput_report(const std::string& directory, const MachineLimits& machine, const std::string& device,
-                             const std::string& inputs, const std::vector<ThroughputResult>& results) {
+                             const std::string& inputs, const std::string& load, const std::vector<ThroughputResult>& results) {
   const std::filesystem::path dir(directory);
   std::filesystem::create_directories(dir);
 
@@ -170,6 +171,7 @@ void write_throughput_report(const std::string& directory, const MachineLimits& 
   md += "Measured with `phongcl bench --throughput` on " + inputs + ".\n\n";
   md += "## Machine\n\n- CPU: " + machine.cpu + ", " + std::to_string(machine.cores) + " cores (OpenMP threads)\n";
   md += "- OpenCL device: " + device + "\n";
+  md += "- Load: " + load + " (1, 5 and 15 minute averages)\n";
   md += "- Memory bandwidth: " + fixed(machine.bandwidth_gbs, 1) +
         " GB/s (STREAM-style float triad a = b + s c, 3 x 256 MB, all cores, best of 5; 12 bytes per element)\n";
   md += "- FMA peak: " + fixed(machine.fma_gflops, 1) +
@@ -194,7 +196,7 @@ void write_throughput_report(const std::string& directory, const MachineLimits& 
   md += "## Results\n\n" + markdown_table(results) + "\n" + halide_note(results) + "\n";
   if (!chart.series.empty()) md += "![Mpixel-lights/s against lights](mpix_lights_vs_lights.svg)\n";
   write_text(dir / "report.md", md);
-  write_text(dir / "results.json", results_json(machine, results));
+  write_text(dir / "results.json", results_json(machine, results, load));
 }
 
 }  // namespace phongcl::cli

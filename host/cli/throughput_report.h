@@ -35,11 +35,12 @@ struct ThroughputResult {
 std::string markdown_table(const std::vector<ThroughputResult>& results);
 // One line naming the Halide schedule(s) and JIT compile times; empty without halide figures.
 std::string halide_note(const std::vector<ThroughputResult>& results);
-// {"machine": {...}, "results": [...]}; end_to_end_median_ms for opencl only; max_rel_err null where not
+// {"machine": {..., "load": ...}, "results": [...]}; end_to_end_median_ms for opencl only; max_rel_err null where not
 // measured; a row that did not run has "not_run" (SKIP or FAILED and why) and null figures; halide rows add schedule and compile_ms.
-std::string results_json(const MachineLimits& machine, const std::vector<ThroughputResult>& results);
+std::string results_json(const MachineLimits& machine, const std::vector<ThroughputResult>& results, const std::string& load);
 // report.md (machine, method, table), results.json and mpix_lights_vs_lights.svg in `directory`.
+// `load`: the load average during the run, in words.
 void write_throughput_report(const std::string& directory, const MachineLimits& machine, const std::string& device,
-                             const std::string& inputs, const std::vector<ThroughputResult>& results);
+                             const std::string& inputs, const std::string& load, const std::vector<ThroughputResult>& results);
 
 }  // namespace phongcl::cli
