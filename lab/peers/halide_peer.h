@@ -20,7 +20,7 @@ struct HalidePeerRun {
   std::vector<double> times_ms;  // timed realize() calls, after one untimed warm-up
 };
 
-// The peer executable in `directory` (where the build puts it, next to `phongcl`), if it is there:
+// The peer executable in `directory` (where the build puts it, next to `phongcl` and `phongcl-lab`), if it is there:
 // it is built only when Halide is installed.
 std::optional<std::filesystem::path> find_halide_peer(const std::filesystem::path& directory);
 

@@ -162,7 +162,7 @@ class ThroughputBench {
     {  // halide on the whole frame, in its own process
       const double bytes = bytes_per_pixel(false, points + directionals);
       if (!halide_peer_) {
-        add_not_run("halide", gbuffer, lights, "SKIP: Halide not installed (no " + std::string(kHalidePeerExecutable) + " beside phongcl)");
+        add_not_run("halide", gbuffer, lights, "SKIP: Halide not installed (no " + std::string(kHalidePeerExecutable) + " beside phongcl-lab)");
       } else {
         Image output = image_like(gbuffer);
         try {
@@ -291,7 +291,7 @@ void run_throughput_bench(const BenchArguments& args) {
   std::cout << " " << machine.bandwidth_gbs << " GB/s, " << machine.fma_gflops << " GFLOP/s on " << machine.cores
             << " cores (" << machine.cpu << ")\n";
 
-  // The Halide peer is built beside phongcl when Halide is installed.
+  // The Halide peer is built beside phongcl-lab when Halide is installed.
   const auto halide_peer = find_halide_peer(std::filesystem::read_symlink("/proc/self/exe").parent_path());
   std::cout << "  halide     " << (halide_peer ? halide_peer->string() : "not installed: its rows say SKIP") << "\n";
   const std::string load_at_start = load_average();
