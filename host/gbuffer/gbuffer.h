@@ -18,6 +18,9 @@ struct PixelWindow {
   int height() const { return y_max - y_min + 1; }
 };
 
+// OpenEXR's compression methods, in its own order (gbuffer/exr_channels.h converts and names them).
+enum class ExrCompression { none, rle, zips, zip, piz, pxr24, b44, b44a, dwaa, dwab };
+
 struct GBuffer {
   int width = 0, height = 0;           // of the data window
   PixelWindow data_window, display_window;
@@ -28,6 +31,7 @@ struct GBuffer {
   Planes3 ka, kd, ks;
   Plane shininess;
   std::filesystem::path source;        // for messages
+  ExrCompression compression = ExrCompression::zip;  // the file's (outputs default to the input's)
 
   std::size_t pixel_count() const { return static_cast<std::size_t>(width) * height; }
   bool has_per_pixel_ka() const { return !ka[0].empty(); }
@@ -63,6 +67,6 @@ GBuffer read_gbuffer(const std::filesystem::path& file);
 enum class ExrPixelType { half, float32 };
 // Writes `gbuffer` in the phongcl layout, atomically (temp file, then rename).
 void write_gbuffer(const GBuffer& gbuffer, const std::filesystem::path& file,
-                   ExrPixelType type = ExrPixelType::float32);
+                   ExrPixelType type = ExrPixelType::float32, ExrCompression compression = ExrCompression::zip);
 
 }  // namespace phongcl

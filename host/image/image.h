@@ -27,7 +27,8 @@ struct Image {
 Image image_like(const GBuffer& gbuffer);
 
 // Writes channels R G B A (float32 or half), same data/display window as the image; atomic.
-void write_exr(const Image& image, const std::filesystem::path& file, ExrPixelType type = ExrPixelType::float32);
+void write_exr(const Image& image, const std::filesystem::path& file, ExrPixelType type = ExrPixelType::float32,
+               ExrCompression compression = ExrCompression::zip);
 // One layer of a multilayer EXR: channels "<name>.R .G .B" (and ".A" with alpha), or plain
 // "R G B A" for the unnamed layer compositors show by default.
 struct ExrLayer {
@@ -38,7 +39,7 @@ struct ExrLayer {
 // Writes every layer into one EXR (float32 or half), atomically. The images must share size and
 // windows (std::invalid_argument otherwise); the file takes the first one's windows.
 void write_layered_exr(const std::vector<ExrLayer>& layers, const std::filesystem::path& file,
-                       ExrPixelType type = ExrPixelType::float32);
+                       ExrPixelType type = ExrPixelType::float32, ExrCompression compression = ExrCompression::zip);
 // Reads R G B (and A if present, else 1) from an EXR. Throws InputError on a bad file.
 Image read_exr(const std::filesystem::path& file);
 
