@@ -17,7 +17,8 @@ struct BenchArguments {
   std::string sizes;        // --throughput: image sizes to sweep, e.g. "256x256,1920x1080"
   std::string json_file;    // --throughput, --sequence: results as JSON
   bool sequence = false;
-  int sequence_frames = 24;  // --sequence: frames in the shot
+  int sequence_frames = 8;   // --sequence: frames in the shot
+  int rounds = 3;            // --sequence: rounds of every mode; each mode's fastest is kept
   std::string compressions = "zip,piz";  // --sequence: G-buffer and output compressions
 };
 

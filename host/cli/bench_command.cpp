@@ -20,8 +20,10 @@ void add_bench_command(CLI::App& app) {
   command->add_option("--json", args->json_file, "--throughput, --sequence: write the results as JSON");
   command->add_flag("--sequence", args->sequence,
                     "Shade a generated shot in sequence mode against single-frame processes, the EXR I/O floor and oiiotool");
-  command->add_option("--sequence-frames", args->sequence_frames, "--sequence: frames in the shot (default 24)")
+  command->add_option("--sequence-frames", args->sequence_frames, "--sequence: frames in the shot (default 8)")
       ->check(CLI::Range(1, 10000));
+  command->add_option("--rounds", args->rounds, "--sequence: rounds of every mode, the fastest kept (default 3)")
+      ->check(CLI::Range(1, 100));
   command->add_option("--compressions", args->compressions, "--sequence: EXR compressions to measure (default zip,piz)");
   command->callback([args] {
     if (args->sequence) return run_sequence_bench(*args);

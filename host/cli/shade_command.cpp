@@ -1,5 +1,6 @@
 // phongcl shade: the OpenCL kernel on a G-buffer.
 #include <chrono>
+#include <future>
 #include <iostream>
 #include <memory>
 
@@ -56,12 +57,15 @@ void run_shade(const ShadeArguments& args) {
   const auto start = Clock::now();
   args.outputs.check_destinations();
   args.sequence.start_exr_threads();
+  // The OpenCL platform starts while the G-buffer is read: neither needs the other.
+  std::future<ComputeContext> compute =
+      std::async(std::launch::async, [&] { return make_compute_context(pick_device(args.device)); });
   const Scene scene = args.inputs.load_scene();
   const LoadedGBuffer loaded = args.inputs.load_described_gbuffer(scene);
   const GBuffer& gbuffer = loaded.gbuffer;
   const double read_ms = milliseconds_since(start);
   ProgramCache cache(ProgramCache::default_directory());
-  PhongShader shader(make_compute_context(pick_device(args.device)), cache);
+  PhongShader shader(compute.get(), cache);
   const ShadeResult result = shader.shade(scene, gbuffer, shade_options(args));
   const auto write_start = Clock::now();
   ImageOutputs outputs = args.outputs;
