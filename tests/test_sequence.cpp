@@ -242,6 +242,11 @@ class ShadeSequence : public ::testing::Test {
       frames.push_back(std::stoi((*it)[1].str()));
     return frames;
   }
+  int outputs_written() const {
+    int found = 0;
+    for (int frame = 1; frame <= kFrames; ++frame) found += fs::exists(dir_ / name("lit", frame, ".exr"));
+    return found;
+  }
   std::vector<fs::path> temporaries() const {
     std::vector<fs::path> found;
     for (const auto& entry : fs::directory_iterator(dir_.path))
@@ -388,11 +393,7 @@ int interrupt_after(pid_t pid, const std::function<int()>& outputs, int count, i
 }
 
 TEST_F(ShadeSequence, KilledMidSequenceAndRerunShadesEachFrameOnce) {
-  auto outputs = [&] {
-    int found = 0;
-    for (int frame = 1; frame <= kFrames; ++frame) found += fs::exists(dir_ / name("lit", frame, ".exr"));
-    return found;
-  };
+  auto outputs = [&] { return outputs_written(); };
   const int status = interrupt_after(spawn_phongcl(sequence_arguments(), dir_ / "killed.log"), outputs, 2, SIGKILL);
   ASSERT_TRUE(WIFSIGNALED(status)) << "the run ended before it could be killed";
   std::map<int, fs::file_time_type> survivors;
@@ -414,14 +415,10 @@ TEST_F(ShadeSequence, KilledMidSequenceAndRerunShadesEachFrameOnce) {
 }
 
 TEST_F(ShadeSequence, InterruptFinishesTheFramesInFlight) {
-  auto outputs = [&] {
-    int found = 0;
-    for (int frame = 1; frame <= kFrames; ++frame) found += fs::exists(dir_ / name("lit", frame, ".exr"));
-    return found;
-  };
+  auto outputs = [&] { return outputs_written(); };
   const int status = interrupt_after(spawn_phongcl(sequence_arguments(), dir_ / "interrupted.log"), outputs, 1, SIGINT);
   ASSERT_TRUE(WIFEXITED(status)) << "SIGINT killed the run instead of stopping it";
-  const int written = outputs();
+  const int written = outputs_written();
   if (written == kFrames) GTEST_SKIP() << "the run finished before the interrupt arrived";
   EXPECT_EQ(WEXITSTATUS(status), 1);
   EXPECT_NE(testing::read_text(dir_ / "interrupted.log.err").find("stopped by signal 2"), std::string::npos);

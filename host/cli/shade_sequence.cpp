@@ -205,9 +205,10 @@ void run_shade_sequence(const SceneInputs& inputs, const ImageOutputs& outputs, 
     std::cout << "  bound by   " << bounding_stage(t) << "\n"
               << "  builds     " << progress.builds() << " program build" << (progress.builds() == 1 ? "" : "s") << ", "
               << milliseconds(progress.build_ms()) << "\n";
-  const char* outputs_text = outputs.exr_file.empty() ? (outputs.png_file.empty() ? outputs.aov_file.c_str() : outputs.png_file.c_str())
-                                                      : outputs.exr_file.c_str();
-  std::cout << "  wrote      " << outputs_text << "\n";
+  std::string patterns;
+  for (const std::string* file : {&outputs.exr_file, &outputs.png_file, &outputs.aov_file})
+    if (!file->empty()) patterns += (patterns.empty() ? "" : ", ") + *file;
+  if (progress.shaded() > 0) std::cout << "  wrote      " << patterns << "\n";
   std::cout.flush();
 
   if (stop.requested())
