@@ -19,7 +19,7 @@
 #include <thread>
 
 #include "cli_runner.h"
-#include "gbuffer/exr_channels.h"
+#include "exr/exr_channels.h"
 #include "image/image.h"
 #include "sequence/frame_list.h"
 #include "sequence/frame_pattern.h"

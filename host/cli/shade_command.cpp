@@ -10,7 +10,7 @@
 #include "cli/inputs.h"
 #include "cli/outputs.h"
 #include "cli/shade_sequence.h"
-#include "gbuffer/exr_channels.h"
+#include "exr/exr_channels.h"
 #include "shading/phong_shader.h"
 
 namespace phongcl::cli {

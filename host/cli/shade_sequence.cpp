@@ -16,7 +16,7 @@
 #include "cl/compute_context.h"
 #include "cli/format.h"
 #include "cli/sequence_progress.h"
-#include "gbuffer/exr_channels.h"
+#include "exr/exr_channels.h"
 #include "sequence/frame_list.h"
 #include "sequence/frame_pattern.h"
 #include "sequence/shard.h"

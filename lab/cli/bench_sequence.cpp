@@ -24,7 +24,7 @@
 #include "cli/bench_arguments.h"
 #include "cli/child_process.h"
 #include "common/atomic_file.h"
-#include "gbuffer/exr_channels.h"
+#include "exr/exr_channels.h"
 #include "gbuffer/layouts.h"
 #include "peers/machine_limits.h"
 #include "raycast/raycast.h"
@@ -288,7 +288,8 @@ void run_sequence_bench(const BenchArguments& args) {
   std::vector<ExrCompression> compressions;
   std::stringstream list(args.compressions);
   for (std::string name; std::getline(list, name, ',');) compressions.push_back(exr::parse_compression(name));
-  const std::string exe = fs::read_symlink("/proc/self/exe").string();
+  // The product's command line, which phongcl-lab is installed and built beside.
+  const std::string exe = (fs::read_symlink("/proc/self/exe").parent_path() / "phongcl").string();
   const fs::path dir = fs::temp_directory_path() / ("phongcl-bench-sequence-" + std::to_string(::getpid()));
   fs::create_directories(dir);
   struct Cleanup {
