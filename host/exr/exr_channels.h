@@ -104,6 +104,7 @@ class InputExr {
   PixelWindow data_window() const { return to_window(input_->header(0).dataWindow()); }
   PixelWindow display_window() const { return to_window(input_->header(0).displayWindow()); }
   int parts() const { return input_->parts(); }
+  const Imf::Header& header(int part) const { return input_->header(part); }
 
   // In file order, part by part.
   std::vector<std::string> channel_names() const {
