@@ -31,6 +31,9 @@ void SceneInputs::add_options(CLI::App& command) {
     command.add_option(flag, *value, std::string("Where ") + pass + " comes from: auto (the layout's: for Blender kd from "
                                      "DiffCol, ks from the scene's table; default), pass or table")
         ->check(CLI::IsMember({"auto", "pass", "table"}));
+  command.add_option("--max-pixels", max_pixels,
+                     "Refuse G-buffers whose data window has more pixels, before allocating (default 268435456 = 16384^2)")
+      ->check(CLI::PositiveNumber);
 }
 
 namespace {
@@ -106,6 +109,7 @@ LoadedGBuffer SceneInputs::load_described_gbuffer(const Scene& scene) const {
   ReadOptions options;
   options.layout = parse_layout(layout);
   options.view_layer = view_layer;
+  options.max_pixels = max_pixels;
   if (depth_convention != "auto")
     options.depth_convention = depth_convention == "viewz" ? DepthConvention::view_z : DepthConvention::distance;
   options.kd = parse_colour_source(kd_from);

@@ -2,6 +2,7 @@
 // The scene and G-buffer options that shade, reference and bench share: --scene/--gbuffer, and how
 // to read a renderer's G-buffer (--layout, --view-layer, --channel, --space, --depth-convention,
 // --kd-from, --ks-from).
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -9,6 +10,7 @@
 #include <CLI/CLI.hpp>
 
 #include "gbuffer/gbuffer.h"
+#include "gbuffer/layouts.h"
 #include "scene/scene.h"
 
 namespace phongcl::cli {
@@ -28,6 +30,7 @@ struct SceneInputs {
   std::string space = "world";
   std::string depth_convention = "auto";
   std::string kd_from = "auto", ks_from = "auto";
+  std::uint64_t max_pixels = ReadOptions{}.max_pixels;
 
   void add_options(CLI::App& command);
   bool camera_space() const { return space == "camera"; }

@@ -1,7 +1,9 @@
 // Reading a G-buffer EXR in any layout into planes: resolve the layout's channels against the
 // file, report everything missing at once, then read and mark background.
 #include <algorithm>
+#include <cstdio>
 #include <map>
+#include <new>
 #include <string>
 #include <vector>
 
@@ -176,10 +178,24 @@ void mark_background(GBuffer& g, const Plane& alpha, bool zero_normal_is_backgro
   }
 }
 
+// Every plane at once, so that a window too large for this machine is one line naming the file
+// and the size rather than std::bad_alloc.
+void allocate_planes(const std::vector<Plane*>& planes, const GBuffer& g, const std::filesystem::path& file) {
+  try {
+    for (Plane* plane : planes) plane->assign(g.pixel_count(), 0.0f);
+  } catch (const std::bad_alloc&) {
+    const double gigabytes = static_cast<double>(planes.size() * g.pixel_count() * sizeof(float)) / 1e9;
+    char size[32];
+    std::snprintf(size, sizeof size, "%.1f", gigabytes);
+    throw InputError(file, "cannot allocate " + std::string(size) + " GB for " + std::to_string(planes.size()) +
+                               " planes of " + std::to_string(g.width) + "x" + std::to_string(g.height) + " pixels");
+  }
+}
+
 }  // namespace
 
 GBufferRead read_gbuffer(const std::filesystem::path& file, const ReadOptions& options) {
-  exr::InputExr input(file);
+  exr::InputExr input(file, options.max_pixels);
   const std::vector<std::string> channel_names = input.channel_names();
   const LayoutSpec spec = options.layout == Layout::automatic
                               ? detect_layout(channel_names, options, file)
@@ -209,16 +225,20 @@ GBufferRead read_gbuffer(const std::filesystem::path& file, const ReadOptions& o
 
   Plane alpha;
   std::vector<exr::ReadSlice> slices;
+  std::vector<Plane*> planes;
   for (const auto& [pass, channels] : r.channels) {
-    const auto planes = destinations(pass, read, alpha);
+    // Depth is read even beside a position pass: it tells the renderer's sky samples (edge_policy.h).
+    const auto pass_planes = destinations(pass, read, alpha);
     for (std::size_t c = 0; c < channels.size(); ++c) {
-      planes[c]->resize(g.pixel_count());
-      slices.push_back({channels[c], planes[c]->data()});
+      planes.push_back(pass_planes[c]);
+      slices.push_back({channels[c], nullptr});
     }
   }
+  const bool material_read = r.channels.count(Pass::material) > 0;
+  if (!material_read) planes.push_back(&g.material);  // zeros: material 0
+  allocate_planes(planes, g, file);
+  for (std::size_t i = 0; i < slices.size(); ++i) slices[i].first = planes[i]->data();
   input.read(slices);
-  const bool material_pass = !g.material.empty();
-  if (!material_pass) g.material.assign(g.pixel_count(), 0.0f);
   mark_background(g, alpha, spec.zero_normal_is_background);
   if (spec.zero_normal_is_background) {  // a renderer's file: its edges (gbuffer/edge_policy.h)
     const std::size_t sky = mark_sky_samples(g, read.depth, spec.no_hit_depth);
@@ -228,7 +248,7 @@ GBufferRead read_gbuffer(const std::filesystem::path& file, const ReadOptions& o
     const std::size_t repaired = repair_surface_edges(g);
     if (repaired > 0) read.description += ", " + std::to_string(repaired) + " edge pixels between surfaces given their centre surface's normal";
   }
-  if (material_pass && every_surface_is_material_zero(g))
+  if (material_read && every_surface_is_material_zero(g))
     read.warnings.push_back("every surface pixel has material index 0: pass indices were probably never set (in "
                             "Blender: each material's Pass Index), so every surface gets material 0's ka, kd, ks and "
                             "shininess");

@@ -17,16 +17,6 @@ double milliseconds(Clock::time_point start, Clock::time_point end) {
   return std::chrono::duration<double, std::milli>(end - start).count();
 }
 
-// The edge policy (gbuffer/edge_policy.h), after the kernel: a shaded pixel (alpha 1) of a frame
-// with coverage gets colour and alpha times its coverage, premultiplied for compositing.
-void premultiply_by_coverage(const Plane& coverage, std::size_t first, std::size_t count, float* rgba) {
-  if (coverage.empty()) return;
-  for (std::size_t t = 0; t < count; ++t) {
-    if (rgba[4 * t + 3] != 1.0f) continue;
-    for (int c = 0; c < 4; ++c) rgba[4 * t + c] *= coverage[first + t];
-  }
-}
-
 // Copies the kernel's term planes into the three term images, alpha from the combined image
 // (premultiplied like it, so the terms still sum to it).
 void copy_terms(cl::CommandQueue& queue, const cl::Buffer& terms, std::size_t stride, std::size_t first,
