@@ -169,7 +169,6 @@ TEST(Scene, EachProblemIsAOneLineInputErrorNamingFileAndPlace) {
       {"unknown key in a nested object",
        scene_json(R"("objects": [{"type": "transform", "children": [{"type": "plane", "colour": 1}]}])"),
        {"unknown key 'colour' in objects[0].children[0]"}},
-      {"missing camera", R"({"materials": []})", {"missing key 'camera' in the top level"}},
       {"missing eye", scene_json("", R"({"look_at": [0, 0, 0]})"), {"missing key 'eye' in camera"}},
       {"wrong type", scene_json("", R"({"eye": "far away"})"), {"camera.eye must be an array of 3 numbers"}},
       {"wrong length", scene_json("", R"({"eye": [0, 0]})"), {"camera.eye must be an array of 3 numbers"}},
@@ -325,3 +324,12 @@ TEST(Scene, TransformPartsComposeScaleThenRotateXYZThenTranslate) {
 
 }  // namespace
 }  // namespace phongcl
+
+// The camera is optional: shade may take it from the G-buffer's header (gbuffer/file_camera.h).
+TEST(Scene, CameraIsOptional) {
+  const phongcl::Scene without = phongcl::parse_scene(R"({"materials": []})", "s.json");
+  EXPECT_FALSE(without.has_camera);
+  const phongcl::Scene with = phongcl::parse_scene(R"({"camera": {"eye": [1, 2, 3]}})", "s.json");
+  EXPECT_TRUE(with.has_camera);
+  EXPECT_EQ(with.camera.eye, glm::dvec3(1, 2, 3));
+}

@@ -1,8 +1,12 @@
 #include "cli/inputs.h"
 
+#include <algorithm>
+#include <cmath>
+#include <string>
 #include <tuple>
 
 #include "common/error.h"
+#include "gbuffer/file_camera.h"
 #include "gbuffer/layouts.h"
 #include "raycast/depth_reconstruction.h"
 #include "scene/camera_space.h"
@@ -42,8 +46,62 @@ ColourSource parse_colour_source(const std::string& text) {
 
 }  // namespace
 
+std::filesystem::path SceneInputs::gbuffer_path(const Scene& scene) const {
+  if (gbuffer_file.empty() && scene.gbuffer.empty())
+    throw InputError(scene.source, "no G-buffer: give --gbuffer or a \"gbuffer\" entry in the scene");
+  return gbuffer_file.empty() ? scene.gbuffer : std::filesystem::path(gbuffer_file);
+}
+
+namespace {
+
+Camera to_camera(const FileCamera& file) {
+  Camera camera;
+  camera.eye = {file.eye[0], file.eye[1], file.eye[2]};
+  camera.look_at = camera.eye + glm::dvec3(file.forward[0], file.forward[1], file.forward[2]);
+  camera.up = {file.up[0], file.up[1], file.up[2]};
+  camera.fov_y_deg = file.fov_y_deg;
+  camera.width = file.width;
+  camera.height = file.height;
+  return camera;
+}
+
+double angle_deg(const glm::dvec3& a, const glm::dvec3& b) {
+  return glm::degrees(std::acos(std::clamp(glm::dot(glm::normalize(a), glm::normalize(b)), -1.0, 1.0)));
+}
+
+// Empty when the two agree to 1e-4 of the eye's distance from the origin (at least 1e-4) and 0.01
+// degrees; else what differs.
+std::string camera_difference(const Camera& scene, const Camera& file) {
+  std::string text;
+  const auto add = [&](const std::string& part) { text += (text.empty() ? "" : ", ") + part; };
+  const double eye_apart = glm::length(scene.eye - file.eye);
+  if (eye_apart > 1e-4 * std::max(1.0, glm::length(scene.eye))) add("eyes " + std::to_string(eye_apart) + " apart");
+  if (const double a = angle_deg(scene.look_at - scene.eye, file.look_at - file.eye); a > 0.01)
+    add("view directions " + std::to_string(a) + " degrees apart");
+  if (const double a = angle_deg(scene.up - glm::dot(scene.up, glm::normalize(scene.look_at - scene.eye)) *
+                                               glm::normalize(scene.look_at - scene.eye),
+                                 file.up);
+      a > 0.01)
+    add("up " + std::to_string(a) + " degrees apart");
+  if (std::abs(scene.fov_y_deg - file.fov_y_deg) > 0.01)
+    add("fov_y " + std::to_string(scene.fov_y_deg) + " against " + std::to_string(file.fov_y_deg) + " degrees");
+  if (scene.width != file.width || scene.height != file.height)
+    add("size " + std::to_string(scene.width) + "x" + std::to_string(scene.height) + " against " +
+        std::to_string(file.width) + "x" + std::to_string(file.height));
+  return text;
+}
+
+}  // namespace
+
 Scene SceneInputs::load_scene() const {
-  const Scene scene = phongcl::load_scene(scene_file);
+  Scene scene = phongcl::load_scene(scene_file);
+  if (!scene.has_camera) {
+    // The G-buffer's header may state the camera (gbuffer/file_camera.h).
+    const auto file_camera = read_file_camera(gbuffer_path(scene));
+    if (!file_camera)
+      throw InputError(scene.source, "no \"camera\", and the G-buffer's header states none (worldToCamera and worldToNDC)");
+    scene.camera = to_camera(*file_camera);
+  }
   return camera_space() ? to_camera_space(scene) : scene;
 }
 
@@ -60,11 +118,19 @@ LoadedGBuffer SceneInputs::load_described_gbuffer(const Scene& scene) const {
     auto [pass, names] = parse_channel_assignment(assignment);
     options.channels[pass] = std::move(names);  // the last mapping of a pass wins
   }
-  if (gbuffer_file.empty() && scene.gbuffer.empty())
-    throw InputError(scene.source, "no G-buffer: give --gbuffer or a \"gbuffer\" entry in the scene");
-
-  GBufferRead read = read_gbuffer(gbuffer_file.empty() ? scene.gbuffer : std::filesystem::path(gbuffer_file), options);
+  const std::filesystem::path file = gbuffer_path(scene);
+  GBufferRead read = read_gbuffer(file, options);
   std::string description = read.description;
+  if (const auto file_camera = read_file_camera(file)) {
+    if (!scene.has_camera) {
+      description += ", camera from the file's worldToCamera and worldToNDC";
+    } else if (!camera_space()) {
+      const std::string difference = camera_difference(scene.camera, to_camera(*file_camera));
+      if (!difference.empty())
+        read.warnings.push_back("the scene's camera and the file's (worldToCamera, worldToNDC) disagree: " + difference +
+                                "; the scene's is used");
+    }
+  }
   if (read.needs_positions_from_depth()) {
     positions_from_depth(read.gbuffer, read.depth, scene.camera, read.depth_convention);
     description += std::string(", depth = ") +

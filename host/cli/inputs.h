@@ -34,7 +34,10 @@ struct SceneInputs {
 
   void add_options(CLI::App& command);
   bool camera_space() const { return space == "camera"; }
-  // The scene file; with --space camera, seen from its camera (scene/camera_space.h).
+  // --gbuffer, else the scene's "gbuffer" entry (InputError when neither names a file).
+  std::filesystem::path gbuffer_path(const Scene& scene) const;
+  // The scene file; without a "camera", the G-buffer header's (gbuffer/file_camera.h); with
+  // --space camera, seen from its camera (scene/camera_space.h).
   Scene load_scene() const;
   // Reads the G-buffer in the chosen layout and, where it has depth but no position, rebuilds
   // positions from depth and scene.camera (so call it with the scene load_scene() returned).

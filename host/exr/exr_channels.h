@@ -162,6 +162,7 @@ class InputExr {
   PixelWindow display_window() const { return to_window(input_->header(0).displayWindow()); }
   ExrCompression compression() const { return from_imf(input_->header(0).compression()); }
   int parts() const { return input_->parts(); }
+  const Imf::Header& header(int part) const { return input_->header(part); }
 
   // In file order, part by part.
   std::vector<std::string> channel_names() const {

@@ -2,6 +2,7 @@
 #include <cstddef>
 #include <vector>
 
+#include "common/error.h"
 #include "raycast/camera.h"
 #include "raycast/geometry.h"
 #include "raycast/raycast.h"
@@ -48,6 +49,7 @@ void cast_pixel(const PerspectiveCamera& camera, const SceneGeometry& geometry,
 }  // namespace
 
 GBuffer generate_gbuffer(const Scene& scene) {
+  if (!scene.has_camera) throw InputError(scene.source, "no \"camera\": the G-buffer generator needs one");
   const PerspectiveCamera camera(scene.camera);
   const SceneGeometry geometry(scene.objects);
   GBuffer gbuffer = empty_gbuffer(scene.camera.width, scene.camera.height);

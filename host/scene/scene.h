@@ -50,6 +50,7 @@ struct Object {
 
 struct Scene {
   Camera camera;
+  bool has_camera = true;  // false when the file has no "camera" (shade may take it from the G-buffer)
   glm::dvec3 background{0.0};
   glm::dvec3 ambient{0.0};
   std::vector<Light> lights;

@@ -129,7 +129,8 @@ Scene parse_scene(std::string_view json_text, const std::filesystem::path& sourc
   top.expect_keys({"camera", "background", "ambient", "lights", "materials", "objects", "gbuffer"});
   Scene scene;
   scene.source = source;
-  scene.camera = read_camera(top.at("camera").object());
+  if (auto value = top.find("camera")) scene.camera = read_camera(value->object());
+  else scene.has_camera = false;
   if (auto value = top.find("background")) scene.background = read_non_negative_vec3(*value);
   if (auto value = top.find("ambient")) scene.ambient = read_non_negative_vec3(*value);
   if (auto value = top.find("lights"))
