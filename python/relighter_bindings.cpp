@@ -67,9 +67,9 @@ void bind_relighter(py::module_& module) {
            }),
            py::arg("scene"), py::arg("gbuffer"), py::arg("device") = py::none(), py::arg("precision") = "precise",
            py::arg("specialise") = true, py::arg("lanes") = 0,
-           "device: None (the first CPU device), an index or a name; precision: 'precise', 'fast', 'double' "
-           "or 'half-storage'; specialise=False for the general kernel; lanes: pixels per work-item (0: the "
-           "device's choice).")
+           "device: None (the default device, as phongcl shade picks it), an index or a name; precision: "
+           "'precise', 'fast', 'double' or 'half-storage'; specialise=False for the general kernel; lanes: "
+           "pixels per work-item (0: the device's choice).")
       .def("shade", &shade, py::arg("out") = py::none(),
            "Shades the frame: float32 (H, W, 4), RGBA, background alpha 0. With out=, writes into that "
            "array (C-contiguous float32 (H, W, 4)) and returns it. Releases the GIL while shading.")

@@ -20,7 +20,7 @@
 namespace phongcl {
 
 struct RelighterOptions {
-  std::string device;                        // as `phongcl shade --device`: index or name; empty: first CPU device
+  std::string device;                        // as `phongcl shade --device`: index or name; empty: its default
   Precision precision = Precision::precise;  // README "Precision variants"
   bool specialise = true;                    // false: the general kernel
   int lanes = 0;                             // pixels per work-item (1, 2, 4, 8, 16); 0: the device's choice
