@@ -173,7 +173,7 @@ class InputExr {
 
   // One decode pipeline, reused from chunk to chunk of a part.
   struct Decoder {
-    exr_decode_pipeline_t pipeline = EXR_DECODE_PIPELINE_INITIALIZER;
+    exr_decode_pipeline_t pipeline{};  // EXR_DECODE_PIPELINE_INITIALIZER is {0}, which clang warns about
     bool initialized = false;
     exr_const_context_t core;
     ~Decoder() {
