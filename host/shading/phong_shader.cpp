@@ -5,6 +5,7 @@
 #include <cstring>
 
 #include "cl/kernel_source.h"
+#include "shading/phong_launch.h"
 
 namespace phongcl {
 
@@ -16,54 +17,21 @@ double milliseconds(Clock::time_point start, Clock::time_point end) {
   return std::chrono::duration<double, std::milli>(end - start).count();
 }
 
-// OpenCL has no empty buffers: an unused table still gets one zeroed element.
-template <typename T>
-cl::Buffer uniform_buffer(const cl::Context& context, std::vector<T> values) {
-  if (values.empty()) values.resize(1);
-  return cl::Buffer(context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, values.size() * sizeof(T), values.data());
-}
-
-// phong.cl's phong_shade, argument for argument.
-using PhongKernel = cl::KernelFunctor<
-    /* G-buffer planes, material index */ cl::Buffer, cl::Buffer,
-    /* materials, point lights, directional lights */ cl::Buffer, cl::Buffer, cl::Buffer,
-    /* per-frame scalars */ FrameScalars,
-    /* output planes, term planes */ cl::Buffer, cl::Buffer>;
-
-// Pixels per tile: the whole frame unless a buffer would exceed the device's largest allocation or
-// the tile's buffers its memory.
-std::size_t tile_pixels(const DeviceInfo& device, const Recipe& recipe, std::size_t pixels, std::size_t limit) {
-  const std::size_t plane_bytes = recipe.precision == Precision::half_storage ? 2 : 4;
-  const std::size_t largest_per_pixel = std::max<std::size_t>(recipe.plane_count() * plane_bytes, 4 * sizeof(float));
-  const std::size_t total_per_pixel = recipe.plane_count() * plane_bytes + sizeof(cl_int) + 4 * sizeof(float);
-  std::size_t tile = std::min<std::size_t>(pixels, device.max_allocation / largest_per_pixel);
-  tile = std::min<std::size_t>(tile, device.global_memory / 2 / total_per_pixel);
-  if (limit > 0) tile = std::min(tile, limit);
-  return std::max<std::size_t>(tile, 1);
-}
-
-std::size_t round_up(std::size_t value, std::size_t multiple) { return (value + multiple - 1) / multiple * multiple; }
-
-// The kernel writes planes (R, G, B, A, then the terms); images are interleaved RGBA. On every core:
-// the copy is part of each frame's end-to-end time.
-void interleave(const float* planes, std::size_t stride, std::size_t count, int channels, float* rgba) {
-  const auto pixels = static_cast<std::ptrdiff_t>(count);
-#pragma omp parallel for schedule(static)
-  for (std::ptrdiff_t t = 0; t < pixels; ++t) {
-    for (int c = 0; c < channels; ++c) rgba[4 * t + c] = planes[c * stride + t];
-  }
-}
-
-// Copies the kernel's term planes into the three term images, alpha from the combined image.
+// Copies the kernel's term planes into the three term images, alpha from the combined image
+// (premultiplied like it, so the terms still sum to it).
 void copy_terms(cl::CommandQueue& queue, const cl::Buffer& terms, std::size_t stride, std::size_t first,
-                std::size_t count, ShadeResult& result) {
+                std::size_t count, const Plane& coverage, ShadeResult& result) {
   const auto* planes = static_cast<const float*>(
       queue.enqueueMapBuffer(terms, CL_TRUE, CL_MAP_READ, 0, PHONGCL_TERM_PLANES * stride * sizeof(cl_float)));
   Image* images[] = {&result.terms.ambient, &result.terms.diffuse, &result.terms.specular};
   for (int term = 0; term < 3; ++term) {
     float* out = images[term]->pixel(first);
     interleave(planes + 3 * term * stride, stride, count, 3, out);
-    for (std::size_t t = 0; t < count; ++t) out[4 * t + 3] = result.image.pixel(first + t)[3];
+    for (std::size_t t = 0; t < count; ++t) {
+      out[4 * t + 3] = result.image.pixel(first + t)[3];
+      if (!coverage.empty() && out[4 * t + 3] > 0.0f)
+        for (int c = 0; c < 3; ++c) out[4 * t + c] *= coverage[first + t];
+    }
   }
   queue.enqueueUnmapMemObject(terms, const_cast<float*>(planes));
 }
@@ -79,15 +47,10 @@ ShadeResult PhongShader::shade(const Scene& scene, const GBuffer& gbuffer, const
   const BuiltProgram built = cache_.build(compute_, load_kernel_source("phong.cl"), result.build_options);
   result.cache = built.outcome;
   result.timings.build_ms = built.build_milliseconds;
-  PhongKernel kernel(built.program, "phong_shade");
 
   const auto start = Clock::now();
   const cl::Context& context = compute_.context;
   cl::CommandQueue& queue = compute_.queue;
-  UniformData uniforms = pack_uniforms(scene);
-  const cl::Buffer materials = uniform_buffer(context, uniforms.materials);
-  const cl::Buffer point_lights = uniform_buffer(context, uniforms.point_lights);
-  const cl::Buffer directional_lights = uniform_buffer(context, uniforms.directional_lights);
 
   const std::size_t pixels = gbuffer.pixel_count();
   const bool half = recipe.precision == Precision::half_storage;
@@ -100,7 +63,7 @@ ShadeResult PhongShader::shade(const Scene& scene, const GBuffer& gbuffer, const
   const cl::Buffer& output = output_.at_least(context, PHONGCL_OUTPUT_PLANES * stride * sizeof(cl_float));
   const cl::Buffer& terms =
       terms_.at_least(context, (recipe.write_terms ? PHONGCL_TERM_PLANES * stride : 1) * sizeof(cl_float));
-  uniforms.scalars.plane_stride = static_cast<layout_uint>(stride);
+  const DeviceUniforms uniforms = upload_uniforms(context, pack_uniforms(scene), stride);
   std::vector<float> half_staging(half ? stride * recipe.plane_count() : 0);
   std::size_t flushed_to_zero = 0;
 
@@ -135,17 +98,17 @@ ShadeResult PhongShader::shade(const Scene& scene, const GBuffer& gbuffer, const
     queue.enqueueUnmapMemObject(planes, mapped_planes, nullptr, &unmap_planes);
     queue.enqueueUnmapMemObject(material_index, mapped_index, nullptr, &unmap_index);
     const cl::Event launched =
-        kernel(cl::EnqueueArgs(queue, cl::NDRange(padded / lanes)), planes, material_index, materials, point_lights,
-               directional_lights, uniforms.scalars, output, terms);
+        launch_phong(built.program, queue, {planes, material_index, output, terms}, uniforms, padded, recipe.lanes);
 
     cl::Event map_output;
     const auto* shaded = static_cast<const float*>(
         queue.enqueueMapBuffer(output, CL_TRUE, CL_MAP_READ, 0, PHONGCL_OUTPUT_PLANES * stride * sizeof(cl_float), nullptr, &map_output));
     const auto copy_start = Clock::now();
     interleave(shaded, stride, count, 4, result.image.pixel(first));
+    premultiply_by_coverage(gbuffer.coverage, first, count, result.image.pixel(first));
     const double copy_ms = milliseconds(copy_start, Clock::now());
     queue.enqueueUnmapMemObject(output, const_cast<float*>(shaded));
-    if (recipe.write_terms) copy_terms(queue, terms, stride, first, count, result);
+    if (recipe.write_terms) copy_terms(queue, terms, stride, first, count, gbuffer.coverage, result);
     queue.finish();
 
     result.timings.upload_ms += event_milliseconds(unmap_planes) + event_milliseconds(unmap_index);
