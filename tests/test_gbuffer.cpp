@@ -369,6 +369,19 @@ TEST(GBufferHostile, HugeDeclaredWindowFailsBeforeAllocating) {
       << message;
 }
 
+// Inputs the fuzzer found (tests/fuzz/corpus/gbuffer/regression_attribute_*): a few hundred bytes
+// whose header declares an attribute of gigabytes, which OpenEXR 3.1's C++ reader allocated before
+// finding the file too short (the fuzz check's 1 GB allocation limit caught it).
+TEST(GBufferHostile, AttributeLargerThanTheFileIsRefusedBeforeOpenExrAllocatesIt) {
+  for (const char* name : {"regression_attribute_size_past_the_file.exr", "regression_attribute_after_the_channel_list.exr"}) {
+    const fs::path file = fs::path(PHONGCL_SOURCE_DIR) / "tests/fuzz/corpus/gbuffer" / name;
+    const std::string message = read_error(file);
+    EXPECT_NE(message.find(file.string() + ": truncated or corrupt EXR header (attribute '"), std::string::npos) << message;
+    EXPECT_NE(message.find(" bytes, "), std::string::npos) << message;
+    EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+  }
+}
+
 TEST(GBufferHostile, MaxPixelsIsTheCallersLimit) {
   TempDir dir;
   const fs::path file = dir / "g.exr";

@@ -548,10 +548,11 @@ TEST(DepthReconstruction, BothConventionsMatchThePositionPass) {
   crop.data_window = window;
   crop.width = window.width();
   crop.height = window.height();
+  const int width = g.width;  // clang 14 cannot capture a structured binding
   const auto crop_plane = [&](const Plane& plane) {
     Plane out;
     for (int y = window.y_min; y <= window.y_max; ++y)
-      for (int x = window.x_min; x <= window.x_max; ++x) out.push_back(plane[static_cast<std::size_t>(y) * g.width + x]);
+      for (int x = window.x_min; x <= window.x_max; ++x) out.push_back(plane[static_cast<std::size_t>(y) * width + x]);
     return out;
   };
   for (int c = 0; c < 3; ++c) crop.position[c] = crop_plane(g.position[c]), crop.normal[c] = crop_plane(g.normal[c]);

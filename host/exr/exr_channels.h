@@ -139,6 +139,8 @@ class InputExr {
     if (!Imf::isOpenExrFile(file.c_str(), tiled, deep, multi_part))
       throw InputError(file, "not an OpenEXR file");
     if (deep) throw InputError(file, "deep EXR files are not supported");
+    check_attribute_sizes();
+    open_core();
     translate_errors(file, "truncated or corrupt EXR header",
                      [&] { input_ = std::make_unique<Imf::MultiPartInputFile>(file.c_str()); });
     for (int part = 0; part < input_->parts(); ++part) {
@@ -151,7 +153,6 @@ class InputExr {
         if (!prefix.empty() && std::string(it.name()).rfind(prefix, 0) != 0) add_channel(prefix + it.name(), part, it.name());
       }
     }
-    open_core();
     check_declared_size(max_pixels);
   }
   InputExr(const InputExr&) = delete;  // the core context keeps a pointer to core_error_
@@ -212,13 +213,63 @@ class InputExr {
 
   // One decode pipeline, reused from chunk to chunk of a part.
   struct Decoder {
-    exr_decode_pipeline_t pipeline = EXR_DECODE_PIPELINE_INITIALIZER;
+    exr_decode_pipeline_t pipeline{};  // EXR_DECODE_PIPELINE_INITIALIZER is {0}, which clang warns about
     bool initialized = false;
     exr_const_context_t core;
     ~Decoder() {
       if (initialized) exr_decoding_destroy(core, &pipeline);
     }
   };
+
+  // OpenEXR 3.1's C++ header reader allocates whatever size an attribute declares (gigabytes for a
+  // file of a few hundred bytes): every declared size is checked against the bytes that follow it
+  // first. Layout: magic and version (8 bytes), then per part attributes "name\0type\0" + int32
+  // size + value, each part ending with an empty name (multi-part files end with one more).
+  void check_attribute_sizes() const {
+    std::ifstream in(file_, std::ios::binary);
+    std::error_code ec;
+    const auto bytes = static_cast<std::int64_t>(std::filesystem::file_size(file_, ec));
+    char version[8];
+    if (ec || !in.read(version, sizeof version)) throw InputError(file_, "truncated or corrupt EXR header");
+    const bool multi_part = (static_cast<unsigned char>(version[5]) & 0x10) != 0;  // bit 12 of the version
+    const auto read_name = [&] {
+      std::string name;
+      for (char c; in.get(c) && c != '\0';)
+        if (name.size() < 256) name += c;
+      if (!in) throw InputError(file_, "truncated or corrupt EXR header");
+      return name;
+    };
+    for (bool part_empty = true;;) {
+      const std::string name = read_name();
+      if (name.empty()) {
+        if (!multi_part || part_empty) return;
+        part_empty = true;
+        continue;
+      }
+      part_empty = false;
+      const std::string type = read_name();
+      std::int32_t size = 0;
+      const auto check_size = [&](std::int64_t declared) {
+        const std::int64_t left = bytes - static_cast<std::int64_t>(in.tellg());
+        if (declared < 0 || declared > left)
+          throw InputError(file_, "truncated or corrupt EXR header (attribute '" + name + "' declares " +
+                                      std::to_string(declared) + " bytes, " + std::to_string(left) + " are left)");
+      };
+      if (!in.read(reinterpret_cast<char*>(&size), sizeof size)) throw InputError(file_, "truncated or corrupt EXR header");
+      check_size(size);
+      // Where the C++ reader goes by content rather than by size, follow it the same way.
+      if (type == "chlist") {  // channels up to an empty name, 16 bytes after each
+        while (!read_name().empty()) in.seekg(16, std::ios::cur);
+      } else if (type == "preview") {  // width, height, then 4 bytes per pixel
+        std::uint32_t extent[2] = {0, 0};
+        if (!in.read(reinterpret_cast<char*>(extent), sizeof extent)) throw InputError(file_, "truncated or corrupt EXR header");
+        check_size(std::int64_t{4} * extent[0] * extent[1]);
+        in.seekg(std::int64_t{4} * extent[0] * extent[1], std::ios::cur);
+      } else {
+        in.seekg(size, std::ios::cur);
+      }
+    }
+  }
 
   void open_core() {
     exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;

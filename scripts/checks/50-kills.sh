@@ -27,7 +27,7 @@ state_b=$(state)
 current=B survived=0 replaced=0
 for i in $(seq 1 "$kills"); do
   next=$([ "$current" = A ] && echo B || echo A)
-  delay_ms=$(( run_ms * i / kills ))  # from just after the start to the end of a whole run
+  delay_ms=$(( run_ms * 5 * i / (4 * kills) ))  # up to 1.25 runs: some land in the writes, some after
   "$phongcl" $(shade "$next") > /dev/null 2>&1 &
   shader=$!
   sleep "$(printf '%d.%03d' $((delay_ms / 1000)) $((delay_ms % 1000)))"

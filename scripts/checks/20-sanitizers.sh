@@ -1,0 +1,24 @@
+#!/usr/bin/env bash
+# The whole test suite built with clang's AddressSanitizer and UndefinedBehaviorSanitizer, in its
+# own build directory. Leak detection is off here: PoCL and LLVM keep allocations alive until exit
+# (compiled programs, LLVM's static registries) that LeakSanitizer reports from their own frames;
+# leaks in phongcl's readers are caught by 30-fuzz.sh, whose harnesses load no OpenCL and run with
+# leak detection on.
+set -euo pipefail
+cd "$(dirname "$0")/../.."
+source scripts/checks/lib/sanitizer_build.sh
+start=$SECONDS
+configure_sanitizer_build
+cmake --build "$sanitizer_dir" -j2 > "$sanitizer_dir/build.log" 2>&1 || { tail -40 "$sanitizer_dir/build.log"; exit 1; }
+built=$((SECONDS - start))
+export ASAN_OPTIONS=detect_leaks=0:abort_on_error=1:strict_string_checks=1
+export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+export POCL_CACHE_DIR="$PWD/$sanitizer_dir/pocl-cache"
+log="$sanitizer_dir/ctest.log"
+if ! ctest --test-dir "$sanitizer_dir" -j2 --output-on-failure > "$log" 2>&1; then
+  grep -E "ERROR: AddressSanitizer|runtime error|Failed|\*\*\*" "$log" | head -40
+  echo "sanitizers: FAILED (full log: $log)"
+  exit 1
+fi
+echo "sanitizers: $(grep -Eo '[0-9]+ tests passed|100% tests passed, 0 tests failed out of [0-9]+' "$log" | tail -1)" \
+     "under ASan+UBSan (build ${built} s, tests $((SECONDS - start - built)) s)"
