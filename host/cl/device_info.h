@@ -8,6 +8,8 @@ struct DeviceInfo {
   int index = 0;  // position in list_devices(), what --device N selects
   std::string platform, platform_version, name, vendor, driver_version, device_version;
   bool is_cpu = false;
+  bool is_gpu = false;
+  bool is_simulator = false;  // Oclgrind and other simulators or emulators: correct but very slow
   bool has_fp64 = false;
   unsigned compute_units = 0;
   unsigned long long global_memory = 0, max_allocation = 0, max_constant_buffer = 0;

@@ -1,6 +1,8 @@
 #pragma once
 // The scene and G-buffer options that shade, reference and bench share: --scene/--gbuffer, and how
-// to read a renderer's G-buffer (--layout, --view-layer, --channel, --space, --depth-convention).
+// to read a renderer's G-buffer (--layout, --view-layer, --channel, --space, --depth-convention,
+// --kd-from, --ks-from).
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -8,6 +10,7 @@
 #include <CLI/CLI.hpp>
 
 #include "gbuffer/gbuffer.h"
+#include "gbuffer/layouts.h"
 #include "scene/scene.h"
 
 namespace phongcl::cli {
@@ -15,6 +18,7 @@ namespace phongcl::cli {
 struct LoadedGBuffer {
   GBuffer gbuffer;
   std::string layout;  // what was read, for the summary: "blender (view layer 'ViewLayer': ...)"
+  std::vector<std::string> warnings;
 };
 
 struct SceneInputs {
@@ -24,7 +28,9 @@ struct SceneInputs {
   std::string view_layer;
   std::vector<std::string> channels;  // "position=Foo.X,Foo.Y,Foo.Z", ...
   std::string space = "world";
-  std::string depth_convention = "distance";
+  std::string depth_convention = "auto";
+  std::string kd_from = "auto", ks_from = "auto";
+  std::uint64_t max_pixels = ReadOptions{}.max_pixels;
 
   void add_options(CLI::App& command);
   bool camera_space() const { return space == "camera"; }

@@ -95,6 +95,7 @@ void run_shade(const ShadeArguments& args) {
             << mpixels_per_second(gbuffer.pixel_count(), t.kernel_ms) << ")\n";
   if (result.tiles > 1) std::cout << "  tiles      " << result.tiles << " (frame larger than one device allocation)\n";
   print_unshaded(result.counts);
+  for (const auto& warning : loaded.warnings) std::cout << "  warning    " << warning << "\n";
   for (const auto& warning : result.warnings) std::cout << "  warning    " << warning << "\n";
   if (!cache.disk_problem().empty()) std::cout << "  note       " << cache.disk_problem() << "\n";
   if (args.explain) {
@@ -113,7 +114,7 @@ void add_shade_command(CLI::App& app) {
   args->inputs.add_options(*command);
   args->outputs.add_options(*command);
   args->outputs.add_aov_option(*command);
-  command->add_option("--device", args->device, "OpenCL device: index or name (default: first CPU device)");
+  command->add_option("--device", args->device, "OpenCL device: index or name (default: a GPU, else the CPU with most compute units; see phongcl devices)");
   command->add_option("--precision", args->precision, "double, precise (default), fast or half-storage")
       ->check(CLI::IsMember({"double", "precise", "fast", "half-storage"}));
   command->add_flag("--no-specialise", args->no_specialise, "Use the general kernel with everything compiled in");

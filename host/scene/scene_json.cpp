@@ -102,9 +102,19 @@ std::string json_problem(const nlohmann::json::exception& error) {
   return "invalid JSON: " + (end_of_tag == std::string::npos ? what : what.substr(end_of_tag + 2));
 }
 
+// Deeper documents are refused while parsing: the object reader recurses into transform children
+// and every value carries its path, so an unbounded depth would exhaust the stack (and memory).
+// 256 levels allow 127 nested transforms (each is an object inside a "children" array).
+constexpr int kMaxJsonDepth = 256;
+
 nlohmann::json parse_document(std::string_view json_text, const std::filesystem::path& source) {
+  const auto limit_depth = [&](int depth, nlohmann::json::parse_event_t, nlohmann::json&) {
+    if (depth > kMaxJsonDepth)
+      throw InputError(source, "invalid JSON: nested deeper than " + std::to_string(kMaxJsonDepth) + " levels");
+    return true;
+  };
   try {
-    return nlohmann::json::parse(json_text);
+    return nlohmann::json::parse(json_text, limit_depth);
   } catch (const nlohmann::json::exception& error) {
     throw InputError(source, json_problem(error));
   }
