@@ -412,6 +412,7 @@ TEST_F(ShadeSequence, KilledMidSequenceAndRerunShadesEachFrameOnce) {
   for (const auto& [frame, time] : survivors)
     EXPECT_EQ(fs::last_write_time(dir_ / name("lit", frame, ".exr")), time) << "frame " << frame << " shaded twice";
   for (int frame = 1; frame <= kFrames; ++frame) expect_matches_single_frame(frame);
+  EXPECT_TRUE(temporaries().empty()) << "the kill left a temporary: " << temporaries().front();
 }
 
 TEST_F(ShadeSequence, InterruptFinishesTheFramesInFlight) {
