@@ -14,7 +14,10 @@ namespace phongcl {
 
 // Per-scene data every work-item reads.
 struct UniformData {
-  std::vector<PointLight> point_lights;
+  std::vector<PointLight> point_lights;     // point and spot lights, in scene order
+  std::vector<LightShape> point_shapes;     // parallel to point_lights
+  std::vector<LightBounds> point_bounds;    // parallel to point_lights: what each can reach, for culling
+  std::vector<LinkWord> links;              // recipe.link_words per light: point lights, then directional
   std::vector<DirectionalLight> directional_lights;
   std::vector<MaterialRecord> materials;
   std::array<float, 3> ambient{}, background{};
@@ -22,7 +25,7 @@ struct UniformData {
   // limits cannot overflow early; the kernel multiplies by a * b = 2^e at the end.
   float radiance_scale_a = 1.0f, radiance_scale_b = 1.0f;
 };
-UniformData pack_uniforms(const Scene& scene);
+UniformData pack_uniforms(const Scene& scene, const Recipe& recipe);
 
 // How many pixels fell in each class (the summary reports the non-finite ones).
 struct PixelCounts {

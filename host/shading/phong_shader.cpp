@@ -27,7 +27,9 @@ using PhongKernel = cl::KernelFunctor<
     /* G-buffer */ cl::Buffer, cl_uint, cl::Buffer,
     /* scene */ cl::Buffer, cl::Buffer, cl_int, cl::Buffer, cl_int, cl_float, cl_float, cl_float, cl_float, cl_float,
     cl_float, cl_float, cl_float,
-    /* output */ cl::Buffer, cl::Buffer>;
+    /* output */ cl::Buffer, cl::Buffer,
+    /* light shapes, linking */ cl::Buffer, cl::Buffer,
+    /* tiled culling */ cl::Buffer, cl::Buffer, cl::Buffer, TileGrid>;
 
 // Pixels per tile: the whole frame unless a buffer would exceed the device's largest allocation or
 // the tile's buffers its memory.
@@ -85,10 +87,19 @@ ShadeResult PhongShader::shade(const Scene& scene, const GBuffer& gbuffer, const
   const auto start = Clock::now();
   const cl::Context& context = compute_.context;
   cl::CommandQueue& queue = compute_.queue;
-  const UniformData uniforms = pack_uniforms(scene);
+  const UniformData uniforms = pack_uniforms(scene, recipe);
   const cl::Buffer materials = uniform_buffer(context, uniforms.materials);
   const cl::Buffer point_lights = uniform_buffer(context, uniforms.point_lights);
   const cl::Buffer directional_lights = uniform_buffer(context, uniforms.directional_lights);
+  const cl::Buffer point_shapes = uniform_buffer(context, uniforms.point_shapes);
+  const cl::Buffer links = uniform_buffer(context, uniforms.links);
+  const cl::Buffer point_bounds = uniform_buffer(context, uniforms.point_bounds);
+  const cl::Buffer no_tiles = uniform_buffer(context, std::vector<cl_uint>{});
+  TileLayout tiles = tile_layout(gbuffer.width, gbuffer.height, recipe.tile_size);
+  if (recipe.tiled && (!culler_ || culler_options_ != result.build_options)) {
+    culler_ = std::make_unique<TileCuller>(compute_, cache_, result.build_options);
+    culler_options_ = result.build_options;
+  }
 
   const std::size_t pixels = gbuffer.pixel_count();
   const bool half = recipe.precision == Precision::half_storage;
@@ -134,12 +145,19 @@ ShadeResult PhongShader::shade(const Scene& scene, const GBuffer& gbuffer, const
     cl::Event unmap_planes, unmap_index;
     queue.enqueueUnmapMemObject(planes, mapped_planes, nullptr, &unmap_planes);
     queue.enqueueUnmapMemObject(material_index, mapped_index, nullptr, &unmap_index);
+    tiles.grid.first_pixel = static_cast<cl_uint>(first);
+    const CullingStats culled = recipe.tiled ? culler_->cull(planes, stride, material_index, padded, tiles, point_bounds,
+                                                             uniforms.point_lights.size())
+                                             : CullingStats{};
+    result.culling += culled;
     const cl::Event launched =
         kernel(cl::EnqueueArgs(queue, cl::NDRange(padded / lanes)), planes, static_cast<cl_uint>(stride),
                material_index, materials, point_lights, recipe.point_lights, directional_lights,
                recipe.directional_lights, uniforms.ambient[0], uniforms.ambient[1], uniforms.ambient[2],
                uniforms.radiance_scale_a, uniforms.radiance_scale_b, uniforms.background[0], uniforms.background[1],
-               uniforms.background[2], output, terms);
+               uniforms.background[2], output, terms, point_shapes, links,
+               recipe.tiled ? culler_->offsets() : no_tiles, recipe.tiled ? culler_->counts() : no_tiles,
+               recipe.tiled ? culler_->lights() : no_tiles, tiles.grid);
 
     cl::Event map_output;
     const auto* shaded = static_cast<const float*>(
@@ -152,7 +170,7 @@ ShadeResult PhongShader::shade(const Scene& scene, const GBuffer& gbuffer, const
     queue.finish();
 
     result.timings.upload_ms += event_milliseconds(unmap_planes) + event_milliseconds(unmap_index);
-    result.timings.kernel_ms += event_milliseconds(launched);
+    result.timings.kernel_ms += event_milliseconds(launched) + culled.culling_ms;
     result.timings.download_ms += event_milliseconds(map_output) + copy_ms;
   }
   result.timings.total_ms = milliseconds(start, Clock::now());
