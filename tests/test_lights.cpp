@@ -1,6 +1,7 @@
 // Falloff, range windows, spot cones and light linking: the kernel against the double reference in
 // every precision variant but half-storage, each specialised combination against the general
 // kernel, and what reaches the kernel's build options.
+#include "peers/many_lights.h"
 #include "shading_support.h"
 #include "shaped_lights.h"
 
@@ -163,6 +164,74 @@ TEST(Lights, OverflowingFalloffGivesInfinityNotNaN) {
     for (std::size_t i = 0; i < gbuffer.pixel_count(); ++i)
       for (int c = 0; c < 3; ++c) ASSERT_FALSE(std::isnan(result.image.pixel(i)[c])) << "pixel " << i;
   }
+}
+
+// The default scene at 203 x 97 (a width no tile size or lane count divides) with 300 ranged lights:
+// tiled culling must give the unculled image to float rounding (a culled light adds exactly 0;
+// only the grouping of the compensated sum differs) and match the reference, for lanes 1 and 16,
+// tiles of 16 and of 5 (work-items reaching into the next tile), and launches split into pieces.
+TEST(Lights, TiledCullingEqualsUnculledAndReference) {
+  PHONGCL_REQUIRE_DEVICE(shader);
+  Scene scene = load_scene(std::filesystem::path(PHONGCL_SOURCE_DIR) / "scenes/default/scene.json");
+  scene.camera.width = 203;
+  scene.camera.height = 97;
+  const GBuffer gbuffer = generate_gbuffer(scene);
+  scene = with_many_lights(scene, gbuffer, 300, 12.0);
+  scene.lights.push_back({LightType::directional, {}, {-0.3, -1.0, -0.5}, glm::dvec3(0.2)});
+  const Image reference = reference_image(scene, gbuffer);
+  const std::vector<bool> mask = testing::shaded_mask(gbuffer);
+  for (int lanes : {1, 16}) {
+    ShadeOptions unculled;
+    unculled.lanes = lanes;
+    unculled.culling = Culling::none;
+    const ShadeResult all = shader.shade(scene, gbuffer, unculled);
+    EXPECT_EQ(all.build_options.find("TILED_CULLING"), std::string::npos);
+    for (int tile : {16, 5}) {
+      for (std::size_t pieces : {std::size_t{0}, std::size_t{4001}}) {
+        ShadeOptions tiled = unculled;
+        tiled.culling = Culling::automatic;  // 300 lights with a range: automatic chooses tiles
+        tiled.tile_size = tile;
+        tiled.max_tile_pixels = pieces;
+        const ShadeResult culled = shader.shade(scene, gbuffer, tiled);
+        const std::string where = std::to_string(lanes) + " lanes, tile " + std::to_string(tile) +
+                                  (pieces ? ", in pieces" : "");
+        ASSERT_NE(culled.build_options.find("-DTILED_CULLING"), std::string::npos) << culled.build_options;
+        const ErrorStats same = compare_images(culled.image, all.image, kAbsoluteFloor, mask);
+        EXPECT_LE(same.max_rel, 1e-5) << where << ": " << describe_worst(same);
+        EXPECT_EQ(same.nonfinite_mismatches, 0u) << where;
+        const ErrorStats exact = compare_images(culled.image, reference, kAbsoluteFloor, mask);
+        EXPECT_LE(exact.max_rel, kRelativeBound) << where << ": " << describe_worst(exact);
+        // The culling must have culled: a tile keeps far fewer than all 300 lights.
+        EXPECT_GT(culled.culling.shaded_tiles, 0u) << where;
+        EXPECT_LT(culled.culling.mean_lights_per_tile(), 150.0) << where;
+        EXPECT_LT(culled.culling.kept_pairs, 0.5 * 300.0 * static_cast<double>(culled.counts.shaded)) << where;
+      }
+    }
+  }
+}
+
+// Spots and linking inside tiles; lights without a range are in every tile's list.
+TEST(Lights, TiledCullingKeepsUnrangedLightsEverywhere) {
+  PHONGCL_REQUIRE_DEVICE(shader);
+  Scene scene = load_scene(std::filesystem::path(PHONGCL_SOURCE_DIR) / "scenes/default/scene.json");
+  scene.camera.width = 64;
+  scene.camera.height = 48;
+  const GBuffer gbuffer = generate_gbuffer(scene);
+  scene = with_many_lights(scene, gbuffer, 80, 10.0);
+  scene.lights[3].range = 0.0;  // reaches everything
+  scene.lights[4].materials = std::vector<int>{1, 3};
+  ShadeOptions tiled;
+  tiled.culling = Culling::tiled;
+  const ShadeResult culled = shader.shade(scene, gbuffer, tiled);
+  EXPECT_GE(culled.culling.mean_lights_per_tile(), 1.0);
+  ShadeOptions unculled;
+  unculled.culling = Culling::none;
+  const ErrorStats same = compare_images(culled.image, shader.shade(scene, gbuffer, unculled).image, kAbsoluteFloor,
+                                         testing::shaded_mask(gbuffer));
+  EXPECT_LE(same.max_rel, 1e-5) << describe_worst(same);
+  const ErrorStats exact = compare_images(culled.image, reference_image(scene, gbuffer), kAbsoluteFloor,
+                                          testing::shaded_mask(gbuffer));
+  EXPECT_LE(exact.max_rel, kRelativeBound) << describe_worst(exact);
 }
 
 }  // namespace
