@@ -16,8 +16,8 @@
  *   WRITE_TERMS                        also write ambient, diffuse, specular separately (AOVs)
  *   FALLOFF, FALLOFF_MIXED, RANGE_WINDOW, SPOT_LIGHTS, LIGHT_LINKING   light shapes (light_shape.h)
  *   TILED_CULLING                      point and spot lights from the work-item's tile list (cull.cl)
- * Every buffer is planar with `plane_stride` values per plane, a multiple of PHONGCL_LANES (the host
- * pads each tile with background pixels).
+ * Every buffer is planar with frame.plane_stride values per plane, a multiple of PHONGCL_LANES (the
+ * host pads each tile with background pixels).
  */
 #include "layout.h"
 #include "light_shape.h"
@@ -39,12 +39,12 @@
 #elif defined(POINT_COUNT)
 #define POINT_LOOP_COUNT POINT_COUNT
 #else
-#define POINT_LOOP_COUNT point_count
+#define POINT_LOOP_COUNT frame.point_count
 #endif
 #ifdef DIRECTIONAL_COUNT
 #define DIRECTIONAL_LOOP_COUNT DIRECTIONAL_COUNT
 #else
-#define DIRECTIONAL_LOOP_COUNT directional_count
+#define DIRECTIONAL_LOOP_COUNT frame.directional_count
 #endif
 #ifndef POINT_LIGHT_INDEX
 #define POINT_LIGHT_INDEX(k) (k)
@@ -54,9 +54,6 @@
 typedef struct {
   vec3 diffuse, specular;
 } LightSums;
-
-/* Lights per block of the compensated sum (see the light loops). */
-#define LIGHT_BLOCK 16
 
 /* sum += value, with the rounding error carried in compensation (Kahan). */
 inline void kahan_add(realv* sum, realv* compensation, realv value) {
@@ -166,23 +163,24 @@ inline void store3(vec3 value, float a, float b, size_t group, __global float* r
 
 __kernel void phong_shade(
     /* G-buffer tile: planes (see layout.h), positions relative to the eye */
-    __global const STORAGE* restrict planes, uint plane_stride,
+    __global const STORAGE* restrict planes,
     __global const int* restrict material_index,
     /* scene; colours scaled by 2^-radiance_exponent, undone by the two scale factors */
     UNIFORM_SPACE const MaterialRecord* restrict materials,
-    UNIFORM_SPACE const PointLight* restrict point_lights, int point_count,
-    UNIFORM_SPACE const DirectionalLight* restrict directional_lights, int directional_count,
-    float ambient_r, float ambient_g, float ambient_b,
-    float radiance_scale_a, float radiance_scale_b,
-    float background_r, float background_g, float background_b,
-    /* output planes: R G B A; with WRITE_TERMS also ambient, diffuse, specular RGB (9 planes) */
+    UNIFORM_SPACE const PointLight* restrict point_lights,
+    UNIFORM_SPACE const DirectionalLight* restrict directional_lights,
+    /* ambient, background, radiance scales, light counts, plane stride (layout.h) */
+    const FrameScalars frame,
+    /* output planes (PHONGCL_OUTPUT_PLANES): R G B A; with WRITE_TERMS also the terms (PHONGCL_TERM_PLANES) */
     __global float* restrict out_rgba, __global float* restrict out_terms,
     /* light shapes and linking masks (light_shape.h), read only when compiled in */
     UNIFORM_SPACE const LightShape* restrict point_shapes, UNIFORM_SPACE const LinkWord* restrict links,
     /* tiled culling (cull.cl): tile t's point lights are tile_lights[tile_offsets[t] ...] */
     __global const uint* restrict tile_offsets, __global const uint* restrict tile_counts,
-    __global const uint* restrict tile_lights, TileGrid grid) {
+    __global const uint* restrict tile_lights, const TileGrid grid) {
   const size_t group = get_global_id(0);
+  const uint plane_stride = frame.plane_stride;
+  const float radiance_scale_a = frame.radiance_scale_a, radiance_scale_b = frame.radiance_scale_b;
 #ifdef TILED_CULLING
   const uint tile = tile_of_pixel(grid, grid.first_pixel + (uint)(group * PHONGCL_LANES));
   const uint tile_first = tile_offsets[tile];
@@ -207,16 +205,16 @@ __kernel void phong_shade(
   const vec3 v = unit_or_zero(make_vec3(-p.x, -p.y, -p.z));
 
   const realv zero = 0;
-  /* Lights are summed in blocks of LIGHT_BLOCK in plain float, and the block sums compensated
+  /* Lights are summed in blocks of PHONGCL_LIGHT_BLOCK in plain float, and the block sums compensated
    * (Kahan): the error stays a few ulp plus one block's however many lights there are (10,000 lights,
    * one of 1 then 9,999 of 3e-8: plain float 3.0e-4 relative, blocked Kahan 4.5e-7). Unrolled
    * counts up to 16 are one block. -cl-fast-relaxed-math may fold the compensation away (fast). */
   const LightSums no_light = {{zero, zero, zero}, {zero, zero, zero}};
   LightSums sums = no_light, compensation = no_light;
 #ifdef POINT_LIGHTS
-  for (int first = 0; first < POINT_LOOP_COUNT; first += LIGHT_BLOCK) {
+  for (int first = 0; first < POINT_LOOP_COUNT; first += PHONGCL_LIGHT_BLOCK) {
     LightSums block = no_light;
-    for (int k = first; k < min(first + LIGHT_BLOCK, POINT_LOOP_COUNT); ++k) {
+    for (int k = first; k < min(first + PHONGCL_LIGHT_BLOCK, POINT_LOOP_COUNT); ++k) {
       const int light_index = POINT_LIGHT_INDEX(k);
       UNIFORM_SPACE const PointLight* light = &point_lights[light_index];
       const vec3 position = make_vec3(light->position[0], light->position[1], light->position[2]);
@@ -242,12 +240,12 @@ __kernel void phong_shade(
   }
 #endif
 #ifdef DIRECTIONAL_LIGHTS
-  for (int first = 0; first < DIRECTIONAL_LOOP_COUNT; first += LIGHT_BLOCK) {
+  for (int first = 0; first < DIRECTIONAL_LOOP_COUNT; first += PHONGCL_LIGHT_BLOCK) {
     LightSums block = no_light;
-    for (int k = first; k < min(first + LIGHT_BLOCK, DIRECTIONAL_LOOP_COUNT); ++k) {
+    for (int k = first; k < min(first + PHONGCL_LIGHT_BLOCK, DIRECTIONAL_LOOP_COUNT); ++k) {
       UNIFORM_SPACE const DirectionalLight* light = &directional_lights[k];
       const vec3 l = make_vec3(light->to_light[0], light->to_light[1], light->to_light[2]);
-      add_light(&block, n, v, l, 1, light->color, shininess, LINK_GATE(point_count + k));
+      add_light(&block, n, v, l, 1, light->color, shininess, LINK_GATE(frame.point_count + k));
     }
     add_block(&sums, &compensation, &block);
   }
@@ -277,7 +275,7 @@ __kernel void phong_shade(
 #else
   const vec3 ka = MATERIAL_FIELD3(MATERIAL_KA);
 #endif
-  const vec3 ambient = make_vec3(ka.x * ambient_r, ka.y * ambient_g, ka.z * ambient_b);
+  const vec3 ambient = make_vec3(ka.x * frame.ambient[0], ka.y * frame.ambient[1], ka.z * frame.ambient[2]);
 #else
   const vec3 ambient = make_vec3(zero, zero, zero);
 #endif
@@ -285,9 +283,9 @@ __kernel void phong_shade(
   const floatv shaded_r = unscale(ambient.x + diffuse.x + specular.x, radiance_scale_a, radiance_scale_b);
   const floatv shaded_g = unscale(ambient.y + diffuse.y + specular.y, radiance_scale_a, radiance_scale_b);
   const floatv shaded_b = unscale(ambient.z + diffuse.z + specular.z, radiance_scale_a, radiance_scale_b);
-  VSTORE_FLOAT(background ? (floatv)background_r : shaded_r, group, out_rgba);
-  VSTORE_FLOAT(background ? (floatv)background_g : shaded_g, group, out_rgba + plane_stride);
-  VSTORE_FLOAT(background ? (floatv)background_b : shaded_b, group, out_rgba + 2 * (size_t)plane_stride);
+  VSTORE_FLOAT(background ? (floatv)frame.background[0] : shaded_r, group, out_rgba);
+  VSTORE_FLOAT(background ? (floatv)frame.background[1] : shaded_g, group, out_rgba + plane_stride);
+  VSTORE_FLOAT(background ? (floatv)frame.background[2] : shaded_b, group, out_rgba + 2 * (size_t)plane_stride);
   VSTORE_FLOAT(background ? (floatv)0.0f : (floatv)1.0f, group, out_rgba + 3 * (size_t)plane_stride);
 #ifdef WRITE_TERMS
   /* Background lanes: the host ignores terms where alpha is 0. */

@@ -59,7 +59,8 @@ void run_shade(const ShadeArguments& args) {
             << " pixels: " << with_commas(result.counts.shaded) << " shaded, "
             << with_commas(gbuffer.pixel_count() - result.counts.shaded) << " background\n"
             << "  lights     " << result.recipe.point_lights - result.recipe.spot_lights << " point + "
-            << result.recipe.spot_lights << " spot + " << result.recipe.directional_lights << " directional\n"
+            << (result.recipe.spot_lights > 0 ? std::to_string(result.recipe.spot_lights) + " spot + " : "")
+            << result.recipe.directional_lights << " directional\n"
             << "  device     " << describe(shader.compute().device.info) << "\n"
             << "  kernel     " << result.recipe.summary() << "\n"
             << "  build      " << to_string(result.cache) << ", " << milliseconds(t.build_ms)

@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "common/error.h"
-#include "gbuffer/exr_channels.h"
+#include "exr/exr_channels.h"
 #include "gbuffer/gbuffer.h"
 #include "gbuffer/layout_presets.h"
 #include "gbuffer/layouts.h"

@@ -5,7 +5,9 @@
 #include <string>
 #include <vector>
 
-#include "gbuffer/gbuffer.h"  // PixelWindow, ExrPixelType
+// Relative: this header is installed with the public API (include/phongcl/), beside its rooms.
+#include "../exr/pixel_window.h"
+#include "../gbuffer/gbuffer.h"  // image_like
 
 namespace phongcl {
 

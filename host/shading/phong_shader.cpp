@@ -23,11 +23,12 @@ cl::Buffer uniform_buffer(const cl::Context& context, std::vector<T> values) {
   return cl::Buffer(context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, values.size() * sizeof(T), values.data());
 }
 
+// phong.cl's phong_shade, argument for argument.
 using PhongKernel = cl::KernelFunctor<
-    /* G-buffer */ cl::Buffer, cl_uint, cl::Buffer,
-    /* scene */ cl::Buffer, cl::Buffer, cl_int, cl::Buffer, cl_int, cl_float, cl_float, cl_float, cl_float, cl_float,
-    cl_float, cl_float, cl_float,
-    /* output */ cl::Buffer, cl::Buffer,
+    /* G-buffer planes, material index */ cl::Buffer, cl::Buffer,
+    /* materials, point lights, directional lights */ cl::Buffer, cl::Buffer, cl::Buffer,
+    /* per-frame scalars */ FrameScalars,
+    /* output planes, term planes */ cl::Buffer, cl::Buffer,
     /* light shapes, linking */ cl::Buffer, cl::Buffer,
     /* tiled culling */ cl::Buffer, cl::Buffer, cl::Buffer, TileGrid>;
 
@@ -55,13 +56,11 @@ void interleave(const float* planes, std::size_t stride, std::size_t count, int 
   }
 }
 
-constexpr int kTermPlanes = 9;  // ambient, diffuse, specular RGB
-
 // Copies the kernel's term planes into the three term images, alpha from the combined image.
 void copy_terms(cl::CommandQueue& queue, const cl::Buffer& terms, std::size_t stride, std::size_t first,
                 std::size_t count, ShadeResult& result) {
   const auto* planes = static_cast<const float*>(
-      queue.enqueueMapBuffer(terms, CL_TRUE, CL_MAP_READ, 0, kTermPlanes * stride * sizeof(cl_float)));
+      queue.enqueueMapBuffer(terms, CL_TRUE, CL_MAP_READ, 0, PHONGCL_TERM_PLANES * stride * sizeof(cl_float)));
   Image* images[] = {&result.terms.ambient, &result.terms.diffuse, &result.terms.specular};
   for (int term = 0; term < 3; ++term) {
     float* out = images[term]->pixel(first);
@@ -87,7 +86,7 @@ ShadeResult PhongShader::shade(const Scene& scene, const GBuffer& gbuffer, const
   const auto start = Clock::now();
   const cl::Context& context = compute_.context;
   cl::CommandQueue& queue = compute_.queue;
-  const UniformData uniforms = pack_uniforms(scene, recipe);
+  UniformData uniforms = pack_uniforms(scene, recipe);
   const cl::Buffer materials = uniform_buffer(context, uniforms.materials);
   const cl::Buffer point_lights = uniform_buffer(context, uniforms.point_lights);
   const cl::Buffer directional_lights = uniform_buffer(context, uniforms.directional_lights);
@@ -109,9 +108,10 @@ ShadeResult PhongShader::shade(const Scene& scene, const GBuffer& gbuffer, const
   const std::size_t plane_bytes = stride * recipe.plane_count() * (half ? sizeof(cl_half) : sizeof(cl_float));
   const cl::Buffer& planes = planes_.at_least(context, plane_bytes);
   const cl::Buffer& material_index = material_index_.at_least(context, stride * sizeof(cl_int));
-  const cl::Buffer& output = output_.at_least(context, 4 * stride * sizeof(cl_float));
+  const cl::Buffer& output = output_.at_least(context, PHONGCL_OUTPUT_PLANES * stride * sizeof(cl_float));
   const cl::Buffer& terms =
-      terms_.at_least(context, (recipe.write_terms ? kTermPlanes * stride : 1) * sizeof(cl_float));
+      terms_.at_least(context, (recipe.write_terms ? PHONGCL_TERM_PLANES * stride : 1) * sizeof(cl_float));
+  uniforms.scalars.plane_stride = static_cast<layout_uint>(stride);
   std::vector<float> half_staging(half ? stride * recipe.plane_count() : 0);
   std::size_t flushed_to_zero = 0;
 
@@ -151,17 +151,14 @@ ShadeResult PhongShader::shade(const Scene& scene, const GBuffer& gbuffer, const
                                              : CullingStats{};
     result.culling += culled;
     const cl::Event launched =
-        kernel(cl::EnqueueArgs(queue, cl::NDRange(padded / lanes)), planes, static_cast<cl_uint>(stride),
-               material_index, materials, point_lights, recipe.point_lights, directional_lights,
-               recipe.directional_lights, uniforms.ambient[0], uniforms.ambient[1], uniforms.ambient[2],
-               uniforms.radiance_scale_a, uniforms.radiance_scale_b, uniforms.background[0], uniforms.background[1],
-               uniforms.background[2], output, terms, point_shapes, links,
+        kernel(cl::EnqueueArgs(queue, cl::NDRange(padded / lanes)), planes, material_index, materials, point_lights,
+               directional_lights, uniforms.scalars, output, terms, point_shapes, links,
                recipe.tiled ? culler_->offsets() : no_tiles, recipe.tiled ? culler_->counts() : no_tiles,
                recipe.tiled ? culler_->lights() : no_tiles, tiles.grid);
 
     cl::Event map_output;
     const auto* shaded = static_cast<const float*>(
-        queue.enqueueMapBuffer(output, CL_TRUE, CL_MAP_READ, 0, 4 * stride * sizeof(cl_float), nullptr, &map_output));
+        queue.enqueueMapBuffer(output, CL_TRUE, CL_MAP_READ, 0, PHONGCL_OUTPUT_PLANES * stride * sizeof(cl_float), nullptr, &map_output));
     const auto copy_start = Clock::now();
     interleave(shaded, stride, count, 4, result.image.pixel(first));
     const double copy_ms = milliseconds(copy_start, Clock::now());

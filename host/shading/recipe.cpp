@@ -156,10 +156,13 @@ void decide_memory(Recipe& recipe, const Scene& scene, const DeviceInfo& device)
 // PoCL does not vectorise this kernel across work-items by itself, so on a CPU each work-item
 // shades one SIMD register's worth of pixels (16 floats with AVX-512: 1.6x faster than 8 here);
 // GPUs want one pixel per work-item. OpenCL vectors come in powers of two up to 16.
-int lanes_for(const DeviceInfo& device) {
+// A double is two floats wide: one register holds half as many (and double16 with every light
+// shape overflowed PoCL's work-item stacks: it keeps each work-item's spilled vectors apart).
+int lanes_for(const DeviceInfo& device, Precision precision) {
   if (!device.is_cpu) return 1;
+  const unsigned width = precision == Precision::double_precision ? device.preferred_float_width / 2 : device.preferred_float_width;
   int lanes = 1;
-  while (lanes < 16 && static_cast<unsigned>(lanes * 2) <= device.preferred_float_width) lanes *= 2;
+  while (lanes < 16 && static_cast<unsigned>(lanes * 2) <= width) lanes *= 2;
   return lanes;
 }
 
@@ -245,7 +248,7 @@ Recipe make_recipe(const Scene& scene, const GBuffer& gbuffer, const DeviceInfo&
   recipe.write_terms = options.write_terms;
   recipe.reasons.push_back("precision: " + to_string(options.precision));
   count_lights(recipe, scene);
-  recipe.lanes = options.lanes > 0 ? options.lanes : lanes_for(device);
+  recipe.lanes = options.lanes > 0 ? options.lanes : lanes_for(device, options.precision);
   if (recipe.lanes > 16 || (recipe.lanes & (recipe.lanes - 1)) != 0) {
     throw std::invalid_argument("lanes must be 1, 2, 4, 8 or 16 (OpenCL vector widths), not " +
                                 std::to_string(recipe.lanes));
@@ -273,7 +276,7 @@ Recipe make_recipe(const Scene& scene, const GBuffer& gbuffer, const DeviceInfo&
   recipe.reasons.push_back("lanes: " + std::to_string(recipe.lanes) + " pixel" + (recipe.lanes > 1 ? "s" : "") +
                            " per work-item (" +
                            (options.lanes > 0 ? "as asked"
-                            : device.is_cpu   ? "CPU: explicit SIMD, the device's preferred float vector width"
+                            : device.is_cpu   ? (options.precision == Precision::double_precision ? "CPU: explicit SIMD, half the device's preferred float vector width (doubles)" : "CPU: explicit SIMD, the device's preferred float vector width")
                                               : "GPU: one pixel each") +
                            ")");
   return recipe;

@@ -2,7 +2,7 @@
 #include <memory>
 
 #include "cli/bench_arguments.h"
-#include "cli/commands.h"
+#include "cli/lab_commands.h"
 
 namespace phongcl::cli {
 

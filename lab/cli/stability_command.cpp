@@ -6,7 +6,7 @@
 #include <memory>
 
 #include "cl/compute_context.h"
-#include "cli/commands.h"
+#include "cli/lab_commands.h"
 #include "common/atomic_file.h"
 #include "shading/phong_shader.h"
 #include "stability/catalogue.h"

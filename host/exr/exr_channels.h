@@ -1,7 +1,7 @@
 #pragma once
 // OpenEXR plumbing shared by the G-buffer and image files: open with clear errors, read named
-// channels into float memory, write named float channels. Header-only on purpose: the image room
-// uses it too but does not link phongcl_gbuffer (and phongcl_common does not link OpenEXR).
+// channels into float memory, write named float channels. The exr room: both the gbuffer and the
+// image rooms read and write through it.
 #include <ImfChannelList.h>
 #include <ImfCompression.h>
 #include <ImfFrameBuffer.h>
@@ -25,7 +25,7 @@
 
 #include "common/atomic_file.h"
 #include "common/error.h"
-#include "gbuffer/gbuffer.h"
+#include "exr/pixel_window.h"
 
 namespace phongcl::exr {
 
