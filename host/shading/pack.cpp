@@ -38,47 +38,6 @@ const char* plane_name(const Recipe& recipe, int plane) {
 
 constexpr double kPi = 3.14159265358979323846;
 
-LightShape light_shape(const Light& light) {
-  LightShape shape{};
-  shape.falloff = static_cast<int>(light.falloff);
-  shape.inverse_range = light.has_range() ? static_cast<float>(1.0 / light.range) : 0.0f;
-  shape.cos_inner = shape.cos_outer = -2.0f;  // a point light: every direction is inside
-  if (light.type == LightType::spot) {
-    store3(shape.axis, glm::normalize(light.direction));
-    const double half_angle = light.cone_angle_deg / 2.0 * kPi / 180.0;
-    const double inner = std::cos(half_angle), outer = std::cos(half_angle + light.penumbra_angle_deg * kPi / 180.0);
-    shape.cos_inner = static_cast<float>(inner);
-    shape.cos_outer = light.penumbra_angle_deg > 0.0 ? static_cast<float>(outer) : shape.cos_inner;
-    shape.inverse_cone_width = light.penumbra_angle_deg > 0.0 ? static_cast<float>(1.0 / (inner - outer)) : 0.0f;
-  }
-  return shape;
-}
-
-// The smallest of the range sphere and, for a spot, a sphere around its cone cut by the range (for
-// a half angle t up to 45 degrees the sphere through apex and rim, radius R / (2 cos t); wider, the
-// rim's circle, radius R sin t). Widened by 1e-5 of the scale against the float rounding of the
-// kernel's distances: culling must never drop a light that adds something.
-LightBounds light_bounds(const Light& light, const glm::dvec3& eye) {
-  LightBounds bounds{};
-  glm::dvec3 center = light.position - eye;
-  double radius = light.has_range() ? light.range : -1.0;
-  if (light.type == LightType::spot && light.has_range()) {
-    const double half_angle = (light.cone_angle_deg / 2.0 + light.penumbra_angle_deg) * kPi / 180.0;
-    const glm::dvec3 axis = glm::normalize(light.direction);
-    const double narrow = light.range / (2.0 * std::cos(half_angle));
-    if (half_angle <= kPi / 4.0) {
-      center += narrow * axis;
-      radius = narrow;
-    } else {
-      center += light.range * std::cos(half_angle) * axis;
-      radius = light.range * std::sin(half_angle);
-    }
-  }
-  for (int axis = 0; axis < 3; ++axis) bounds.center[axis] = static_cast<float>(center[axis]);
-  bounds.radius = radius < 0.0 ? -1.0f : static_cast<float>(radius + 1e-5 * (radius + glm::length(center)));
-  return bounds;
-}
-
 void append_link_mask(const Light& light, int words, std::vector<LinkWord>& links) {
   const std::size_t first = links.size();
   links.resize(first + static_cast<std::size_t>(words), light.materials ? 0u : ~0u);
@@ -136,6 +95,45 @@ UniformData pack_uniforms(const Scene& scene, const Recipe& recipe) {
   data.scalars.point_count = static_cast<layout_int>(data.point_lights.size());
   data.scalars.directional_count = static_cast<layout_int>(data.directional_lights.size());
   return data;
+}
+
+// For a spot: a sphere around its cone cut by the range (for a half angle t up to 45 degrees the
+// sphere through apex and rim, radius R / (2 cos t); wider, the rim's circle, radius R sin t).
+LightShape light_shape(const Light& light) {
+  LightShape shape{};
+  shape.falloff = static_cast<int>(light.falloff);
+  shape.inverse_range = light.has_range() ? static_cast<float>(1.0 / light.range) : 0.0f;
+  shape.cos_inner = shape.cos_outer = -2.0f;  // a point light: every direction is inside
+  if (light.type == LightType::spot) {
+    store3(shape.axis, glm::normalize(light.direction));
+    const double half_angle = light.cone_angle_deg / 2.0 * kPi / 180.0;
+    const double inner = std::cos(half_angle), outer = std::cos(half_angle + light.penumbra_angle_deg * kPi / 180.0);
+    shape.cos_inner = static_cast<float>(inner);
+    shape.cos_outer = light.penumbra_angle_deg > 0.0 ? static_cast<float>(outer) : shape.cos_inner;
+    shape.inverse_cone_width = light.penumbra_angle_deg > 0.0 ? static_cast<float>(1.0 / (inner - outer)) : 0.0f;
+  }
+  return shape;
+}
+
+LightBounds light_bounds(const Light& light, const glm::dvec3& eye) {
+  LightBounds bounds{};
+  glm::dvec3 center = light.position - eye;
+  double radius = light.has_range() ? light.range : -1.0;
+  if (light.type == LightType::spot && light.has_range()) {
+    const double half_angle = (light.cone_angle_deg / 2.0 + light.penumbra_angle_deg) * kPi / 180.0;
+    const glm::dvec3 axis = glm::normalize(light.direction);
+    const double narrow = light.range / (2.0 * std::cos(half_angle));
+    if (half_angle <= kPi / 4.0) {
+      center += narrow * axis;
+      radius = narrow;
+    } else {
+      center += light.range * std::cos(half_angle) * axis;
+      radius = light.range * std::sin(half_angle);
+    }
+  }
+  for (int axis = 0; axis < 3; ++axis) bounds.center[axis] = static_cast<float>(center[axis]);
+  bounds.radius = radius < 0.0 ? -1.0f : static_cast<float>(radius + 1e-5 * (radius + glm::length(center)));
+  return bounds;
 }
 
 void PixelCounts::add(PixelClass pixel_class) {

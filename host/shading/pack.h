@@ -26,6 +26,15 @@ struct UniformData {
 };
 UniformData pack_uniforms(const Scene& scene, const Recipe& recipe);
 
+// A point or spot light's falloff power, 1/range and cone (kernels/layout.h says how points and
+// hard edges are encoded).
+LightShape light_shape(const Light& light);
+
+// What a point or spot light can reach, as a sphere relative to the eye: its range, or the smaller
+// sphere around a spot's cone cut by it; radius -1 without a range. Widened by 1e-5 of the scale
+// against the float rounding of the kernel's distances: culling must never drop a light that adds.
+LightBounds light_bounds(const Light& light, const glm::dvec3& eye);
+
 // How many pixels fell in each class (the summary reports the non-finite ones).
 struct PixelCounts {
   std::size_t shaded = 0, background = 0, nonfinite_position = 0, nonfinite_normal = 0, nonfinite_material = 0;
