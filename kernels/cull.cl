@@ -1,9 +1,10 @@
 /* Tiled light culling (Andersson 2009; ISPC's examples/cpu/deferred), before phong_shade:
  *   tile_bounds        one work-item per tile: the box of the tile's shaded positions
- *   count_tile_lights  one work-item per tile: how many point and spot lights can reach its box
+ *   count_tile_lights  one work-item per tile: how many of its candidate lights can reach its box
  *   fill_tile_lights   the same test again, writing the light indices at the tile's offset
  * The host turns the counts into offsets (a prefix sum over a few thousand tiles) between the last
- * two. A light reaches a box when its bounding sphere (LightBounds, widened on the host against
+ * two, and runs both twice: for coarse tiles (8 x 8 tiles, every light a candidate), then for the
+ * tiles, whose candidates are their coarse tile's list (10,000 lights: 1/40 of the tests). A light reaches a box when its bounding sphere (LightBounds, widened on the host against
  * rounding) meets it, or when it has no range. The tile of a work-item is the tile of its first
  * pixel (tiles.h), so a tile's box covers every pixel its work-items shade.
  * Options: PHONGCL_LANES (as phong_shade's), HALF_STORAGE. */
@@ -72,23 +73,31 @@ inline bool reaches(LightBounds light, const TileBox* box) {
   return distance_sq <= light.radius * light.radius;
 }
 
+/* The candidates of tile t are candidates[candidate_first[t] ...], candidate_count[t] of them: every
+ * light for the coarse tiles, the coarse tile's list for its fine tiles. */
 __kernel void count_tile_lights(__global const TileBox* restrict boxes, __global const LightBounds* restrict lights,
-                                uint light_count, __global uint* restrict counts) {
+                                __global const uint* restrict candidates, __global const uint* restrict candidate_first,
+                                __global const uint* restrict candidate_count, __global uint* restrict counts) {
   const uint tile = get_global_id(0);
   const TileBox box = boxes[tile];
+  const uint first = candidate_first[tile], end = first + candidate_count[tile];
   uint count = 0;
   if (box.shaded > 0)
-    for (uint k = 0; k < light_count; ++k) count += reaches(lights[k], &box);
+    for (uint j = first; j < end; ++j) count += reaches(lights[candidates[j]], &box);
   counts[tile] = count;
 }
 
 __kernel void fill_tile_lights(__global const TileBox* restrict boxes, __global const LightBounds* restrict lights,
-                               uint light_count, __global const uint* restrict offsets,
+                               __global const uint* restrict candidates, __global const uint* restrict candidate_first,
+                               __global const uint* restrict candidate_count, __global const uint* restrict offsets,
                                __global uint* restrict tile_lights) {
   const uint tile = get_global_id(0);
   const TileBox box = boxes[tile];
   if (box.shaded == 0) return;
+  const uint first = candidate_first[tile], end = first + candidate_count[tile];
   uint next = offsets[tile];
-  for (uint k = 0; k < light_count; ++k)
+  for (uint j = first; j < end; ++j) {
+    const uint k = candidates[j];
     if (reaches(lights[k], &box)) tile_lights[next++] = k;
+  }
 }

@@ -33,7 +33,7 @@ std::string error_of(const std::string& json) {
 }
 
 TEST(Scene, BundledScenesParse) {
-  for (const char* name : {"default", "shininess", "large", "directional_diffuse"}) {
+  for (const char* name : {"default", "shininess", "large", "directional_diffuse", "spotlights", "many_lights"}) {
     SCOPED_TRACE(name);
     const std::filesystem::path file = std::filesystem::path(PHONGCL_SOURCE_DIR) / "scenes" / name / "scene.json";
     const Scene scene = load_scene(file);
@@ -61,6 +61,17 @@ TEST(Scene, BundledScenesHaveTheirPurpose) {
   for (const Light& light : large.lights) point_lights += light.type == LightType::point;
   EXPECT_EQ(point_lights, 3);
   EXPECT_EQ(large.lights.size(), 5u);
+
+  // The classic figure: soft-edged spots with falloff; and thousands of ranged lights over the large
+  // scene's objects, which culling is for.
+  const Scene spots = load_scene(scenes / "spotlights" / "scene.json");
+  int spot_lights = 0;
+  for (const Light& light : spots.lights) spot_lights += light.type == LightType::spot && light.penumbra_angle_deg > 0;
+  EXPECT_GE(spot_lights, 3);
+  const Scene many = load_scene(scenes / "many_lights" / "scene.json");
+  EXPECT_GE(many.lights.size(), 1000u);
+  for (const Light& light : many.lights) EXPECT_TRUE(light.has_range());
+  EXPECT_EQ(many.objects.size(), large.objects.size());
 
   // The scene that shows the kernel with the specular path compiled out.
   const Scene diffuse = load_scene(scenes / "directional_diffuse" / "scene.json");

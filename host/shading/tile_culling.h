@@ -1,6 +1,6 @@
 #pragma once
 // Tiled light culling on the device (kernels/cull.cl): per screen tile, the box of its shaded
-// positions, then the list of point and spot lights whose bounds reach it; phong_shade's
+// positions, then (coarse tiles of 8 x 8 first) the list of point and spot lights whose bounds reach it; phong_shade's
 // TILED_CULLING variant loops over its tile's list only.
 #include <cstddef>
 #include <vector>
@@ -46,12 +46,17 @@ class TileCuller {
   const cl::Buffer& lights() const { return lights_buffer_; }
 
  private:
+  // One level of culling: each tile's candidates (a range of `candidates`) against its box.
+  struct Lists {
+    cl::Buffer offsets, counts, lights;
+    std::vector<cl_uint> host_offsets, host_counts;
+  };
+  Lists lists(const cl::Buffer& boxes, std::size_t tiles, const cl::Buffer& light_bounds, const cl::Buffer& candidates,
+              const std::vector<cl_uint>& candidate_first, const std::vector<cl_uint>& candidate_count);
+
   ComputeContext compute_;
   cl::Program program_;
   ReusableBuffer boxes_{CL_MEM_READ_WRITE};
-  ReusableBuffer counts_{CL_MEM_READ_WRITE | CL_MEM_ALLOC_HOST_PTR};
-  ReusableBuffer offsets_{CL_MEM_READ_ONLY | CL_MEM_ALLOC_HOST_PTR};
-  ReusableBuffer lights_{CL_MEM_READ_WRITE};
   cl::Buffer offsets_buffer_, counts_buffer_, lights_buffer_;
 };
 
