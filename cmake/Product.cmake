@@ -1,7 +1,7 @@
 # The product: what shading needs, built into one library (phongcl::phongcl, installed) and the
 # `phongcl` command line on top of it. Nothing here may link the lab (cmake/Lab.cmake).
 phongcl_room(common)
-phongcl_room(exr      DEPS phongcl_common OpenEXR::OpenEXR)
+phongcl_room(exr      DEPS phongcl_common OpenEXR::OpenEXR OpenEXR::OpenEXRCore)
 phongcl_room(scene    DEPS phongcl_common glm::glm nlohmann_json::nlohmann_json)
 phongcl_room(gbuffer  DEPS phongcl_common phongcl_exr)
 phongcl_room(image    DEPS phongcl_common phongcl_exr PNG::PNG)
@@ -26,7 +26,7 @@ target_compile_features(phongcl_library PUBLIC cxx_std_20)
 # In the build tree, the command line, the lab and the tests also use the rooms' own headers, which
 # reach OpenCL, OpenEXR and JSON directly.
 add_library(phongcl_internal INTERFACE)
-target_link_libraries(phongcl_internal INTERFACE phongcl_library phongcl_opencl OpenEXR::OpenEXR
+target_link_libraries(phongcl_internal INTERFACE phongcl_library phongcl_opencl OpenEXR::OpenEXR OpenEXR::OpenEXRCore
                       nlohmann_json::nlohmann_json PNG::PNG OpenMP::OpenMP_CXX)
 target_include_directories(phongcl_internal INTERFACE ${PROJECT_SOURCE_DIR}/host ${PROJECT_SOURCE_DIR})
 

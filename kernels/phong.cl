@@ -104,11 +104,15 @@ inline void add_light(LightSums* sums, vec3 n, vec3 v, vec3 toward, realv invers
 #endif
 }
 
-/* One field of a material record; `field` is a float offset within MaterialRecord (layout.h).
- * Through a function returning a private value: clang 15 (PoCL 3.1) crashes on a vector literal
- * cast straight from a __constant lvalue. */
+/* One field of a material record; `field` is a float offset within MaterialRecord (layout.h),
+ * read through the named array it falls in (indexing past ka[4] is undefined behaviour; `field` is
+ * a constant at every call, so the choice folds away). Through a function returning a private
+ * value: clang 15 (PoCL 3.1) crashes on a vector literal cast straight from a __constant lvalue. */
 inline real material_scalar(UNIFORM_SPACE const MaterialRecord* record, int field) {
-  return ((const UNIFORM_SPACE float*)record)[field];
+  return field < MATERIAL_KD ? record->ka[field - MATERIAL_KA]
+         : field < MATERIAL_KS ? record->kd[field - MATERIAL_KD]
+         : field < MATERIAL_SHININESS ? record->ks[field - MATERIAL_KS]
+                                      : record->shininess;
 }
 
 #if defined(MATERIAL_COUNT)
@@ -129,7 +133,7 @@ inline realv select_field(UNIFORM_SPACE const MaterialRecord* table, intv index,
  * indexing in OpenCL C). */
 inline realv gather_field(UNIFORM_SPACE const MaterialRecord* table, const int* index, int field) {
   real values[PHONGCL_LANES];
-  for (int k = 0; k < PHONGCL_LANES; ++k) values[k] = ((const UNIFORM_SPACE float*)&table[index[k]])[field];
+  for (int k = 0; k < PHONGCL_LANES; ++k) values[k] = material_scalar(&table[index[k]], field);
   return PHONGCL_XCAT(vload, PHONGCL_LANES)(0, values);
 }
 #define MATERIAL_FIELD(field) gather_field(materials, lane_material, field)
@@ -150,7 +154,8 @@ inline realv gather_field(UNIFORM_SPACE const MaterialRecord* table, const int* 
  * a * b = 2^128 overflows (3e38 lights gave +Inf for a finite 1.5e38, and 0 * Inf = NaN in dark
  * pixels), so the fast variant uses ldexp, which no flag rewrites. */
 #ifdef PHONGCL_FAST
-inline floatv unscale(realv value, float a, float b) { return TO_FLOATV(ldexp(value, ilogb(a) + ilogb(b))); }
+/* A vector exponent rather than ldexp(floatn, int): Oclgrind 21.10 gets that overload's lanes wrong. */
+inline floatv unscale(realv value, float a, float b) { return TO_FLOATV(ldexp(value, (intv)(ilogb(a) + ilogb(b)))); }
 #else
 inline floatv unscale(realv value, float a, float b) { return TO_FLOATV(value * a * b); }
 #endif

@@ -42,7 +42,9 @@ void append_link_mask(const Light& light, int words, std::vector<LinkWord>& link
   const std::size_t first = links.size();
   links.resize(first + static_cast<std::size_t>(words), light.materials ? 0u : ~0u);
   if (light.materials)
-    for (int material : *light.materials) links[first + static_cast<std::size_t>(material / 32)] |= 1u << (material % 32);
+    for (int material : *light.materials)
+      if (material >= 0 && material < 32 * words)  // an index beyond the table links nothing
+        links[first + static_cast<std::size_t>(material / 32)] |= 1u << (material % 32);
 }
 
 }  // namespace

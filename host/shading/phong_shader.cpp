@@ -5,6 +5,7 @@
 #include <cstring>
 
 #include "cl/kernel_source.h"
+#include "shading/phong_launch.h"
 
 namespace phongcl {
 
@@ -14,46 +15,6 @@ using Clock = std::chrono::steady_clock;
 
 double milliseconds(Clock::time_point start, Clock::time_point end) {
   return std::chrono::duration<double, std::milli>(end - start).count();
-}
-
-// OpenCL has no empty buffers: an unused table still gets one zeroed element.
-template <typename T>
-cl::Buffer uniform_buffer(const cl::Context& context, std::vector<T> values) {
-  if (values.empty()) values.resize(1);
-  return cl::Buffer(context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, values.size() * sizeof(T), values.data());
-}
-
-// phong.cl's phong_shade, argument for argument.
-using PhongKernel = cl::KernelFunctor<
-    /* G-buffer planes, material index */ cl::Buffer, cl::Buffer,
-    /* materials, point lights, directional lights */ cl::Buffer, cl::Buffer, cl::Buffer,
-    /* per-frame scalars */ FrameScalars,
-    /* output planes, term planes */ cl::Buffer, cl::Buffer,
-    /* light shapes, linking */ cl::Buffer, cl::Buffer,
-    /* tiled culling */ cl::Buffer, cl::Buffer, cl::Buffer, TileGrid>;
-
-// Pixels per tile: the whole frame unless a buffer would exceed the device's largest allocation or
-// the tile's buffers its memory.
-std::size_t tile_pixels(const DeviceInfo& device, const Recipe& recipe, std::size_t pixels, std::size_t limit) {
-  const std::size_t plane_bytes = recipe.precision == Precision::half_storage ? 2 : 4;
-  const std::size_t largest_per_pixel = std::max<std::size_t>(recipe.plane_count() * plane_bytes, 4 * sizeof(float));
-  const std::size_t total_per_pixel = recipe.plane_count() * plane_bytes + sizeof(cl_int) + 4 * sizeof(float);
-  std::size_t tile = std::min<std::size_t>(pixels, device.max_allocation / largest_per_pixel);
-  tile = std::min<std::size_t>(tile, device.global_memory / 2 / total_per_pixel);
-  if (limit > 0) tile = std::min(tile, limit);
-  return std::max<std::size_t>(tile, 1);
-}
-
-std::size_t round_up(std::size_t value, std::size_t multiple) { return (value + multiple - 1) / multiple * multiple; }
-
-// The kernel writes planes (R, G, B, A, then the terms); images are interleaved RGBA. On every core:
-// the copy is part of each frame's end-to-end time.
-void interleave(const float* planes, std::size_t stride, std::size_t count, int channels, float* rgba) {
-  const auto pixels = static_cast<std::ptrdiff_t>(count);
-#pragma omp parallel for schedule(static)
-  for (std::ptrdiff_t t = 0; t < pixels; ++t) {
-    for (int c = 0; c < channels; ++c) rgba[4 * t + c] = planes[c * stride + t];
-  }
 }
 
 // Copies the kernel's term planes into the three term images, alpha from the combined image.
@@ -81,19 +42,10 @@ ShadeResult PhongShader::shade(const Scene& scene, const GBuffer& gbuffer, const
   const BuiltProgram built = cache_.build(compute_, load_kernel_source("phong.cl"), result.build_options);
   result.cache = built.outcome;
   result.timings.build_ms = built.build_milliseconds;
-  PhongKernel kernel(built.program, "phong_shade");
 
   const auto start = Clock::now();
   const cl::Context& context = compute_.context;
   cl::CommandQueue& queue = compute_.queue;
-  UniformData uniforms = pack_uniforms(scene, recipe);
-  const cl::Buffer materials = uniform_buffer(context, uniforms.materials);
-  const cl::Buffer point_lights = uniform_buffer(context, uniforms.point_lights);
-  const cl::Buffer directional_lights = uniform_buffer(context, uniforms.directional_lights);
-  const cl::Buffer point_shapes = uniform_buffer(context, uniforms.point_shapes);
-  const cl::Buffer links = uniform_buffer(context, uniforms.links);
-  const cl::Buffer point_bounds = uniform_buffer(context, uniforms.point_bounds);
-  const cl::Buffer no_tiles = uniform_buffer(context, std::vector<cl_uint>{});
   TileLayout tiles = tile_layout(gbuffer.width, gbuffer.height, recipe.tile_size);
   if (recipe.tiled && (!culler_ || culler_options_ != result.build_options)) {
     culler_ = std::make_unique<TileCuller>(compute_, cache_, result.build_options);
@@ -111,7 +63,7 @@ ShadeResult PhongShader::shade(const Scene& scene, const GBuffer& gbuffer, const
   const cl::Buffer& output = output_.at_least(context, PHONGCL_OUTPUT_PLANES * stride * sizeof(cl_float));
   const cl::Buffer& terms =
       terms_.at_least(context, (recipe.write_terms ? PHONGCL_TERM_PLANES * stride : 1) * sizeof(cl_float));
-  uniforms.scalars.plane_stride = static_cast<layout_uint>(stride);
+  const DeviceUniforms uniforms = upload_uniforms(context, pack_uniforms(scene, recipe), stride);
   std::vector<float> half_staging(half ? stride * recipe.plane_count() : 0);
   std::size_t flushed_to_zero = 0;
 
@@ -146,15 +98,15 @@ ShadeResult PhongShader::shade(const Scene& scene, const GBuffer& gbuffer, const
     queue.enqueueUnmapMemObject(planes, mapped_planes, nullptr, &unmap_planes);
     queue.enqueueUnmapMemObject(material_index, mapped_index, nullptr, &unmap_index);
     tiles.grid.first_pixel = static_cast<cl_uint>(first);
-    const CullingStats culled = recipe.tiled ? culler_->cull(planes, stride, material_index, padded, tiles, point_bounds,
-                                                             uniforms.point_lights.size())
+    const CullingStats culled = recipe.tiled ? culler_->cull(planes, stride, material_index, padded, tiles,
+                                                             uniforms.point_bounds, uniforms.scalars.point_count)
                                              : CullingStats{};
     result.culling += culled;
+    const TileLists culled_lists =
+        recipe.tiled ? TileLists{culler_->offsets(), culler_->counts(), culler_->lights(), tiles.grid} : TileLists{};
     const cl::Event launched =
-        kernel(cl::EnqueueArgs(queue, cl::NDRange(padded / lanes)), planes, material_index, materials, point_lights,
-               directional_lights, uniforms.scalars, output, terms, point_shapes, links,
-               recipe.tiled ? culler_->offsets() : no_tiles, recipe.tiled ? culler_->counts() : no_tiles,
-               recipe.tiled ? culler_->lights() : no_tiles, tiles.grid);
+        launch_phong(built.program, queue, {planes, material_index, output, terms}, uniforms, padded, recipe.lanes,
+                     recipe.tiled ? &culled_lists : nullptr);
 
     cl::Event map_output;
     const auto* shaded = static_cast<const float*>(
