@@ -166,17 +166,23 @@ TEST(Lights, OverflowingFalloffGivesInfinityNotNaN) {
   }
 }
 
+// The default scene's geometry at width x height, its lights replaced by `count` ranged ones that
+// reach `reach` of them per shaded pixel on average.
+std::pair<Scene, GBuffer> default_scene_with_many_lights(int width, int height, int count, double reach) {
+  Scene scene = load_scene(std::filesystem::path(PHONGCL_SOURCE_DIR) / "scenes/default/scene.json");
+  scene.camera.width = width;
+  scene.camera.height = height;
+  GBuffer gbuffer = generate_gbuffer(scene);
+  return {with_many_lights(scene, gbuffer, count, reach), std::move(gbuffer)};
+}
+
 // The default scene at 203 x 97 (a width no tile size or lane count divides) with 300 ranged lights:
 // tiled culling must give the unculled image to float rounding (a culled light adds exactly 0;
 // only the grouping of the compensated sum differs) and match the reference, for lanes 1 and 16,
 // tiles of 16 and of 5 (work-items reaching into the next tile), and launches split into pieces.
 TEST(Lights, TiledCullingEqualsUnculledAndReference) {
   PHONGCL_REQUIRE_DEVICE(shader);
-  Scene scene = load_scene(std::filesystem::path(PHONGCL_SOURCE_DIR) / "scenes/default/scene.json");
-  scene.camera.width = 203;
-  scene.camera.height = 97;
-  const GBuffer gbuffer = generate_gbuffer(scene);
-  scene = with_many_lights(scene, gbuffer, 300, 12.0);
+  auto [scene, gbuffer] = default_scene_with_many_lights(203, 97, 300, 12.0);
   scene.lights.push_back({LightType::directional, {}, {-0.3, -1.0, -0.5}, glm::dvec3(0.2)});
   const Image reference = reference_image(scene, gbuffer);
   const std::vector<bool> mask = testing::shaded_mask(gbuffer);
@@ -213,11 +219,7 @@ TEST(Lights, TiledCullingEqualsUnculledAndReference) {
 // Spots and linking inside tiles; lights without a range are in every tile's list.
 TEST(Lights, TiledCullingKeepsUnrangedLightsEverywhere) {
   PHONGCL_REQUIRE_DEVICE(shader);
-  Scene scene = load_scene(std::filesystem::path(PHONGCL_SOURCE_DIR) / "scenes/default/scene.json");
-  scene.camera.width = 64;
-  scene.camera.height = 48;
-  const GBuffer gbuffer = generate_gbuffer(scene);
-  scene = with_many_lights(scene, gbuffer, 80, 10.0);
+  auto [scene, gbuffer] = default_scene_with_many_lights(64, 48, 80, 10.0);
   scene.lights[3].range = 0.0;  // reaches everything
   scene.lights[4].materials = std::vector<int>{1, 3};
   ShadeOptions tiled;
