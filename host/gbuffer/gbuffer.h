@@ -23,13 +23,19 @@ struct GBuffer {
   // Optional per-pixel material channels; an empty group means "use the material table".
   Planes3 ka, kd, ks;
   Plane shininess;
+  // Optional: the fraction of each pixel the surface covers, in [0, 1] (anti-aliased edges of
+  // renderers' files). Shaded pixels then output colour * coverage with alpha = coverage
+  // (premultiplied); empty means 1 everywhere.
+  Plane coverage;
   std::filesystem::path source;        // for messages
+  ExrCompression compression = ExrCompression::zip;  // the file's (outputs default to the input's)
 
   std::size_t pixel_count() const { return static_cast<std::size_t>(width) * height; }
   bool has_per_pixel_ka() const { return !ka[0].empty(); }
   bool has_per_pixel_kd() const { return !kd[0].empty(); }
   bool has_per_pixel_ks() const { return !ks[0].empty(); }
   bool has_per_pixel_shininess() const { return !shininess.empty(); }
+  bool has_coverage() const { return !coverage.empty(); }
 };
 
 // Why a pixel is or is not shaded. The kernel's packing and the reference both use this, so the
@@ -58,6 +64,6 @@ GBuffer read_gbuffer(const std::filesystem::path& file);
 
 // Writes `gbuffer` in the phongcl layout, atomically (temp file, then rename).
 void write_gbuffer(const GBuffer& gbuffer, const std::filesystem::path& file,
-                   ExrPixelType type = ExrPixelType::float32);
+                   ExrPixelType type = ExrPixelType::float32, ExrCompression compression = ExrCompression::zip);
 
 }  // namespace phongcl

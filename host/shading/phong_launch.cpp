@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <vector>
 
+#include "shading/host_threads.h"
+
 namespace phongcl {
 
 namespace {
@@ -46,9 +48,11 @@ DeviceUniforms upload_uniforms(const cl::Context& context, const UniformData& un
   return device;
 }
 
-cl::Event launch_phong(const cl::Program& program, cl::CommandQueue& queue, const TileBuffers& tile,
+cl::Kernel phong_kernel(const cl::Program& program) { return cl::Kernel(program, "phong_shade"); }
+
+cl::Event launch_phong(const cl::Kernel& phong_shade, cl::CommandQueue& queue, const TileBuffers& tile,
                        const DeviceUniforms& uniforms, std::size_t slots, int lanes, const TileLists* culled) {
-  PhongKernel kernel(program, "phong_shade");
+  PhongKernel kernel(phong_shade);
   const TileLists unculled{uniforms.no_tiles, uniforms.no_tiles, uniforms.no_tiles, TileGrid{}};
   const TileLists& lists = culled ? *culled : unculled;
   return kernel(cl::EnqueueArgs(queue, cl::NDRange(slots / static_cast<std::size_t>(lanes))), tile.planes,
@@ -58,10 +62,18 @@ cl::Event launch_phong(const cl::Program& program, cl::CommandQueue& queue, cons
 }
 
 void interleave(const float* planes, std::size_t stride, std::size_t count, int channels, float* rgba) {
-  const auto pixels = static_cast<std::ptrdiff_t>(count);
-#pragma omp parallel for schedule(static)
-  for (std::ptrdiff_t t = 0; t < pixels; ++t) {
-    for (int c = 0; c < channels; ++c) rgba[4 * t + c] = planes[c * stride + t];
+  for_each_core_range(count, 1 << 12, [&](std::size_t, std::size_t begin, std::size_t end) {
+    for (std::size_t t = begin; t < end; ++t) {
+      for (int c = 0; c < channels; ++c) rgba[4 * t + c] = planes[c * stride + t];
+    }
+  });
+}
+
+void premultiply_by_coverage(const Plane& coverage, std::size_t first, std::size_t count, float* rgba) {
+  if (coverage.empty()) return;
+  for (std::size_t t = 0; t < count; ++t) {
+    if (rgba[4 * t + 3] != 1.0f) continue;
+    for (int c = 0; c < 4; ++c) rgba[4 * t + c] *= coverage[first + t];
   }
 }
 

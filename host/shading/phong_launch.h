@@ -43,13 +43,21 @@ struct TileLists {
   TileGrid grid{};
 };
 
-// Enqueues phong.cl's phong_shade over `slots` pixels (a multiple of the recipe's lanes); `culled`
-// only for a recipe with tiled culling.
-cl::Event launch_phong(const cl::Program& program, cl::CommandQueue& queue, const TileBuffers& tile,
+// phong.cl's phong_shade in `program`. Setting a kernel's arguments is not thread-safe: one kernel
+// object per thread that launches.
+cl::Kernel phong_kernel(const cl::Program& program);
+// Enqueues phong_shade over `slots` pixels (a multiple of the recipe's lanes); `culled` only for a
+// recipe with tiled culling.
+cl::Event launch_phong(const cl::Kernel& kernel, cl::CommandQueue& queue, const TileBuffers& tile,
                        const DeviceUniforms& uniforms, std::size_t slots, int lanes, const TileLists* culled = nullptr);
 
 // Interleaves the first `channels` of count pixels' planes (stride values each) into RGBA pixels,
 // on every core: the copy is part of each frame's end-to-end time.
 void interleave(const float* planes, std::size_t stride, std::size_t count, int channels, float* rgba);
+
+// The edge policy (gbuffer/edge_policy.h), after the kernel: a shaded pixel (alpha 1) of a frame
+// with coverage gets colour and alpha times its coverage, premultiplied for compositing. Pixels
+// [first, first + count) of the frame, whose RGBA starts at rgba.
+void premultiply_by_coverage(const Plane& coverage, std::size_t first, std::size_t count, float* rgba);
 
 }  // namespace phongcl

@@ -59,7 +59,7 @@ struct Relighter::State {
     Recipe next = make_recipe(scene, gbuffer, compute.device.info, shade_options);
     if (recipe && next.build_options() == recipe->build_options()) return;
     recipe = std::move(next);
-    program.reset();
+    kernel.reset();
   }
 
   void pack_gbuffer(RelightTimings& timings) {
@@ -97,9 +97,9 @@ struct Relighter::State {
   void shade_into(float* rgba) {
     const auto start = Clock::now();
     RelightTimings timings;
-    if (!program) {
+    if (!kernel) {
       const BuiltProgram built = cache.build(compute, load_kernel_source("phong.cl"), recipe->build_options());
-      program = built.program;
+      kernel = phong_kernel(built.program);
       timings.build_ms = built.build_milliseconds;
       timings.rebuilt = true;
     }
@@ -111,13 +111,14 @@ struct Relighter::State {
       timings.upload_ms += milliseconds(pack_start, Clock::now());
     }
     cl::CommandQueue& queue = compute.queue;
-    const cl::Event launched = launch_phong(*program, queue, {planes, material_index, output, unused_terms},
+    const cl::Event launched = launch_phong(*kernel, queue, {planes, material_index, output, unused_terms},
                                             *uniforms, stride, recipe->lanes);
     cl::Event map_output;
     const auto* shaded = static_cast<const float*>(queue.enqueueMapBuffer(
         output, CL_TRUE, CL_MAP_READ, 0, PHONGCL_OUTPUT_PLANES * stride * sizeof(cl_float), nullptr, &map_output));
     const auto copy_start = Clock::now();
     interleave(shaded, stride, gbuffer.pixel_count(), PHONGCL_OUTPUT_PLANES, rgba);
+    premultiply_by_coverage(gbuffer.coverage, 0, gbuffer.pixel_count(), rgba);
     const double copy_ms = milliseconds(copy_start, Clock::now());
     queue.enqueueUnmapMemObject(output, const_cast<float*>(shaded));
     queue.finish();
@@ -134,7 +135,7 @@ struct Relighter::State {
   ComputeContext compute;
   ProgramCache cache;
   std::optional<Recipe> recipe;
-  std::optional<cl::Program> program;         // empty: build before the next frame
+  std::optional<cl::Kernel> kernel;           // phong_shade; empty: build before the next frame
   std::optional<DeviceUniforms> uniforms;     // empty: upload before the next frame
   bool gbuffer_stale = true;                  // pack and upload before the next frame
   std::size_t stride = 0;
