@@ -38,6 +38,50 @@ typedef struct {
   layout_float color[4];    /* rgb, a unused */
 } PointLight;
 
+/* How a point or spot light's F = falloff(d) * window(d) * cone(l) is shaped (README "The shading,
+ * exactly"), parallel to the point lights; only scenes with falloff, ranges or spots read it.
+ * A point light has cos_inner = cos_outer = -2 (every direction is inside its "cone"); a hard-edged
+ * spot has cos_outer = cos_inner and inverse_cone_width 0. */
+typedef struct {
+  layout_float axis[4];             /* spot: unit direction it points; w unused */
+  layout_float inverse_range;       /* 1 / R, 0 without a range */
+  layout_float cos_inner;           /* cos(A/2) */
+  layout_float cos_outer;           /* cos(A/2 + P) */
+  layout_float inverse_cone_width;  /* 1 / (cos_inner - cos_outer), 0 for a hard edge */
+  int falloff;                      /* the power k of 1/d^k: 0 to 3 */
+  int padding[3];
+} LightShape;
+
+/* Light linking: bit m of word m / 32 of a light's mask is set when it lights material m. Each light
+ * (point lights first, then directional) has LINK_WORDS words. */
+typedef unsigned int LinkWord;
+
+/* A sphere that holds everything a point or spot light can reach (its range, or for a spot the
+ * cone bounded by it), for tiled culling; radius < 0: no range, the light reaches every tile. */
+typedef struct {
+  layout_float center[3]; /* relative to the eye */
+  layout_float radius;
+} LightBounds;
+
+/* The screen tiles of tiled light culling. A work-item belongs to the tile of its first pixel, and
+ * the tile's bounds cover every lane of its work-items (the last one of a row may reach into the
+ * next tile), so one light list serves all of a work-item's pixels. */
+typedef struct {
+  unsigned int image_width; /* pixels per row */
+  unsigned int tile_size;   /* tiles are tile_size x tile_size pixels */
+  unsigned int tiles_x;     /* tiles per row */
+  unsigned int first_pixel; /* the frame pixel of this launch's slot 0 */
+} TileGrid;
+
+/* A culling tile's bounds: the box of its shaded positions (eye-relative, as packed) and how many
+ * shaded pixels it holds; an empty tile has shaded = 0 and an empty box (lo > hi). */
+typedef struct {
+  layout_float lo[3];
+  unsigned int shaded;
+  layout_float hi[3];
+  unsigned int padding;
+} TileBox;
+
 /* A directional light. to_light is the unit vector l = -normalize(direction), computed in double. */
 typedef struct {
   layout_float to_light[4]; /* xyz, w unused */

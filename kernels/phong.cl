@@ -14,11 +14,15 @@
  *   PHONGCL_DOUBLE                     fp64 arithmetic (see phong_math.h)
  *   PHONGCL_FAST                       built with -cl-fast-relaxed-math (see unscale)
  *   WRITE_TERMS                        also write ambient, diffuse, specular separately (AOVs)
+ *   FALLOFF, FALLOFF_MIXED, RANGE_WINDOW, SPOT_LIGHTS, LIGHT_LINKING   light shapes (light_shape.h)
+ *   TILED_CULLING                      point and spot lights from the work-item's tile list (cull.cl)
  * Every buffer is planar with frame.plane_stride values per plane, a multiple of PHONGCL_LANES (the
  * host pads each tile with background pixels).
  */
 #include "layout.h"
+#include "light_shape.h"
 #include "phong_math.h"
+#include "tiles.h"
 
 #ifdef HALF_STORAGE
 #define STORAGE half
@@ -29,7 +33,10 @@
 #endif
 #define LOAD_PLANE3(plane) make_vec3(LOAD_PLANE(plane), LOAD_PLANE((plane) + 1), LOAD_PLANE((plane) + 2))
 
-#ifdef POINT_COUNT
+#if defined(TILED_CULLING)
+#define POINT_LOOP_COUNT tile_count
+#define POINT_LIGHT_INDEX(k) tile_lights[tile_first + (k)]
+#elif defined(POINT_COUNT)
 #define POINT_LOOP_COUNT POINT_COUNT
 #else
 #define POINT_LOOP_COUNT frame.point_count
@@ -38,6 +45,9 @@
 #define DIRECTIONAL_LOOP_COUNT DIRECTIONAL_COUNT
 #else
 #define DIRECTIONAL_LOOP_COUNT frame.directional_count
+#endif
+#ifndef POINT_LIGHT_INDEX
+#define POINT_LIGHT_INDEX(k) (k)
 #endif
 
 /* Sums of Li*max(0, n.l) and Li*spec over the lights; the material multiplies once at the end. */
@@ -49,7 +59,11 @@ typedef struct {
 inline void kahan_add(realv* sum, realv* compensation, realv value) {
   const realv corrected = value - *compensation;
   const realv next = *sum + corrected;
+#ifdef WEIGHT_CAN_OVERFLOW
+  *compensation = SELECT(next - next == 0, (next - *sum) - corrected, 0); /* Inf - Inf: keep +Inf, not NaN */
+#else
   *compensation = (next - *sum) - corrected;
+#endif
   *sum = next;
 }
 
@@ -62,17 +76,18 @@ inline void add_block(LightSums* sums, LightSums* compensation, const LightSums*
   kahan_add(&sums->specular.z, &compensation->specular.z, block->specular.z);
 }
 
-/* Adds one light's contribution. `toward` points at the light and `inverse` is 1 / |toward| (1 for
+/* Adds one light's contribution, times its weight F (light_shape.h; 1 without shapes or linking,
+ * which the compiler folds away). `toward` points at the light and `inverse` is 1 / |toward| (1 for
  * a directional light's unit vector), so l = toward * inverse. Nothing here waits for that square
  * root before it must: the loop is latency-bound, and a point light's chain was 50% longer. */
 inline void add_light(LightSums* sums, vec3 n, vec3 v, vec3 toward, realv inverse, const UNIFORM_SPACE float* color,
-                      realv shininess) {
+                      realv shininess, realv weight) {
   const realv n_dot = dot3(n, toward);
   const realv ndl = n_dot * inverse;
-  const realv lit_ndl = SELECT(ndl > 0, ndl, 0); /* back-facing or grazing: nothing from this light */
-  sums->diffuse.x += color[0] * lit_ndl;
-  sums->diffuse.y += color[1] * lit_ndl;
-  sums->diffuse.z += color[2] * lit_ndl;
+  const realv lit_ndl = SELECT(ndl > 0, ndl * weight, 0); /* back-facing or grazing: nothing from this light */
+  sums->diffuse.x += NONNEGATIVE_TIMES(color[0], lit_ndl);
+  sums->diffuse.y += NONNEGATIVE_TIMES(color[1], lit_ndl);
+  sums->diffuse.z += NONNEGATIVE_TIMES(color[2], lit_ndl);
 #ifdef SPECULAR
   /* r = 2(n.l)n - l = -inverse * w, w = toward - 2(n.toward)n with one rounding per component.
    * Near the highlight peak v - r = v + inverse * w has one rounding too (fma), so w's rounding is
@@ -82,10 +97,10 @@ inline void add_light(LightSums* sums, vec3 n, vec3 v, vec3 toward, realv invers
   const vec3 v_minus_r = make_vec3(fma(inverse, w.x, v.x), fma(inverse, w.y, v.y), fma(inverse, w.z, v.z));
   const realv cos_vr = -inverse * dot3(v, w);
   const realv spec = specular_power(cos_vr, (real)0.5 * dot3(v_minus_r, v_minus_r), shininess);
-  const realv lit_spec = SELECT(ndl > 0, spec, 0);
-  sums->specular.x += color[0] * lit_spec;
-  sums->specular.y += color[1] * lit_spec;
-  sums->specular.z += color[2] * lit_spec;
+  const realv lit_spec = SELECT(ndl > 0, NONNEGATIVE_TIMES(spec, weight), 0);
+  sums->specular.x += NONNEGATIVE_TIMES(color[0], lit_spec);
+  sums->specular.y += NONNEGATIVE_TIMES(color[1], lit_spec);
+  sums->specular.z += NONNEGATIVE_TIMES(color[2], lit_spec);
 #endif
 }
 
@@ -171,10 +186,20 @@ __kernel void phong_shade(
     /* ambient, background, radiance scales, light counts, plane stride (layout.h) */
     const FrameScalars frame,
     /* output planes (PHONGCL_OUTPUT_PLANES): R G B A; with WRITE_TERMS also the terms (PHONGCL_TERM_PLANES) */
-    __global float* restrict out_rgba, __global float* restrict out_terms) {
+    __global float* restrict out_rgba, __global float* restrict out_terms,
+    /* light shapes and linking masks (light_shape.h), read only when compiled in */
+    UNIFORM_SPACE const LightShape* restrict point_shapes, UNIFORM_SPACE const LinkWord* restrict links,
+    /* tiled culling (cull.cl): tile t's point lights are tile_lights[tile_offsets[t] ...] */
+    __global const uint* restrict tile_offsets, __global const uint* restrict tile_counts,
+    __global const uint* restrict tile_lights, const TileGrid grid) {
   const size_t group = get_global_id(0);
   const uint plane_stride = frame.plane_stride;
   const float radiance_scale_a = frame.radiance_scale_a, radiance_scale_b = frame.radiance_scale_b;
+#ifdef TILED_CULLING
+  const uint tile = tile_of_pixel(grid, grid.first_pixel + (uint)(group * PHONGCL_LANES));
+  const uint tile_first = tile_offsets[tile];
+  const int tile_count = (int)tile_counts[tile];
+#endif
   const intv index = VLOAD_INT(group, material_index);
   const intv background = index == PHONGCL_BACKGROUND;
   /* Background lanes read material 0 and are replaced by the background colour at the end. */
@@ -204,11 +229,26 @@ __kernel void phong_shade(
   for (int first = 0; first < POINT_LOOP_COUNT; first += PHONGCL_LIGHT_BLOCK) {
     LightSums block = no_light;
     for (int k = first; k < min(first + PHONGCL_LIGHT_BLOCK, POINT_LOOP_COUNT); ++k) {
-      UNIFORM_SPACE const PointLight* light = &point_lights[k];
+      const int light_index = POINT_LIGHT_INDEX(k);
+      UNIFORM_SPACE const PointLight* light = &point_lights[light_index];
       const vec3 position = make_vec3(light->position[0], light->position[1], light->position[2]);
       vec3 toward = sub3(position, p);
+#ifdef NEEDS_DISTANCE
+      realv distance, inverse_distance;
+      const realv inverse = distance_in_range(&toward, &distance, &inverse_distance);
+#else
       const realv inverse = inverse_length_in_range(&toward);
-      add_light(&block, n, v, toward, inverse, light->color, shininess);
+#endif
+#ifdef POINT_SHAPES
+#ifndef NEEDS_DISTANCE
+      const realv distance = 0, inverse_distance = 0; /* spots alone read neither */
+#endif
+      const realv weight = shape_weight(&point_shapes[light_index], toward, inverse, distance, inverse_distance,
+                                        LINK_GATE(light_index));
+#else
+      const realv weight = LINK_GATE(light_index);
+#endif
+      add_light(&block, n, v, toward, inverse, light->color, shininess, weight);
     }
     add_block(&sums, &compensation, &block);
   }
@@ -219,7 +259,7 @@ __kernel void phong_shade(
     for (int k = first; k < min(first + PHONGCL_LIGHT_BLOCK, DIRECTIONAL_LOOP_COUNT); ++k) {
       UNIFORM_SPACE const DirectionalLight* light = &directional_lights[k];
       const vec3 l = make_vec3(light->to_light[0], light->to_light[1], light->to_light[2]);
-      add_light(&block, n, v, l, 1, light->color, shininess);
+      add_light(&block, n, v, l, 1, light->color, shininess, LINK_GATE(frame.point_count + k));
     }
     add_block(&sums, &compensation, &block);
   }
@@ -230,14 +270,16 @@ __kernel void phong_shade(
 #else
   const vec3 kd = MATERIAL_FIELD3(MATERIAL_KD);
 #endif
-  const vec3 diffuse = make_vec3(kd.x * sums.diffuse.x, kd.y * sums.diffuse.y, kd.z * sums.diffuse.z);
+  const vec3 diffuse = make_vec3(NONNEGATIVE_TIMES(kd.x, sums.diffuse.x), NONNEGATIVE_TIMES(kd.y, sums.diffuse.y),
+                                 NONNEGATIVE_TIMES(kd.z, sums.diffuse.z));
 #ifdef SPECULAR
 #ifdef PLANE_KS
   const vec3 ks = LOAD_PLANE3(PLANE_KS);
 #else
   const vec3 ks = MATERIAL_FIELD3(MATERIAL_KS);
 #endif
-  const vec3 specular = make_vec3(ks.x * sums.specular.x, ks.y * sums.specular.y, ks.z * sums.specular.z);
+  const vec3 specular = make_vec3(NONNEGATIVE_TIMES(ks.x, sums.specular.x), NONNEGATIVE_TIMES(ks.y, sums.specular.y),
+                                  NONNEGATIVE_TIMES(ks.z, sums.specular.z));
 #else
   const vec3 specular = make_vec3(zero, zero, zero);
 #endif

@@ -99,10 +99,12 @@ inline vec3 sub3(vec3 a, vec3 b) { return make_vec3(a.x - b.x, a.y - b.y, a.z - 
 inline vec3 scale3(vec3 a, realv s) { return make_vec3(a.x * s, a.y * s, a.z * s); }
 inline realv dot3(vec3 a, vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
 
+inline realv largest_magnitude(vec3 v) { return fmax(fabs(v.x), fmax(fabs(v.y), fabs(v.z))); }
+
 #ifdef PHONGCL_DOUBLE
 /* v divided by its largest |component| (v itself when zero). */
 inline vec3 rescaled(vec3 v) {
-  const realv largest = fmax(fabs(v.x), fmax(fabs(v.y), fabs(v.z)));
+  const realv largest = largest_magnitude(v);
   const realv nonzero = SELECT(largest > 0, largest, 1);
   return make_vec3(v.x / nonzero, v.y / nonzero, v.z / nonzero);
 }
@@ -189,6 +191,26 @@ inline realv inverse_length_in_range(vec3* v) {
   if (all_lanes(LANE_MASK(length_sq >= 0x1p-100f && length_sq <= 0x1p100f))) return rsqrt(length_sq);
   *v = rescaled(*v);
   return inverse_length(*v);
+}
+
+/* inverse_length_in_range() that also gives the length d = |v| and 1/d, for a light's falloff and
+ * range: where v had to be rescaled they come from the scale, exact powers of two. A zero v gives
+ * d = 0 and 1/d = 0 (its light adds nothing: n.l is 0); a d beyond float gives +Inf and 0. */
+inline realv distance_in_range(vec3* v, realv* distance, realv* inverse_distance) {
+  const realv length_sq = dot3(*v, *v);
+  if (all_lanes(LANE_MASK(length_sq >= 0x1p-100f && length_sq <= 0x1p100f))) {
+    const realv inverse = rsqrt(length_sq);
+    *distance = length_sq * inverse;
+    *inverse_distance = inverse;
+    return inverse;
+  }
+  const realv largest = largest_magnitude(*v);
+  *v = rescaled(*v);
+  const realv inverse = inverse_length(*v);
+  const realv unscale = SELECT(largest > 0, largest / largest_magnitude(*v), 0); /* |v| = unscale * |rescaled| */
+  *distance = SELECT(inverse > 0, unscale / inverse, 0);
+  *inverse_distance = SELECT(largest > 0, inverse / unscale, 0);
+  return inverse;
 }
 
 /* normalize() that neither overflows nor underflows: components of 1e30 (squares overflow float)

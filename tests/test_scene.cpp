@@ -33,7 +33,7 @@ std::string error_of(const std::string& json) {
 }
 
 TEST(Scene, BundledScenesParse) {
-  for (const char* name : {"default", "shininess", "large", "directional_diffuse"}) {
+  for (const char* name : {"default", "shininess", "large", "directional_diffuse", "spotlights", "many_lights"}) {
     SCOPED_TRACE(name);
     const std::filesystem::path file = std::filesystem::path(PHONGCL_SOURCE_DIR) / "scenes" / name / "scene.json";
     const Scene scene = load_scene(file);
@@ -61,6 +61,17 @@ TEST(Scene, BundledScenesHaveTheirPurpose) {
   for (const Light& light : large.lights) point_lights += light.type == LightType::point;
   EXPECT_EQ(point_lights, 3);
   EXPECT_EQ(large.lights.size(), 5u);
+
+  // The classic figure: soft-edged spots with falloff; and thousands of ranged lights over the large
+  // scene's objects, which culling is for.
+  const Scene spots = load_scene(scenes / "spotlights" / "scene.json");
+  int spot_lights = 0;
+  for (const Light& light : spots.lights) spot_lights += light.type == LightType::spot && light.penumbra_angle_deg > 0;
+  EXPECT_GE(spot_lights, 3);
+  const Scene many = load_scene(scenes / "many_lights" / "scene.json");
+  EXPECT_GE(many.lights.size(), 1000u);
+  for (const Light& light : many.lights) EXPECT_TRUE(light.has_range());
+  EXPECT_EQ(many.objects.size(), large.objects.size());
 
   // The scene that shows the kernel with the specular path compiled out.
   const Scene diffuse = load_scene(scenes / "directional_diffuse" / "scene.json");
@@ -128,6 +139,28 @@ TEST(Scene, ReadsEveryField) {
   EXPECT_EQ(scene.objects.at(1).offset, -1.0);
 }
 
+TEST(Scene, ReadsTheLightShapes) {
+  const Scene scene = parse_scene(scene_json(R"(
+      "lights": [{"type": "spot", "position": [1, 2, 3], "direction": [0, -1, 0], "cone_angle_deg": 40,
+                  "penumbra_angle_deg": 10, "falloff": "quadratic", "range": 7.5, "materials": [0]},
+                 {"type": "point", "position": [0, 0, 0], "falloff": "cubic"},
+                 {"type": "directional", "direction": [0, 0, -1], "materials": []}])"),
+                                  kSource);
+  const Light& spot = scene.lights.at(0);
+  EXPECT_EQ(spot.type, LightType::spot);
+  EXPECT_EQ(spot.direction, glm::dvec3(0, -1, 0));
+  EXPECT_EQ(spot.cone_angle_deg, 40.0);
+  EXPECT_EQ(spot.penumbra_angle_deg, 10.0);
+  EXPECT_EQ(spot.falloff, Falloff::quadratic);
+  EXPECT_EQ(spot.range, 7.5);
+  EXPECT_TRUE(spot.reaches(0));
+  const Light& point = scene.lights.at(1);
+  EXPECT_EQ(point.falloff, Falloff::cubic);
+  EXPECT_FALSE(point.has_range());
+  EXPECT_TRUE(point.reaches(0)) << "no 'materials': every material";
+  EXPECT_FALSE(scene.lights.at(2).reaches(0)) << "'materials': [] lights none";
+}
+
 TEST(Scene, HdrValuesUpToFloatRangeParse) {
   const Scene scene = parse_scene(scene_json(R"(
       "ambient": [3e38, 0, 0],
@@ -158,7 +191,7 @@ TEST(Scene, EachProblemIsAOneLineInputErrorNamingFileAndPlace) {
   const std::vector<ErrorCase> cases = {
       {"unknown key in a light",
        scene_json(R"("lights": [)" + point + R"(, {"type": "point", "position": [1, 1, 1], "colour": [1, 1, 1]}])"),
-       {"unknown key 'colour' in lights[1] (expected: type, position, direction, color)"}},
+       {"unknown key 'colour' in lights[1] (expected: type, position, direction, color, falloff, range"}},
       {"unknown key at the top level", scene_json(R"("lihgts": [])"), {"unknown key 'lihgts' in the top level"}},
       {"unknown key in the camera", scene_json("", R"({"eye": [0, 0, 5], "fov": 30})"),
        {"unknown key 'fov' in camera (expected: eye, look_at"}},
@@ -181,8 +214,34 @@ TEST(Scene, EachProblemIsAOneLineInputErrorNamingFileAndPlace) {
       {"number beyond float range", scene_json(R"("ambient": [1e39, 0, 0])"),
        {"ambient[0] must be a finite single-precision number"}},
       {"number beyond double range", scene_json(R"("ambient": [1e999, 0, 0])"), {"invalid JSON", "1e999"}},
-      {"unknown light type", scene_json(R"("lights": [{"type": "spot", "position": [0, 0, 0]}])"),
-       {"unknown light type 'spot' in lights[0] (expected point or directional)"}},
+      {"unknown light type", scene_json(R"("lights": [{"type": "area", "position": [0, 0, 0]}])"),
+       {"unknown light type 'area' in lights[0] (expected point, spot or directional)"}},
+      {"unknown falloff", scene_json(R"("lights": [{"type": "point", "position": [0, 0, 0], "falloff": "inverse"}])"),
+       {"lights[0].falloff 'inverse' is not a falloff (expected none, linear, quadratic or cubic)"}},
+      {"zero range", scene_json(R"("lights": [{"type": "point", "position": [0, 0, 0], "range": 0}])"),
+       {"lights[0].range must be > 0 (got 0)"}},
+      {"negative range", scene_json(R"("lights": [)" + point + R"(, {"type": "spot", "position": [0, 0, 0], "direction": [0, 0, 1], "cone_angle_deg": 30, "range": -1}])"),
+       {"lights[1].range must be > 0 (got -1)"}},
+      {"range on a directional light", scene_json(R"("lights": [{"type": "directional", "direction": [0, 0, 1], "range": 2}])"),
+       {"lights[0].range is not used by a directional light"}},
+      {"spot without a cone", scene_json(R"("lights": [{"type": "spot", "position": [0, 0, 0], "direction": [0, 0, 1]}])"),
+       {"missing key 'cone_angle_deg' in lights[0]"}},
+      {"spot without a direction", scene_json(R"("lights": [{"type": "spot", "position": [0, 0, 0], "cone_angle_deg": 30}])"),
+       {"missing key 'direction' in lights[0]"}},
+      {"zero cone", scene_json(R"("lights": [{"type": "spot", "position": [0, 0, 0], "direction": [0, 0, 1], "cone_angle_deg": 0}])"),
+       {"lights[0].cone_angle_deg must be in (0, 180) degrees (got 0)"}},
+      {"straight cone", scene_json(R"("lights": [{"type": "spot", "position": [0, 0, 0], "direction": [0, 0, 1], "cone_angle_deg": 180}])"),
+       {"lights[0].cone_angle_deg must be in (0, 180) degrees (got 180)"}},
+      {"negative penumbra", scene_json(R"("lights": [{"type": "spot", "position": [0, 0, 0], "direction": [0, 0, 1], "cone_angle_deg": 30, "penumbra_angle_deg": -1}])"),
+       {"lights[0].penumbra_angle_deg must be >= 0 degrees (got -1)"}},
+      {"penumbra past 90", scene_json(R"("lights": [{"type": "spot", "position": [0, 0, 0], "direction": [0, 0, 1], "cone_angle_deg": 120, "penumbra_angle_deg": 31}])"),
+       {"lights[0].penumbra_angle_deg must keep cone_angle_deg/2 + penumbra_angle_deg <= 90 (got 91)"}},
+      {"cone on a point light", scene_json(R"("lights": [{"type": "point", "position": [0, 0, 0], "cone_angle_deg": 30}])"),
+       {"lights[0].cone_angle_deg is used only by spot lights"}},
+      {"linked material out of range", scene_json(R"("lights": [{"type": "point", "position": [0, 0, 0], "materials": [0, 1]}])"),
+       {"lights[0].materials[1] material index 1 is out of range (the scene has 1 materials)"}},
+      {"linked material not an integer", scene_json(R"("lights": [{"type": "directional", "direction": [0, 0, 1], "materials": [0.5]}])"),
+       {"lights[0].materials[0] must be an integer"}},
       {"unknown object type", scene_json(R"("objects": [{"type": "cone"}])"), {"unknown object type 'cone' in objects[0]"}},
       {"object without type", scene_json(R"("objects": [{"radius": 1}])"), {"missing key 'type' in objects[0]"}},
       {"negative shininess", R"({"camera": {"eye": [0, 0, 5]}, "materials": [{"shininess": -1}]})",

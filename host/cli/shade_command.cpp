@@ -1,6 +1,7 @@
 // phongcl shade: the OpenCL kernel on a G-buffer.
 #include <chrono>
 #include <future>
+#include <iomanip>
 #include <iostream>
 #include <memory>
 
@@ -24,6 +25,8 @@ struct ShadeArguments {
   std::string precision = "precise";
   bool no_specialise = false;
   int lanes = 0;
+  std::string culling = "auto";
+  int tile = 16;
   bool explain = false;
   SequenceOptions sequence;
 };
@@ -45,6 +48,8 @@ double milliseconds_since(Clock::time_point start) {
 ShadeOptions shade_options(const ShadeArguments& args) {
   ShadeOptions options{parse_precision(args.precision), !args.no_specialise};
   options.lanes = args.lanes;
+  options.culling = parse_culling(args.culling);
+  options.tile_size = args.tile;
   options.write_terms = args.outputs.wants_terms();
   return options;
 }
@@ -81,8 +86,9 @@ void run_shade(const ShadeArguments& args) {
             << "  image      " << gbuffer.width << " x " << gbuffer.height << ", " << with_commas(gbuffer.pixel_count())
             << " pixels: " << with_commas(result.counts.shaded) << " shaded, "
             << with_commas(gbuffer.pixel_count() - result.counts.shaded) << " background\n"
-            << "  lights     " << result.recipe.point_lights << " point + " << result.recipe.directional_lights
-            << " directional\n"
+            << "  lights     " << result.recipe.point_lights - result.recipe.spot_lights << " point + "
+            << (result.recipe.spot_lights > 0 ? std::to_string(result.recipe.spot_lights) + " spot + " : "")
+            << result.recipe.directional_lights << " directional\n"
             << "  device     " << describe(shader.compute().device.info) << "\n"
             << "  kernel     " << result.recipe.summary() << "\n"
             << "  build      " << to_string(result.cache) << ", " << milliseconds(t.build_ms)
@@ -93,6 +99,13 @@ void run_shade(const ShadeArguments& args) {
             << milliseconds(milliseconds_since(start)) << " wall clock (shading "
             << mpixels_per_second(gbuffer.pixel_count(), t.total_ms) << "; kernel "
             << mpixels_per_second(gbuffer.pixel_count(), t.kernel_ms) << ")\n";
+  if (result.recipe.tiled) {
+    const CullingStats& c = result.culling;
+    std::cout << "  culling    tiles " << c.tile_size << "x" << c.tile_size << ", " << with_commas(c.shaded_tiles)
+              << " with shaded pixels; lights per tile mean " << std::fixed << std::setprecision(1)
+              << c.mean_lights_per_tile() << std::defaultfloat << ", max "
+              << c.max_lights_per_tile << "; " << milliseconds(c.culling_ms) << " (inside kernel time)\n";
+  }
   if (result.tiles > 1) std::cout << "  tiles      " << result.tiles << " (frame larger than one device allocation)\n";
   print_unshaded(result.counts);
   for (const auto& warning : loaded.warnings) std::cout << "  warning    " << warning << "\n";
@@ -120,6 +133,11 @@ void add_shade_command(CLI::App& app) {
   command->add_flag("--no-specialise", args->no_specialise, "Use the general kernel with everything compiled in");
   command->add_option("--lanes", args->lanes, "Pixels per work-item: 1, 2, 4, 8 or 16 (default: the device's preferred float width on CPUs, 1 on GPUs)")
       ->check(CLI::IsMember({1, 2, 4, 8, 16}));
+  command->add_option("--culling", args->culling,
+                      "Tiled light culling: auto (default: tiled from " + std::to_string(kAutoCullingLights) +
+                          " point/spot lights with a range), tiled or none")
+      ->check(CLI::IsMember({"auto", "tiled", "none"}));
+  command->add_option("--tile", args->tile, "Culling tile size in pixels (default 16)")->check(CLI::Range(1, 1024));
   args->sequence.add_options(*command);
   command->add_flag("--explain", args->explain, "Print what was compiled in and out, and why, and the build options");
   command->callback([args] { run_shade(*args); });

@@ -2,6 +2,7 @@
 // The scene file (JSON) as plain, validated structs. See README "Scene file".
 #include <array>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -19,13 +20,23 @@ struct Camera {
   int height = 480;
 };
 
-enum class LightType { point, directional };
+enum class LightType { point, directional, spot };
+
+// How a point or spot light dims with distance d: 1, 1/d, 1/d^2, 1/d^3 (the enum value is the power).
+enum class Falloff { none = 0, linear = 1, quadratic = 2, cubic = 3 };
 
 struct Light {
   LightType type = LightType::point;
-  glm::dvec3 position{0.0};   // point lights
-  glm::dvec3 direction{0.0};  // directional lights: the direction the light travels (l = -normalize)
+  glm::dvec3 position{0.0};   // point and spot lights
+  glm::dvec3 direction{0.0};  // directional: the way the light travels (l = -normalize); spot: where it points
   glm::dvec3 color{1.0};
+  Falloff falloff = Falloff::none;                     // point and spot
+  double range = 0.0;                                  // > 0: windowed to 0 at this distance; 0: no range
+  double cone_angle_deg = 0.0, penumbra_angle_deg = 0.0;  // spot: full angle of the lit cone, soft edge
+  std::optional<std::vector<int>> materials{};         // light linking: lights only these; absent: every material
+
+  bool has_range() const { return range > 0.0; }
+  bool reaches(int material) const;  // light linking
 };
 
 struct Material {
@@ -65,5 +76,7 @@ struct Scene {
 Scene load_scene(const std::filesystem::path& file);
 // The same from text; `source` is used in messages and to resolve the relative "gbuffer" path.
 Scene parse_scene(std::string_view json_text, const std::filesystem::path& source);
+
+const char* to_string(Falloff falloff);  // "none", "linear", ...
 
 }  // namespace phongcl

@@ -22,12 +22,21 @@ void check_lights(const std::vector<Light>& lights) {
     const Light& light = lights[i];
     const std::string entry = "lights[" + std::to_string(i) + "]";
     require(non_negative(light.color), entry + ".color", "must be finite and >= 0");
-    if (light.type == LightType::point) {
+    if (light.type != LightType::directional) {
       require(finite(light.position), entry + ".position", "must be finite");
-    } else {
+      require(std::isfinite(light.range) && light.range >= 0.0, entry + ".range", "must be finite and > 0 (0: no range)");
+    }
+    if (light.type != LightType::point) {
       require(finite(light.direction), entry + ".direction", "must be finite");
       require(light.direction != glm::dvec3(0.0), entry + ".direction", "must not be zero");
     }
+    if (light.type == LightType::spot) {
+      require(light.cone_angle_deg > 0.0 && light.cone_angle_deg < 180.0, entry + ".cone_angle_deg", "must be in (0, 180)");
+      require(light.penumbra_angle_deg >= 0.0 && light.cone_angle_deg / 2.0 + light.penumbra_angle_deg <= 90.0,
+              entry + ".penumbra_angle_deg", "must be >= 0 with cone_angle_deg/2 + penumbra_angle_deg <= 90");
+    }
+    if (light.materials)
+      for (int material : *light.materials) require(material >= 0, entry + ".materials", "must be indices >= 0");
   }
 }
 

@@ -2,6 +2,7 @@
 // Checks for lights and materials built in code (the scene file's reader checks its own), and
 // readers for a JSON array of lights or materials in the scene file's form.
 #include <filesystem>
+#include <limits>
 #include <string_view>
 #include <vector>
 
@@ -15,7 +16,9 @@ void check_lights(const std::vector<Light>& lights);
 void check_material_table(const std::vector<Material>& materials);
 
 // `json_text` is an array like the scene file's "lights" or "materials"; InputError names `source`.
-std::vector<Light> parse_lights(std::string_view json_text, const std::filesystem::path& source);
+// Linked material indices must be below `material_count` (unlimited: any index >= 0).
+std::vector<Light> parse_lights(std::string_view json_text, const std::filesystem::path& source,
+                                std::size_t material_count = std::numeric_limits<int>::max());
 std::vector<Material> parse_materials(std::string_view json_text, const std::filesystem::path& source);
 
 }  // namespace phongcl

@@ -1,4 +1,5 @@
 // parse_scene and load_scene: the scene file's sections, each read strictly (see json_reader.h).
+#include <algorithm>
 #include <fstream>
 #include <sstream>
 
@@ -49,26 +50,82 @@ Camera read_camera(const JsonObject& object) {
   return camera;
 }
 
-Light read_light(const JsonValue& value) {
+Falloff read_falloff(const JsonValue& value) {
+  const std::string name = value.string();
+  for (Falloff falloff : {Falloff::none, Falloff::linear, Falloff::quadratic, Falloff::cubic})
+    if (name == to_string(falloff)) return falloff;
+  value.fail("'" + name + "' is not a falloff (expected none, linear, quadratic or cubic)");
+}
+
+double read_positive(const JsonValue& value) {
+  const double number = value.number();
+  if (!(number > 0.0)) value.fail("must be > 0 (got " + format_number(number) + ")");
+  return number;
+}
+
+// The cone's full angle A and its soft edge P: 0 < A < 180, P >= 0, A/2 + P <= 90.
+void read_cone(const JsonObject& object, Light& light) {
+  const JsonValue cone = object.at("cone_angle_deg");
+  light.cone_angle_deg = cone.number();
+  if (!(light.cone_angle_deg > 0.0 && light.cone_angle_deg < 180.0))
+    cone.fail("must be in (0, 180) degrees (got " + format_number(light.cone_angle_deg) + ")");
+  if (auto penumbra = object.find("penumbra_angle_deg")) {
+    light.penumbra_angle_deg = penumbra->number();
+    if (light.penumbra_angle_deg < 0.0)
+      penumbra->fail("must be >= 0 degrees (got " + format_number(light.penumbra_angle_deg) + ")");
+    if (light.cone_angle_deg / 2.0 + light.penumbra_angle_deg > 90.0)
+      penumbra->fail("must keep cone_angle_deg/2 + penumbra_angle_deg <= 90 (got " +
+                     format_number(light.cone_angle_deg / 2.0 + light.penumbra_angle_deg) + ")");
+  }
+}
+
+std::vector<int> read_linked_materials(const JsonValue& value, std::size_t material_count) {
+  std::vector<int> materials;
+  for (const JsonValue& element : value.elements()) {
+    const int index = element.integer();
+    if (index < 0 || static_cast<std::size_t>(index) >= material_count)
+      element.fail("material index " + std::to_string(index) + " is out of range (the scene has " +
+                   std::to_string(material_count) + " materials)");
+    materials.push_back(index);
+  }
+  return materials;
+}
+
+Light read_light(const JsonValue& value, std::size_t material_count) {
   const JsonObject object = value.object();
-  object.expect_keys({"type", "position", "direction", "color"});
+  object.expect_keys({"type", "position", "direction", "color", "falloff", "range", "cone_angle_deg",
+                      "penumbra_angle_deg", "materials"});
   const std::string type = object.at("type").string();
   Light light;
-  if (type == "point") {
-    light.type = LightType::point;
-    if (object.has("direction")) object.at("direction").fail("is not used by a point light (use 'position')");
+  if (type == "point" || type == "spot") {
+    light.type = type == "point" ? LightType::point : LightType::spot;
     light.position = object.at("position").vec3();
+    if (auto falloff = object.find("falloff")) light.falloff = read_falloff(*falloff);
+    if (auto range = object.find("range")) light.range = read_positive(*range);
   } else if (type == "directional") {
     light.type = LightType::directional;
     if (object.has("position")) object.at("position").fail("is not used by a directional light (use 'direction')");
+    for (const char* key : {"falloff", "range"})
+      if (object.has(key)) object.at(key).fail("is not used by a directional light (it has no distance)");
+  } else {
+    throw InputError(value.file(), "unknown light type '" + type + "' in " + value.place() +
+                                       " (expected point, spot or directional)");
+  }
+  if (light.type == LightType::point) {
+    if (object.has("direction")) object.at("direction").fail("is not used by a point light (use 'position')");
+  } else {
     const JsonValue direction = object.at("direction");
     light.direction = direction.vec3();
     if (light.direction == glm::dvec3(0.0)) direction.fail("must not be zero");
+  }
+  if (light.type == LightType::spot) {
+    read_cone(object, light);
   } else {
-    throw InputError(value.file(), "unknown light type '" + type + "' in " + value.place() +
-                                       " (expected point or directional)");
+    for (const char* key : {"cone_angle_deg", "penumbra_angle_deg"})
+      if (object.has(key)) object.at(key).fail("is used only by spot lights");
   }
   if (auto color = object.find("color")) light.color = read_non_negative_vec3(*color);
+  if (auto materials = object.find("materials")) light.materials = read_linked_materials(*materials, material_count);
   return light;
 }
 
@@ -133,14 +190,28 @@ Scene parse_scene(std::string_view json_text, const std::filesystem::path& sourc
   else scene.has_camera = false;
   if (auto value = top.find("background")) scene.background = read_non_negative_vec3(*value);
   if (auto value = top.find("ambient")) scene.ambient = read_non_negative_vec3(*value);
-  if (auto value = top.find("lights"))
-    for (const JsonValue& light : value->elements()) scene.lights.push_back(read_light(light));
   if (auto value = top.find("materials"))
     for (const JsonValue& material : value->elements()) scene.materials.push_back(read_material(material));
-  // After materials: objects refer to them by index.
+  // After materials: lights (linking) and objects refer to them by index.
+  if (auto value = top.find("lights"))
+    for (const JsonValue& light : value->elements()) scene.lights.push_back(read_light(light, scene.materials.size()));
   if (auto value = top.find("objects")) scene.objects = read_objects(*value, scene.materials.size());
   if (auto value = top.find("gbuffer")) scene.gbuffer = read_gbuffer_path(*value, source);
   return scene;
+}
+
+const char* to_string(Falloff falloff) {
+  switch (falloff) {
+    case Falloff::none: return "none";
+    case Falloff::linear: return "linear";
+    case Falloff::quadratic: return "quadratic";
+    case Falloff::cubic: return "cubic";
+  }
+  return "none";
+}
+
+bool Light::reaches(int material) const {
+  return !materials || std::find(materials->begin(), materials->end(), material) != materials->end();
 }
 
 Scene load_scene(const std::filesystem::path& file) {
@@ -154,10 +225,12 @@ Scene load_scene(const std::filesystem::path& file) {
   return parse_scene(text.str(), file);
 }
 
-std::vector<Light> parse_lights(std::string_view json_text, const std::filesystem::path& source) {
+std::vector<Light> parse_lights(std::string_view json_text, const std::filesystem::path& source,
+                                std::size_t material_count) {
   const nlohmann::json document = parse_document(json_text, source);
   std::vector<Light> lights;
-  for (const JsonValue& light : JsonValue(document, "lights", source).elements()) lights.push_back(read_light(light));
+  for (const JsonValue& light : JsonValue(document, "lights", source).elements())
+    lights.push_back(read_light(light, material_count));
   return lights;
 }
 

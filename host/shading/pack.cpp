@@ -39,9 +39,20 @@ const char* plane_name(const Recipe& recipe, int plane) {
   return "shininess";
 }
 
+constexpr double kPi = 3.14159265358979323846;
+
+void append_link_mask(const Light& light, int words, std::vector<LinkWord>& links) {
+  const std::size_t first = links.size();
+  links.resize(first + static_cast<std::size_t>(words), light.materials ? 0u : ~0u);
+  if (light.materials)
+    for (int material : *light.materials)
+      if (material >= 0 && material < 32 * words)  // an index beyond the table links nothing
+        links[first + static_cast<std::size_t>(material / 32)] |= 1u << (material % 32);
+}
+
 }  // namespace
 
-UniformData pack_uniforms(const Scene& scene) {
+UniformData pack_uniforms(const Scene& scene, const Recipe& recipe) {
   UniformData data;
   double brightest = largest_component(scene.ambient);
   for (const Light& light : scene.lights) brightest = std::max(brightest, largest_component(light.color));
@@ -53,17 +64,26 @@ UniformData pack_uniforms(const Scene& scene) {
 
   const glm::dvec3& eye = scene.camera.eye;
   for (const Light& light : scene.lights) {
-    if (light.type == LightType::point) {
+    if (light.type != LightType::directional) {
       PointLight packed{};
       store3(packed.position, light.position - eye);
       store3(packed.color, light.color * scale);
       data.point_lights.push_back(packed);
+      data.point_shapes.push_back(light_shape(light));
+      if (recipe.tiled) data.point_bounds.push_back(light_bounds(light, eye));
     } else {
       DirectionalLight packed{};
       store3(packed.to_light, -glm::normalize(light.direction));
       store3(packed.color, light.color * scale);
       data.directional_lights.push_back(packed);
     }
+  }
+  // Linking masks in the kernel's order: point and spot lights first, then directional ones.
+  if (recipe.link_words > 0) {
+    for (const Light& light : scene.lights)
+      if (light.type != LightType::directional) append_link_mask(light, recipe.link_words, data.links);
+    for (const Light& light : scene.lights)
+      if (light.type == LightType::directional) append_link_mask(light, recipe.link_words, data.links);
   }
   for (const Material& material : scene.materials) {
     MaterialRecord record{};
@@ -80,6 +100,45 @@ UniformData pack_uniforms(const Scene& scene) {
   data.scalars.point_count = static_cast<layout_int>(data.point_lights.size());
   data.scalars.directional_count = static_cast<layout_int>(data.directional_lights.size());
   return data;
+}
+
+// For a spot: a sphere around its cone cut by the range (for a half angle t up to 45 degrees the
+// sphere through apex and rim, radius R / (2 cos t); wider, the rim's circle, radius R sin t).
+LightShape light_shape(const Light& light) {
+  LightShape shape{};
+  shape.falloff = static_cast<int>(light.falloff);
+  shape.inverse_range = light.has_range() ? static_cast<float>(1.0 / light.range) : 0.0f;
+  shape.cos_inner = shape.cos_outer = -2.0f;  // a point light: every direction is inside
+  if (light.type == LightType::spot) {
+    store3(shape.axis, glm::normalize(light.direction));
+    const double half_angle = light.cone_angle_deg / 2.0 * kPi / 180.0;
+    const double inner = std::cos(half_angle), outer = std::cos(half_angle + light.penumbra_angle_deg * kPi / 180.0);
+    shape.cos_inner = static_cast<float>(inner);
+    shape.cos_outer = light.penumbra_angle_deg > 0.0 ? static_cast<float>(outer) : shape.cos_inner;
+    shape.inverse_cone_width = light.penumbra_angle_deg > 0.0 ? static_cast<float>(1.0 / (inner - outer)) : 0.0f;
+  }
+  return shape;
+}
+
+LightBounds light_bounds(const Light& light, const glm::dvec3& eye) {
+  LightBounds bounds{};
+  glm::dvec3 center = light.position - eye;
+  double radius = light.has_range() ? light.range : -1.0;
+  if (light.type == LightType::spot && light.has_range()) {
+    const double half_angle = (light.cone_angle_deg / 2.0 + light.penumbra_angle_deg) * kPi / 180.0;
+    const glm::dvec3 axis = glm::normalize(light.direction);
+    const double narrow = light.range / (2.0 * std::cos(half_angle));
+    if (half_angle <= kPi / 4.0) {
+      center += narrow * axis;
+      radius = narrow;
+    } else {
+      center += light.range * std::cos(half_angle) * axis;
+      radius = light.range * std::sin(half_angle);
+    }
+  }
+  for (int axis = 0; axis < 3; ++axis) bounds.center[axis] = static_cast<float>(center[axis]);
+  bounds.radius = radius < 0.0 ? -1.0f : static_cast<float>(radius + 1e-5 * (radius + glm::length(center)));
+  return bounds;
 }
 
 void PixelCounts::add(PixelClass pixel_class) {

@@ -14,14 +14,26 @@ namespace phongcl {
 
 // Per-scene data every work-item reads.
 struct UniformData {
-  std::vector<PointLight> point_lights;
+  std::vector<PointLight> point_lights;     // point and spot lights, in scene order
+  std::vector<LightShape> point_shapes;     // parallel to point_lights
+  std::vector<LightBounds> point_bounds;    // parallel to point_lights: what each can reach, for culling
+  std::vector<LinkWord> links;              // recipe.link_words per light: point lights, then directional
   std::vector<DirectionalLight> directional_lights;
   std::vector<MaterialRecord> materials;
   // Ambient, background, radiance scales and light counts; the shader sets plane_stride. Light and
   // ambient colours are divided by 2^e (exact), which the kernel undoes at the end.
   FrameScalars scalars{};
 };
-UniformData pack_uniforms(const Scene& scene);
+UniformData pack_uniforms(const Scene& scene, const Recipe& recipe);
+
+// A point or spot light's falloff power, 1/range and cone (kernels/layout.h says how points and
+// hard edges are encoded).
+LightShape light_shape(const Light& light);
+
+// What a point or spot light can reach, as a sphere relative to the eye: its range, or the smaller
+// sphere around a spot's cone cut by it; radius -1 without a range. Widened by 1e-5 of the scale
+// against the float rounding of the kernel's distances: culling must never drop a light that adds.
+LightBounds light_bounds(const Light& light, const glm::dvec3& eye);
 
 // How many pixels fell in each class (the summary reports the non-finite ones).
 struct PixelCounts {

@@ -22,6 +22,8 @@ inline std::size_t round_up(std::size_t value, std::size_t multiple) {
 // The light and material tables in device memory, with the per-frame scalars they go with.
 struct DeviceUniforms {
   cl::Buffer materials, point_lights, directional_lights;
+  cl::Buffer point_shapes, links, point_bounds;  // light shapes and linking (kernels/light_shape.h), culling spheres
+  cl::Buffer no_tiles;                          // stands in for the tile lists when not culling
   FrameScalars scalars{};
 };
 // `plane_stride`: values per plane of the tile the kernel will shade.
@@ -35,12 +37,19 @@ struct TileBuffers {
   const cl::Buffer& terms;           // PHONGCL_TERM_PLANES planes with WRITE_TERMS, else unused
 };
 
+// The tiled-culling variant's light lists for this launch (shading/tile_culling.h).
+struct TileLists {
+  cl::Buffer offsets, counts, lights;
+  TileGrid grid{};
+};
+
 // phong.cl's phong_shade in `program`. Setting a kernel's arguments is not thread-safe: one kernel
 // object per thread that launches.
 cl::Kernel phong_kernel(const cl::Program& program);
-// Enqueues phong_shade over `slots` pixels (a multiple of the recipe's lanes).
+// Enqueues phong_shade over `slots` pixels (a multiple of the recipe's lanes); `culled` only for a
+// recipe with tiled culling.
 cl::Event launch_phong(const cl::Kernel& kernel, cl::CommandQueue& queue, const TileBuffers& tile,
-                       const DeviceUniforms& uniforms, std::size_t slots, int lanes);
+                       const DeviceUniforms& uniforms, std::size_t slots, int lanes, const TileLists* culled = nullptr);
 
 // Interleaves the first `channels` of count pixels' planes (stride values each) into RGBA pixels,
 // on every core: the copy is part of each frame's end-to-end time.

@@ -52,6 +52,11 @@ ShadeResult PhongShader::shade(const Scene& scene, const GBuffer& gbuffer, const
   const auto start = Clock::now();
   const cl::Context& context = compute_.context;
   cl::CommandQueue& queue = compute_.queue;
+  TileLayout tiles = tile_layout(gbuffer.width, gbuffer.height, recipe.tile_size);
+  if (recipe.tiled && (!culler_ || culler_options_ != result.build_options)) {
+    culler_ = std::make_unique<TileCuller>(compute_, cache_, result.build_options);
+    culler_options_ = result.build_options;
+  }
 
   const std::size_t pixels = gbuffer.pixel_count();
   const bool half = recipe.precision == Precision::half_storage;
@@ -64,7 +69,7 @@ ShadeResult PhongShader::shade(const Scene& scene, const GBuffer& gbuffer, const
   const cl::Buffer& output = output_.at_least(context, PHONGCL_OUTPUT_PLANES * stride * sizeof(cl_float));
   const cl::Buffer& terms =
       terms_.at_least(context, (recipe.write_terms ? PHONGCL_TERM_PLANES * stride : 1) * sizeof(cl_float));
-  const DeviceUniforms uniforms = upload_uniforms(context, pack_uniforms(scene), stride);
+  const DeviceUniforms uniforms = upload_uniforms(context, pack_uniforms(scene, recipe), stride);
   std::vector<float> half_staging(half ? stride * recipe.plane_count() : 0);
   std::size_t flushed_to_zero = 0;
 
@@ -98,8 +103,16 @@ ShadeResult PhongShader::shade(const Scene& scene, const GBuffer& gbuffer, const
     cl::Event unmap_planes, unmap_index;
     queue.enqueueUnmapMemObject(planes, mapped_planes, nullptr, &unmap_planes);
     queue.enqueueUnmapMemObject(material_index, mapped_index, nullptr, &unmap_index);
+    tiles.grid.first_pixel = static_cast<cl_uint>(first);
+    const CullingStats culled = recipe.tiled ? culler_->cull(planes, stride, material_index, padded, tiles,
+                                                             uniforms.point_bounds, uniforms.scalars.point_count)
+                                             : CullingStats{};
+    result.culling += culled;
+    const TileLists culled_lists =
+        recipe.tiled ? TileLists{culler_->offsets(), culler_->counts(), culler_->lights(), tiles.grid} : TileLists{};
     const cl::Event launched =
-        launch_phong(kernel, queue, {planes, material_index, output, terms}, uniforms, padded, recipe.lanes);
+        launch_phong(kernel, queue, {planes, material_index, output, terms}, uniforms, padded, recipe.lanes,
+                     recipe.tiled ? &culled_lists : nullptr);
 
     cl::Event map_output;
     const auto* shaded = static_cast<const float*>(
@@ -113,7 +126,7 @@ ShadeResult PhongShader::shade(const Scene& scene, const GBuffer& gbuffer, const
     queue.finish();
 
     result.timings.upload_ms += event_milliseconds(unmap_planes) + event_milliseconds(unmap_index);
-    result.timings.kernel_ms += event_milliseconds(launched);
+    result.timings.kernel_ms += event_milliseconds(launched) + culled.culling_ms;
     result.timings.download_ms += event_milliseconds(map_output) + copy_ms;
   }
   result.timings.total_ms = milliseconds(start, Clock::now());

@@ -1,5 +1,6 @@
 #pragma once
 // Phong shading of a G-buffer on an OpenCL device: recipe, kernel build (cached), packing, launch.
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -8,6 +9,7 @@
 #include "image/image.h"
 #include "shading/pack.h"
 #include "shading/recipe.h"
+#include "shading/tile_culling.h"
 
 namespace phongcl {
 
@@ -32,6 +34,7 @@ struct ShadeResult {
   CacheOutcome cache = CacheOutcome::compiled;
   ShadeTimings timings;
   PixelCounts counts;
+  CullingStats culling;  // with recipe.tiled; its time is also inside timings.kernel_ms
   std::size_t tiles = 0;
   std::vector<std::string> warnings;
 };
@@ -55,6 +58,8 @@ class PhongShader {
   ReusableBuffer material_index_{CL_MEM_READ_ONLY | CL_MEM_ALLOC_HOST_PTR};
   ReusableBuffer output_{CL_MEM_WRITE_ONLY | CL_MEM_ALLOC_HOST_PTR};
   ReusableBuffer terms_{CL_MEM_WRITE_ONLY | CL_MEM_ALLOC_HOST_PTR};
+  std::unique_ptr<TileCuller> culler_;  // built for culler_options_
+  std::string culler_options_;
 };
 
 }  // namespace phongcl

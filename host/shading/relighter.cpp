@@ -35,6 +35,7 @@ struct Relighter::State {
         compute(make_compute_context(pick_device(options.device))),
         cache(ProgramCache::default_directory()) {
     shade_options.lanes = options.lanes;
+    shade_options.culling = Culling::none;  // the relighter shades its resident G-buffer in one unculled launch
     phongcl::check_materials(gbuffer, scene.materials.size());
     update_recipe();
     const std::size_t pixels = gbuffer.pixel_count();
@@ -106,7 +107,7 @@ struct Relighter::State {
     if (gbuffer_stale) pack_gbuffer(timings);
     if (!uniforms) {
       const auto pack_start = Clock::now();
-      uniforms = upload_uniforms(compute.context, pack_uniforms(scene), stride);
+      uniforms = upload_uniforms(compute.context, pack_uniforms(scene, *recipe), stride);
       timings.upload_ms += milliseconds(pack_start, Clock::now());
     }
     cl::CommandQueue& queue = compute.queue;

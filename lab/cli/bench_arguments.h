@@ -13,6 +13,7 @@ struct BenchArguments {
   int runs = 10;            // timed runs per variant, after one untimed warm-up
   std::string report_dir;   // report.md, report.json, chart
   bool throughput = false;
+  bool many_lights = false;  // tiled culling against unculled and cpp-tiled
   std::string lights;       // --throughput: light counts to sweep, e.g. "0,1,4,16,64,256"
   std::string sizes;        // --throughput: image sizes to sweep, e.g. "256x256,1920x1080"
   std::string json_file;    // --throughput, --sequence: results as JSON
@@ -24,6 +25,7 @@ struct BenchArguments {
 
 void run_error_vs_time_bench(const BenchArguments& args);  // bench_error_vs_time.cpp
 void run_throughput_bench(const BenchArguments& args);     // bench_throughput.cpp
+void run_many_lights_bench(const BenchArguments& args);    // bench_many_lights.cpp
 void run_sequence_bench(const BenchArguments& args);       // bench_sequence.cpp
 
 }  // namespace phongcl::cli

@@ -15,9 +15,13 @@ void add_bench_command(CLI::App& app) {
       ->check(CLI::Range(1, 1000000));
   command->add_option("--report", args->report_dir, "Directory for report.md, report.json and the chart");
   command->add_flag("--throughput", args->throughput, "Compare throughput with C++ peers and the machine's limits");
-  command->add_option("--lights", args->lights, "--throughput: light counts to sweep (e.g. 0,1,4,16,64,256)");
+  command->add_flag("--many-lights", args->many_lights,
+                    "Tiled light culling against the unculled kernel and a tiled C++ peer, many ranged lights");
+  command->add_option("--lights", args->lights,
+                      "--throughput: light counts to sweep (e.g. 0,1,4,16,64,256); --many-lights: generated lights "
+                      "replacing the scene's (e.g. 64,256,1024,4096,10000)");
   command->add_option("--sizes", args->sizes, "--throughput: image sizes to sweep (e.g. 256x256,1920x1080)");
-  command->add_option("--json", args->json_file, "--throughput, --sequence: write the results as JSON");
+  command->add_option("--json", args->json_file, "--throughput, --sequence, --many-lights: write the results as JSON");
   command->add_flag("--sequence", args->sequence,
                     "Shade a generated shot in sequence mode against single-frame processes, the EXR I/O floor and oiiotool");
   command->add_option("--sequence-frames", args->sequence_frames, "--sequence: frames in the shot (default 8)")
@@ -26,7 +30,10 @@ void add_bench_command(CLI::App& app) {
       ->check(CLI::Range(1, 100));
   command->add_option("--compressions", args->compressions, "--sequence: EXR compressions to measure (default zip,piz)");
   command->callback([args] {
+    if (args->throughput + args->many_lights + args->sequence > 1)
+      throw CLI::ValidationError("--throughput, --sequence and --many-lights are separate benchmarks: pick one");
     if (args->sequence) return run_sequence_bench(*args);
+    if (args->many_lights) return run_many_lights_bench(*args);
     args->throughput ? run_throughput_bench(*args) : run_error_vs_time_bench(*args);
   });
 }

@@ -1,6 +1,9 @@
 #include "peers/packed_frame.h"
 
+#include <cmath>
+
 #include "common/error.h"
+#include "shading/pack.h"
 
 namespace phongcl {
 
@@ -32,6 +35,24 @@ PackedFrame pack_frame(const GBuffer& gbuffer, const Scene& scene) {
   return frame;
 }
 
+namespace {
+
+// The shape and the culling sphere as the OpenCL path packs them (shading/pack.h).
+void pack_shape(const Light& light, const glm::dvec3& eye, PackedScene& packed) {
+  const LightShape shape = light_shape(light);
+  const LightBounds bounds = light_bounds(light, eye);
+  for (auto [plane, value] :
+       {std::pair{&packed.falloff_power, static_cast<float>(shape.falloff)}, {&packed.inverse_range, shape.inverse_range},
+        {&packed.axis_x, shape.axis[0]}, {&packed.axis_y, shape.axis[1]}, {&packed.axis_z, shape.axis[2]},
+        {&packed.cos_inner, shape.cos_inner}, {&packed.cos_outer, shape.cos_outer},
+        {&packed.inverse_cone_width, shape.inverse_cone_width}, {&packed.bound_x, bounds.center[0]},
+        {&packed.bound_y, bounds.center[1]}, {&packed.bound_z, bounds.center[2]}, {&packed.bound_radius, bounds.radius}}) {
+    plane->push_back(value);
+  }
+}
+
+}  // namespace
+
 PackedScene pack_scene(const Scene& scene) {
   PackedScene packed;
   auto add_material = [&](const glm::dvec3& ambient, const glm::dvec3& kd, const glm::dvec3& ks, double q, float alpha) {
@@ -47,12 +68,14 @@ PackedScene pack_scene(const Scene& scene) {
   for (const Material& m : scene.materials) add_material(m.ka * scene.ambient, m.kd, m.ks, m.shininess, 1.0f);
   for (const Light& light : scene.lights) {
     const glm::dvec3 color = light.color;
-    if (light.type == LightType::point) {
+    packed.linking |= light.materials.has_value();
+    if (light.type != LightType::directional) {
       const glm::dvec3 p = light.position - scene.camera.eye;
       for (auto [plane, value] : {std::pair{&packed.point_x, p.x}, {&packed.point_y, p.y}, {&packed.point_z, p.z},
                                   {&packed.point_r, color.r}, {&packed.point_g, color.g}, {&packed.point_b, color.b}}) {
         plane->push_back(static_cast<float>(value));
       }
+      pack_shape(light, scene.camera.eye, packed);
     } else {
       const glm::dvec3 l = -glm::normalize(light.direction);
       for (auto [plane, value] : {std::pair{&packed.dir_x, l.x}, {&packed.dir_y, l.y}, {&packed.dir_z, l.z},

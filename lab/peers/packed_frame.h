@@ -51,7 +51,13 @@ struct PackedScene {
   // branch for background pixels (their zero P and N give zero light sums). ambient is ka * La.
   std::vector<float> ambient_r, ambient_g, ambient_b, kd_r, kd_g, kd_b, ks_r, ks_g, ks_b, shininess, alpha;
   // Point lights: position - eye; directional lights: l = -normalize(direction), both in double first.
-  std::vector<float> point_x, point_y, point_z, point_r, point_g, point_b;
+  std::vector<float> point_x, point_y, point_z, point_r, point_g, point_b;  // point and spot lights
+  // Their shapes (README "The shading, exactly"), read by cpp-tiled only: 1/d^k power, 1/R (0: no
+  // range), the spot's unit axis and cos(A/2), cos(A/2 + P), 1/(the two's difference) (points:
+  // cosines -2, every direction inside); and a bounding sphere (radius < 0: reaches everything).
+  std::vector<float> falloff_power, inverse_range, axis_x, axis_y, axis_z, cos_inner, cos_outer, inverse_cone_width;
+  std::vector<float> bound_x, bound_y, bound_z, bound_radius;
+  bool linking = false;  // some light lights only some materials: no peer implements that
   std::vector<float> dir_x, dir_y, dir_z, dir_r, dir_g, dir_b;
 
   int point_count() const { return static_cast<int>(point_x.size()); }
@@ -61,6 +67,8 @@ struct PackedScene {
 // Throws InputError for material indices out of range and for per-pixel material channels, which
 // the peers do not implement (they shade from the material table, as the benchmark scenes do).
 PackedFrame pack_frame(const GBuffer& gbuffer, const Scene& scene);
+// Spots are packed with the point lights; cpp-scalar and cpp-simd shade the seed's light model only
+// (no falloff, range, cone or linking), cpp-tiled all but linking.
 PackedScene pack_scene(const Scene& scene);
 
 }  // namespace phongcl

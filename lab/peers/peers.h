@@ -12,4 +12,14 @@ void shade_scalar(const PackedFrame& frame, const PackedScene& scene, float* rgb
 // cpp-simd: every core (OpenMP), each thread's pixels vectorised (`omp simd`, AVX-512 here).
 void shade_simd(const PackedFrame& frame, const PackedScene& scene, float* rgba);
 
+// cpp-tiled: tiled light culling (ISPC's examples/cpu/deferred) on every core, each tile row
+// vectorised: per tile_size x tile_size tile the lights whose bounds reach its shaded positions,
+// then its pixels from that list (falloff, range window and spot cones; no light linking).
+struct TiledPeerStats {
+  double culling_ms = 0.0, shading_ms = 0.0;  // wall clock of the two passes
+  double kept_pairs = 0.0;                     // shaded pixel-light pairs the culling kept
+};
+TiledPeerStats shade_tiled(const PackedFrame& frame, const PackedScene& scene, int width, int height, int tile_size,
+                           float* rgba);
+
 }  // namespace phongcl

@@ -16,6 +16,7 @@ struct SurfacePoint {
   glm::dvec3 normal{0.0};  // any length; normalised here
   glm::dvec3 ka{0.0}, kd{0.0}, ks{0.0};
   double shininess = 1.0;
+  int material = 0;  // the table index, for light linking
 };
 
 // The three terms of L_o separately; total() is their sum.

@@ -17,6 +17,42 @@ glm::dvec3 robust_normalize(const glm::dvec3& x) {
   return scaled / std::sqrt(glm::dot(scaled, scaled));
 }
 
+constexpr double kPi = 3.14159265358979323846;
+
+// falloff(d) * window(d) * cone(l) (README "The shading, exactly"), straight from the formula.
+double light_factor(const Light& light, const glm::dvec3& position, const glm::dvec3& l) {
+  const double d = glm::length(light.position - position);
+  const double falloff = std::pow(d, -static_cast<double>(static_cast<int>(light.falloff)));
+  double window = 1.0;
+  if (light.has_range()) {
+    const double t = std::clamp(1.0 - std::pow(d / light.range, 4.0), 0.0, 1.0);
+    window = t * t;
+  }
+  double cone = 1.0;
+  if (light.type == LightType::spot) {
+    const double c = glm::dot(-l, glm::normalize(light.direction));
+    const double half_angle = light.cone_angle_deg / 2.0 * kPi / 180.0;
+    const double ci = std::cos(half_angle);
+    const double co = std::cos(half_angle + light.penumbra_angle_deg * kPi / 180.0);
+    if (light.penumbra_angle_deg == 0.0) {
+      cone = c >= ci ? 1.0 : 0.0;
+    } else {
+      const double s = std::clamp((c - co) / (ci - co), 0.0, 1.0);
+      cone = s * s * (3.0 - 2.0 * s);
+    }
+  }
+  // 1/d^k may be +Inf where the window or cone is 0: the light contributes nothing there.
+  return window * cone == 0.0 ? 0.0 : falloff * window * cone;
+}
+
+// x * y where an infinite factor meeting an exact zero gives 0 (a colour or coefficient of 0 takes
+// nothing from even an overflowing light).
+glm::dvec3 product(const glm::dvec3& x, const glm::dvec3& y) {
+  glm::dvec3 result;
+  for (int c = 0; c < 3; ++c) result[c] = x[c] == 0.0 || y[c] == 0.0 ? 0.0 : x[c] * y[c];
+  return result;
+}
+
 }  // namespace
 
 ShadingTerms reference_shade_point(const Scene& scene, const SurfacePoint& point) {
@@ -27,20 +63,26 @@ ShadingTerms reference_shade_point(const Scene& scene, const SurfacePoint& point
   // An eye exactly at the point gives v = 0, so v.r = 0 and the specular factor is pow(0, q).
   const glm::dvec3 v = robust_normalize(scene.camera.eye - point.position);
 
+  glm::dvec3 diffuse(0.0), specular(0.0);  // sums of Li * F * (n.l) and Li * F * (v.r)^q
   for (const Light& light : scene.lights) {
+    if (!light.reaches(point.material)) continue;
     // l points from the surface towards the light; a directional light's direction is the way it
-    // travels, hence the minus sign. Point lights are not attenuated with distance.
-    const glm::dvec3 l = light.type == LightType::point ? robust_normalize(light.position - point.position)
-                                                        : -robust_normalize(light.direction);
+    // travels, hence the minus sign.
+    const bool positional = light.type != LightType::directional;
+    const glm::dvec3 l = positional ? robust_normalize(light.position - point.position) : -robust_normalize(light.direction);
     const double ndl = glm::dot(n, l);
     if (!(ndl > 0.0)) continue;  // back-facing, zero normal, or light at the point
+    const double factor = positional ? light_factor(light, point.position, l) : 1.0;
+    if (factor == 0.0) continue;
 
-    terms.diffuse += point.kd * ndl * light.color;
+    diffuse += product(light.color, glm::dvec3(ndl * factor));
     const glm::dvec3 r = 2.0 * ndl * n - l;
     // std::pow(0, 0) == 1, so q = 0 gives a full highlight even where v.r <= 0.
-    const double specular = std::pow(std::max(0.0, glm::dot(v, r)), point.shininess);
-    terms.specular += point.ks * specular * light.color;
+    const double highlight = std::pow(std::max(0.0, glm::dot(v, r)), point.shininess);
+    if (highlight > 0.0) specular += product(light.color, glm::dvec3(highlight * factor));
   }
+  terms.diffuse = product(point.kd, diffuse);
+  terms.specular = product(point.ks, specular);
   return terms;
 }
 

@@ -20,6 +20,7 @@ SurfacePoint reference_surface(const Scene& scene, const GBuffer& gbuffer, std::
   point.position = pixel_vec3(gbuffer.position, index);
   point.normal = pixel_vec3(gbuffer.normal, index);
 
+  point.material = static_cast<int>(gbuffer.material[index]);
   const bool all_per_pixel = gbuffer.has_per_pixel_ka() && gbuffer.has_per_pixel_kd() &&
                              gbuffer.has_per_pixel_ks() && gbuffer.has_per_pixel_shininess();
   // With every group per pixel the table may be empty and the index is never used.

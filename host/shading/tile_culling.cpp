@@ -1,0 +1,160 @@
+#include "shading/tile_culling.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "cl/kernel_source.h"
+
+namespace phongcl {
+
+namespace {
+
+using BoundsKernel = cl::KernelFunctor<cl::Buffer, cl_uint, cl::Buffer, cl_uint, TileGrid, cl::Buffer>;
+using CountKernel = cl::KernelFunctor<cl::Buffer, cl::Buffer, cl::Buffer, cl::Buffer, cl::Buffer, cl::Buffer>;
+using FillKernel = cl::KernelFunctor<cl::Buffer, cl::Buffer, cl::Buffer, cl::Buffer, cl::Buffer, cl::Buffer, cl::Buffer>;
+
+// The lane count and storage type are all cull.cl shares with the shading variant.
+std::string culling_options(const std::string& shading_options) {
+  std::string options = "-cl-std=CL1.2";
+  for (const char* keep : {"-DPHONGCL_LANES=", "-DHALF_STORAGE"}) {
+    const std::size_t at = shading_options.find(keep);
+    if (at == std::string::npos) continue;
+    options += " " + shading_options.substr(at, shading_options.find(' ', at) - at);
+  }
+  return options;
+}
+
+}  // namespace
+
+CullingStats& CullingStats::operator+=(const CullingStats& other) {
+  tile_size = other.tile_size;
+  tiles = std::max(tiles, other.tiles);
+  shaded_tiles += other.shaded_tiles;
+  max_lights_per_tile = std::max(max_lights_per_tile, other.max_lights_per_tile);
+  list_entries += other.list_entries;
+  kept_pairs += other.kept_pairs;
+  culling_ms += other.culling_ms;
+  return *this;
+}
+
+TileLayout tile_layout(int width, int height, int tile_size) {
+  TileLayout layout;
+  const auto size = static_cast<cl_uint>(tile_size);
+  layout.grid.image_width = static_cast<cl_uint>(width);
+  layout.grid.tile_size = size;
+  layout.grid.tiles_x = (static_cast<cl_uint>(width) + size - 1) / size;
+  layout.tile_count = static_cast<std::size_t>(layout.grid.tiles_x) * ((static_cast<cl_uint>(height) + size - 1) / size);
+  return layout;
+}
+
+TileCuller::TileCuller(const ComputeContext& compute, ProgramCache& cache, const std::string& build_options)
+    : compute_(compute), program_(cache.build(compute, load_kernel_source("cull.cl"), culling_options(build_options)).program) {}
+
+namespace {
+
+// Tiles per coarse tile along each axis: the first culling level tests every light against one
+// box per 8 x 8 tiles, the second only the survivors against each tile.
+constexpr std::size_t kCoarse = 8;
+
+std::vector<TileBox> coarse_boxes(const std::vector<TileBox>& boxes, std::size_t tiles_x, std::size_t coarse_x,
+                                  std::size_t coarse_count, std::vector<cl_uint>& parent) {
+  std::vector<TileBox> coarse(coarse_count);
+  for (TileBox& box : coarse) {
+    for (int axis = 0; axis < 3; ++axis) box.lo[axis] = INFINITY, box.hi[axis] = -INFINITY;
+    box.shaded = box.padding = 0;
+  }
+  parent.resize(boxes.size());
+  for (std::size_t t = 0; t < boxes.size(); ++t) {
+    const std::size_t c = (t / tiles_x / kCoarse) * coarse_x + (t % tiles_x) / kCoarse;
+    parent[t] = static_cast<cl_uint>(c);
+    if (boxes[t].shaded == 0) continue;
+    for (int axis = 0; axis < 3; ++axis) {
+      coarse[c].lo[axis] = std::min(coarse[c].lo[axis], boxes[t].lo[axis]);
+      coarse[c].hi[axis] = std::max(coarse[c].hi[axis], boxes[t].hi[axis]);
+    }
+    coarse[c].shaded += boxes[t].shaded;
+  }
+  return coarse;
+}
+
+template <typename T>
+cl::Buffer device_copy(const cl::Context& context, std::vector<T> values) {
+  if (values.empty()) values.resize(1);
+  return cl::Buffer(context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, values.size() * sizeof(T), values.data());
+}
+
+}  // namespace
+
+TileCuller::Lists TileCuller::lists(const cl::Buffer& boxes, std::size_t tiles, const cl::Buffer& light_bounds,
+                                    const cl::Buffer& candidates, const std::vector<cl_uint>& candidate_first,
+                                    const std::vector<cl_uint>& candidate_count) {
+  const cl::Context& context = compute_.context;
+  cl::CommandQueue& queue = compute_.queue;
+  Lists lists;
+  const cl::Buffer first = device_copy(context, candidate_first), count = device_copy(context, candidate_count);
+  lists.counts = cl::Buffer(context, CL_MEM_READ_WRITE, tiles * sizeof(cl_uint));
+  CountKernel(program_, "count_tile_lights")(cl::EnqueueArgs(queue, cl::NDRange(tiles)), boxes, light_bounds, candidates,
+                                             first, count, lists.counts);
+  lists.host_counts.resize(tiles);
+  queue.enqueueReadBuffer(lists.counts, CL_TRUE, 0, tiles * sizeof(cl_uint), lists.host_counts.data());
+  // Offsets: an exclusive prefix sum of the counts, on the host (a few thousand values).
+  lists.host_offsets.resize(tiles);
+  std::size_t total = 0;
+  for (std::size_t t = 0; t < tiles; ++t) lists.host_offsets[t] = static_cast<cl_uint>(total), total += lists.host_counts[t];
+  lists.offsets = device_copy(context, lists.host_offsets);
+  // OpenCL has no empty buffers: a frame that keeps no light still gets one entry.
+  lists.lights = cl::Buffer(context, CL_MEM_READ_WRITE, std::max<std::size_t>(total, 1) * sizeof(cl_uint));
+  FillKernel(program_, "fill_tile_lights")(cl::EnqueueArgs(queue, cl::NDRange(tiles)), boxes, light_bounds, candidates,
+                                           first, count, lists.offsets, lists.lights);
+  return lists;
+}
+
+CullingStats TileCuller::cull(const cl::Buffer& planes, std::size_t plane_stride, const cl::Buffer& material_index,
+                              std::size_t slot_count, const TileLayout& layout, const cl::Buffer& light_bounds,
+                              std::size_t light_count) {
+  const auto start = std::chrono::steady_clock::now();
+  const cl::Context& context = compute_.context;
+  cl::CommandQueue& queue = compute_.queue;
+  const std::size_t tiles = layout.tile_count;
+  const cl::Buffer& boxes = boxes_.at_least(context, tiles * sizeof(TileBox));
+  BoundsKernel(program_, "tile_bounds")(cl::EnqueueArgs(queue, cl::NDRange(tiles)), planes,
+                                        static_cast<cl_uint>(plane_stride), material_index,
+                                        static_cast<cl_uint>(slot_count), layout.grid, boxes);
+  std::vector<TileBox> box_values(tiles);
+  queue.enqueueReadBuffer(boxes, CL_TRUE, 0, tiles * sizeof(TileBox), box_values.data());
+
+  // Level 1: every light against the coarse boxes.
+  const std::size_t tiles_x = layout.grid.tiles_x, tiles_y = tiles / tiles_x;
+  const std::size_t coarse_x = (tiles_x + kCoarse - 1) / kCoarse, coarse_count = coarse_x * ((tiles_y + kCoarse - 1) / kCoarse);
+  std::vector<cl_uint> parent;
+  const cl::Buffer coarse = device_copy(context, coarse_boxes(box_values, tiles_x, coarse_x, coarse_count, parent));
+  std::vector<cl_uint> every_light(light_count);
+  for (std::size_t k = 0; k < light_count; ++k) every_light[k] = static_cast<cl_uint>(k);
+  const Lists coarse_lists = lists(coarse, coarse_count, light_bounds, device_copy(context, every_light),
+                                   std::vector<cl_uint>(coarse_count, 0),
+                                   std::vector<cl_uint>(coarse_count, static_cast<cl_uint>(light_count)));
+  // Level 2: each tile against its coarse tile's survivors.
+  std::vector<cl_uint> first(tiles), count(tiles);
+  for (std::size_t t = 0; t < tiles; ++t) first[t] = coarse_lists.host_offsets[parent[t]], count[t] = coarse_lists.host_counts[parent[t]];
+  const Lists fine = lists(boxes, tiles, light_bounds, coarse_lists.lights, first, count);
+  queue.finish();
+  offsets_buffer_ = fine.offsets;
+  counts_buffer_ = fine.counts;
+  lights_buffer_ = fine.lights;
+
+  CullingStats stats;
+  stats.tile_size = static_cast<int>(layout.grid.tile_size);
+  stats.tiles = tiles;
+  for (std::size_t t = 0; t < tiles; ++t) {
+    if (box_values[t].shaded == 0) continue;
+    ++stats.shaded_tiles;
+    stats.max_lights_per_tile = std::max<std::size_t>(stats.max_lights_per_tile, fine.host_counts[t]);
+    stats.list_entries += fine.host_counts[t];
+    stats.kept_pairs += static_cast<double>(fine.host_counts[t]) * box_values[t].shaded;
+  }
+  stats.culling_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return stats;
+}
+
+}  // namespace phongcl

@@ -1,0 +1,63 @@
+#pragma once
+// Tiled light culling on the device (kernels/cull.cl): per screen tile, the box of its shaded
+// positions, then (coarse tiles of 8 x 8 first) the list of point and spot lights whose bounds reach it; phong_shade's
+// TILED_CULLING variant loops over its tile's list only.
+#include <cstddef>
+#include <vector>
+
+#include "cl/program_cache.h"
+#include "cl/reusable_buffer.h"
+#include "shading/device_layout.h"
+
+namespace phongcl {
+
+// What one frame's culling kept, for the summary and the many-lights benchmark.
+struct CullingStats {
+  int tile_size = 0;
+  std::size_t tiles = 0, shaded_tiles = 0;  // shaded: tiles with at least one shaded pixel
+  std::size_t max_lights_per_tile = 0;
+  double list_entries = 0.0;                // sum over shaded tiles of their list lengths
+  double kept_pairs = 0.0;                  // sum over shaded pixels of their tile's list length
+  double culling_ms = 0.0;                  // the three passes and the prefix sum
+  double mean_lights_per_tile() const { return shaded_tiles ? list_entries / static_cast<double>(shaded_tiles) : 0.0; }
+  CullingStats& operator+=(const CullingStats& other);
+};
+
+// The grid of tiles over an image of the given width and height.
+struct TileLayout {
+  TileGrid grid{};
+  std::size_t tile_count = 0;
+};
+TileLayout tile_layout(int width, int height, int tile_size);
+
+class TileCuller {
+ public:
+  // `build_options` carries the shading recipe's PHONGCL_LANES and HALF_STORAGE.
+  TileCuller(const ComputeContext& compute, ProgramCache& cache, const std::string& build_options);
+
+  // Culls one launch's slots [0, slot_count) (frame pixels grid.first_pixel onwards) against the
+  // lights; afterwards offsets(), counts() and lights() hold the lists phong_shade reads.
+  CullingStats cull(const cl::Buffer& planes, std::size_t plane_stride, const cl::Buffer& material_index,
+                    std::size_t slot_count, const TileLayout& layout, const cl::Buffer& light_bounds,
+                    std::size_t light_count);
+
+  const cl::Buffer& offsets() const { return offsets_buffer_; }
+  const cl::Buffer& counts() const { return counts_buffer_; }
+  const cl::Buffer& lights() const { return lights_buffer_; }
+
+ private:
+  // One level of culling: each tile's candidates (a range of `candidates`) against its box.
+  struct Lists {
+    cl::Buffer offsets, counts, lights;
+    std::vector<cl_uint> host_offsets, host_counts;
+  };
+  Lists lists(const cl::Buffer& boxes, std::size_t tiles, const cl::Buffer& light_bounds, const cl::Buffer& candidates,
+              const std::vector<cl_uint>& candidate_first, const std::vector<cl_uint>& candidate_count);
+
+  ComputeContext compute_;
+  cl::Program program_;
+  ReusableBuffer boxes_{CL_MEM_READ_WRITE};
+  cl::Buffer offsets_buffer_, counts_buffer_, lights_buffer_;
+};
+
+}  // namespace phongcl

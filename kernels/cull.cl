@@ -1,0 +1,103 @@
+/* Tiled light culling (Andersson 2009; ISPC's examples/cpu/deferred), before phong_shade:
+ *   tile_bounds        one work-item per tile: the box of the tile's shaded positions
+ *   count_tile_lights  one work-item per tile: how many of its candidate lights can reach its box
+ *   fill_tile_lights   the same test again, writing the light indices at the tile's offset
+ * The host turns the counts into offsets (a prefix sum over a few thousand tiles) between the last
+ * two, and runs both twice: for coarse tiles (8 x 8 tiles, every light a candidate), then for the
+ * tiles, whose candidates are their coarse tile's list (10,000 lights: 1/40 of the tests). A light reaches a box when its bounding sphere (LightBounds, widened on the host against
+ * rounding) meets it, or when it has no range. The tile of a work-item is the tile of its first
+ * pixel (tiles.h), so a tile's box covers every pixel its work-items shade.
+ * Options: PHONGCL_LANES (as phong_shade's), HALF_STORAGE. */
+#include "layout.h"
+#include "tiles.h"
+
+#ifndef PHONGCL_LANES
+#define PHONGCL_LANES 1
+#endif
+
+#ifdef HALF_STORAGE
+#define STORAGE half
+#define LOAD_VALUE(plane, slot) vload_half((slot), planes + (size_t)(plane) * plane_stride)
+#else
+#define STORAGE float
+#define LOAD_VALUE(plane, slot) (planes + (size_t)(plane) * plane_stride)[slot]
+#endif
+
+inline uint round_up_lanes(uint pixel) { return (pixel + PHONGCL_LANES - 1) / PHONGCL_LANES * PHONGCL_LANES; }
+
+__kernel void tile_bounds(__global const STORAGE* restrict planes, uint plane_stride,
+                          __global const int* restrict material_index, uint slot_count, TileGrid grid,
+                          __global TileBox* restrict boxes) {
+  const uint tile = get_global_id(0);
+  const uint tile_x = tile % grid.tiles_x, tile_y = tile / grid.tiles_x;
+  const uint x_begin = tile_x * grid.tile_size, x_end = min(x_begin + grid.tile_size, grid.image_width);
+  float lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+  uint shaded = 0;
+  for (uint y = tile_y * grid.tile_size; y < (tile_y + 1) * grid.tile_size; ++y) {
+    /* The work-items whose first pixel is in [row + x_begin, row + x_end) shade these pixels. */
+    const ulong row = (ulong)y * grid.image_width;
+    const ulong begin = round_up_lanes(row + x_begin), end = round_up_lanes(row + x_end);
+    if (end <= grid.first_pixel) continue;
+    if (begin >= (ulong)grid.first_pixel + slot_count) break;
+    const uint slot_begin = (uint)(max(begin, (ulong)grid.first_pixel) - grid.first_pixel);
+    const uint slot_end = (uint)(min(end, (ulong)grid.first_pixel + slot_count) - grid.first_pixel);
+    for (uint slot = slot_begin; slot < slot_end; ++slot) {
+      if (material_index[slot] == PHONGCL_BACKGROUND) continue;
+      ++shaded;
+      for (int axis = 0; axis < 3; ++axis) {
+        const float value = LOAD_VALUE(PLANE_PX + axis, slot);
+        lo[axis] = fmin(lo[axis], value);
+        hi[axis] = fmax(hi[axis], value);
+      }
+    }
+  }
+  TileBox box;
+  for (int axis = 0; axis < 3; ++axis) {
+    box.lo[axis] = lo[axis];
+    box.hi[axis] = hi[axis];
+  }
+  box.shaded = shaded;
+  box.padding = 0;
+  boxes[tile] = box;
+}
+
+/* Whether a light's bounding sphere meets a non-empty box: the squared distance from its centre to
+ * the box against its radius squared. */
+inline bool reaches(LightBounds light, const TileBox* box) {
+  if (light.radius < 0) return true;
+  float distance_sq = 0;
+  for (int axis = 0; axis < 3; ++axis) {
+    const float outside = fmax(fmax(box->lo[axis] - light.center[axis], light.center[axis] - box->hi[axis]), 0.0f);
+    distance_sq += outside * outside;
+  }
+  return distance_sq <= light.radius * light.radius;
+}
+
+/* The candidates of tile t are candidates[candidate_first[t] ...], candidate_count[t] of them: every
+ * light for the coarse tiles, the coarse tile's list for its fine tiles. */
+__kernel void count_tile_lights(__global const TileBox* restrict boxes, __global const LightBounds* restrict lights,
+                                __global const uint* restrict candidates, __global const uint* restrict candidate_first,
+                                __global const uint* restrict candidate_count, __global uint* restrict counts) {
+  const uint tile = get_global_id(0);
+  const TileBox box = boxes[tile];
+  const uint first = candidate_first[tile], end = first + candidate_count[tile];
+  uint count = 0;
+  if (box.shaded > 0)
+    for (uint j = first; j < end; ++j) count += reaches(lights[candidates[j]], &box);
+  counts[tile] = count;
+}
+
+__kernel void fill_tile_lights(__global const TileBox* restrict boxes, __global const LightBounds* restrict lights,
+                               __global const uint* restrict candidates, __global const uint* restrict candidate_first,
+                               __global const uint* restrict candidate_count, __global const uint* restrict offsets,
+                               __global uint* restrict tile_lights) {
+  const uint tile = get_global_id(0);
+  const TileBox box = boxes[tile];
+  if (box.shaded == 0) return;
+  const uint first = candidate_first[tile], end = first + candidate_count[tile];
+  uint next = offsets[tile];
+  for (uint j = first; j < end; ++j) {
+    const uint k = candidates[j];
+    if (reaches(lights[k], &box)) tile_lights[next++] = k;
+  }
+}

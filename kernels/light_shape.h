@@ -1,0 +1,83 @@
+/* F = falloff(d) * window(d) * cone(l), and light linking, for the lights that have them (README
+ * "The shading, exactly"). Each part is compiled in only when the scene uses it:
+ *   FALLOFF=k          every point and spot light falls off as 1/d^k (k = 1, 2, 3)
+ *   FALLOFF_MIXED      powers differ between lights: read each light's
+ *   RANGE_WINDOW       some light has a range R: window(d) = clamp(1 - (d/R)^4, 0, 1)^2
+ *   SPOT_LIGHTS        some light is a spot: cone(l) from the smoothstep of its penumbra
+ *   LIGHT_LINKING=w    some light lights only some materials: w mask words per light
+ * Written for the formula's reader: the factors that are at most 1 multiply first, then 1/d once
+ * per power, so the product overflows to +Inf only where 1/d^k itself outgrows them, and a zero
+ * factor gives 0, never 0 * Inf = NaN. */
+#ifndef PHONGCL_LIGHT_SHAPE_H
+#define PHONGCL_LIGHT_SHAPE_H
+
+#include "layout.h"
+#include "phong_math.h"
+
+#if defined(FALLOFF) || defined(FALLOFF_MIXED)
+/* 1/d^k can exceed float near a light; the sums then guard 0 * Inf (see add_light, kahan_add). */
+#define WEIGHT_CAN_OVERFLOW
+#endif
+#if defined(FALLOFF) || defined(FALLOFF_MIXED) || defined(RANGE_WINDOW)
+#define NEEDS_DISTANCE
+#endif
+#if defined(NEEDS_DISTANCE) || defined(SPOT_LIGHTS)
+#define POINT_SHAPES
+#endif
+
+#ifdef LIGHT_LINKING
+/* 1 where the lane's material is among the light's, else 0. Background lanes (-1) get 0. */
+inline realv linked(UNIFORM_SPACE const LinkWord* mask, intv index) {
+#if LIGHT_LINKING == 1
+  const intv bits = (intv)(int)mask[0];
+#else
+  intv bits = (intv)0;
+  for (int word = 0; word < LIGHT_LINKING; ++word) bits = (index >> 5) == word ? (intv)(int)mask[word] : bits;
+#endif
+  return TO_REALV((bits >> (index & 31)) & 1);
+}
+#define LINK_GATE(light) linked(&links[(light) * LIGHT_LINKING], index)
+#else
+#define LINK_GATE(light) ((realv)1)
+#endif
+
+#ifdef POINT_SHAPES
+/* F for one point or spot light; `gate` (0 or 1) is its linking. toward * inverse is l. */
+inline realv shape_weight(UNIFORM_SPACE const LightShape* shape, vec3 toward, realv inverse, realv distance,
+                          realv inverse_distance, realv gate) {
+  realv bounded = gate; /* window * cone * link, in [0, 1] */
+#ifdef RANGE_WINDOW
+  const realv x = distance * shape->inverse_range, x2 = x * x;
+  const realv t = clamp(1 - x2 * x2, (real)0, (real)1);
+  bounded *= t * t;
+#endif
+#ifdef SPOT_LIGHTS
+  const vec3 axis = make_vec3(shape->axis[0], shape->axis[1], shape->axis[2]);
+  const realv c = -inverse * dot3(toward, axis); /* dot(-l, axis) */
+  const realv s = SELECT(c >= shape->cos_inner, 1,
+                         clamp((c - shape->cos_outer) * shape->inverse_cone_width, (real)0, (real)1));
+  bounded *= s * s * (3 - 2 * s);
+#endif
+  realv weight = bounded;
+#if defined(FALLOFF)
+  for (int power = 0; power < FALLOFF; ++power) weight *= inverse_distance;
+#elif defined(FALLOFF_MIXED)
+  for (int power = 0; power < shape->falloff; ++power) weight *= inverse_distance;
+#endif
+#ifdef WEIGHT_CAN_OVERFLOW
+  return SELECT(bounded > 0, weight, 0); /* 0 * (1/d^k = Inf) */
+#else
+  return weight;
+#endif
+}
+#endif
+
+/* value * factor for a colour or coefficient factor >= 0, where a weight of +Inf may have reached
+ * value: a factor of exactly 0 takes nothing (0, not NaN). */
+#ifdef WEIGHT_CAN_OVERFLOW
+#define NONNEGATIVE_TIMES(factor, value) SELECT((factor) > 0, (factor) * (value), 0)
+#else
+#define NONNEGATIVE_TIMES(factor, value) ((factor) * (value))
+#endif
+
+#endif

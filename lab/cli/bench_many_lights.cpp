@@ -1,0 +1,207 @@
+// phongcl bench --many-lights: tiled light culling against the unculled kernel and a C++ peer doing
+// the same tiled culling, from 64 to 10,000 ranged point and spot lights on one frame.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <omp.h>
+#include <iostream>
+#include <sstream>
+#include <stdexcept>
+
+#include "cl/compute_context.h"
+#include "cli/bench_arguments.h"
+#include "cli/many_lights_report.h"
+#include "peers/light_sweep.h"
+#include "peers/machine_limits.h"
+#include "peers/many_lights.h"
+#include "peers/peers.h"
+#include "raycast/raycast.h"
+#include "reference/reference.h"
+#include "report/report_files.h"
+#include "shading/phong_shader.h"
+
+namespace phongcl::cli {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+constexpr int kTileSize = 16;
+constexpr double kSingleRunMs = 10000.0;      // a run longer than this is timed once
+constexpr double kReferencePixelLights = 3e6;  // the double reference's sample of rows (a few seconds here)
+constexpr int kUnculledRateLights = 16;        // the unculled kernel's pixel-lights/s is quoted here
+
+double elapsed_ms(Clock::time_point start) { return std::chrono::duration<double, std::milli>(Clock::now() - start).count(); }
+
+std::string load_average() {
+  std::ifstream in("/proc/loadavg");
+  std::string one, five, fifteen;
+  in >> one >> five >> fifteen;
+  return one + " " + five + " " + fifteen;
+}
+
+std::vector<int> parse_counts(const std::string& text) {
+  std::vector<int> counts;
+  std::stringstream in(text);
+  for (std::string item; std::getline(in, item, ',');) {
+    std::size_t used = 0;
+    int value = 0;
+    try {
+      value = std::stoi(item, &used);
+    } catch (const std::exception&) {
+    }
+    if (used != item.size() || value < 1) throw std::invalid_argument("--lights: not a light count >= 1: '" + item + "'");
+    counts.push_back(value);
+  }
+  return counts;
+}
+
+// One untimed warm-up, then `runs` timed ones; where the first run took over 10 s it is the single
+// timed run (its kernel time excludes the build, which happens before the kernel is enqueued).
+template <typename Run>
+std::vector<double> time_runs(int runs, Run run, bool& single) {
+  const double first = run();
+  single = first > kSingleRunMs;
+  if (single) return {first};
+  std::vector<double> times;
+  for (int r = 0; r < runs; ++r) times.push_back(run());
+  return times;
+}
+
+// The double reference on every n-th row, n chosen for about kReferencePixelLights.
+struct ReferenceRows {
+  int step = 1;
+  Image image;
+  std::vector<bool> shaded;
+  ReferenceRows(const Scene& scene, const GBuffer& frame) {
+    const double pixel_lights = static_cast<double>(frame.pixel_count()) * static_cast<double>(scene.lights.size());
+    step = std::max(1, static_cast<int>(std::ceil(pixel_lights / kReferencePixelLights)));
+    const GBuffer rows = every_nth_row(frame, step);
+    image = reference_image(scene, rows);
+    shaded.resize(rows.pixel_count());
+    for (std::size_t i = 0; i < shaded.size(); ++i) shaded[i] = classify_pixel(rows, i) == PixelClass::shaded;
+  }
+  double error_of(const Image& frame) const { return compare_images(every_nth_row(frame, step), image, 1e-6, shaded).max_rel; }
+};
+
+class ManyLightsBench {
+ public:
+  ManyLightsBench(PhongShader& shader, const GBuffer& gbuffer, int runs) : shader_(shader), gbuffer_(gbuffer), runs_(runs) {
+    for (std::size_t i = 0; i < gbuffer.pixel_count(); ++i) shaded_ += classify_pixel(gbuffer, i) == PixelClass::shaded;
+  }
+
+  void opencl(const Scene& scene, bool tiled, double reach, const ReferenceRows* reference) {
+    ShadeOptions options;
+    options.culling = tiled ? Culling::tiled : Culling::none;
+    options.tile_size = kTileSize;
+    ShadeResult last;
+    std::vector<double> culling;
+    ManyLightsResult r;
+    const std::vector<double> times = time_runs(runs_, [&] {
+      last = shader_.shade(scene, gbuffer_, options);
+      culling.push_back(last.culling.culling_ms);
+      return last.timings.kernel_ms;
+    }, r.single_run);
+    r.impl = tiled ? "opencl-tiled" : "opencl-unculled";
+    r.lights = static_cast<int>(scene.lights.size());
+    r.time = summarize(times);
+    const double pairs = tiled ? last.culling.kept_pairs : static_cast<double>(shaded_) * r.lights;
+    if (tiled) {
+      if (!r.single_run) culling.erase(culling.begin());  // the warm-up's
+      r.culling_ms = summarize(culling).median_ms;
+      r.mean_lights_per_tile = last.culling.mean_lights_per_tile();
+    }
+    finish(r, pairs, reach, reference ? std::optional(reference->error_of(last.image)) : std::nullopt);
+  }
+
+  void cpp_tiled(const Scene& scene, double reach, const ReferenceRows& reference) {
+    const PackedFrame frame = pack_frame(gbuffer_, scene);
+    const PackedScene packed = pack_scene(scene);
+    Image image = image_like(gbuffer_);
+    std::vector<double> culling;
+    TiledPeerStats stats;
+    ManyLightsResult r;
+    const std::vector<double> times = time_runs(runs_, [&] {
+      stats = shade_tiled(frame, packed, gbuffer_.width, gbuffer_.height, kTileSize, image.pixel(0));
+      culling.push_back(stats.culling_ms);
+      return stats.culling_ms + stats.shading_ms;
+    }, r.single_run);
+    if (!r.single_run) culling.erase(culling.begin());
+    r.impl = "cpp-tiled";
+    r.lights = static_cast<int>(scene.lights.size());
+    r.time = summarize(times);
+    r.culling_ms = summarize(culling).median_ms;
+    finish(r, stats.kept_pairs, reach, reference.error_of(image));
+  }
+
+  const std::vector<ManyLightsResult>& results() const { return results_; }
+
+ private:
+  void finish(ManyLightsResult& r, double pairs, double reach, std::optional<double> error) {
+    r.mean_lights_per_pixel = shaded_ ? pairs / static_cast<double>(shaded_) : 0.0;
+    r.mean_lights_reaching = reach;
+    r.effective_mpix_lights_per_s = pairs / (r.time.median_ms * 1e-3) / 1e6;
+    r.max_rel_err = error;
+    std::cout << "    " << r.impl << ": " << r.time.median_ms << " ms (" << r.time.runs << " runs"
+              << (r.single_run ? ", one run: over 10 s" : "") << "), " << r.mean_lights_per_pixel << " lights/pixel, "
+              << r.effective_mpix_lights_per_s << " effective Mpix-lights/s\n";
+    results_.push_back(r);
+  }
+
+  PhongShader& shader_;
+  const GBuffer& gbuffer_;
+  int runs_;
+  std::size_t shaded_ = 0;
+  std::vector<ManyLightsResult> results_;
+};
+
+}  // namespace
+
+void run_many_lights_bench(const BenchArguments& args) {
+  if (!args.report_dir.empty()) create_report_directory(args.report_dir);
+  const Scene scene = args.inputs.load_scene();
+  // The bundled 1080p scene's G-buffer is not in the repository: ray-cast it when it is missing.
+  const bool has_gbuffer = !args.inputs.gbuffer_file.empty() || std::filesystem::exists(scene.gbuffer);
+  const GBuffer gbuffer = has_gbuffer ? args.inputs.load_gbuffer(scene) : generate_gbuffer(scene);
+  ProgramCache cache(ProgramCache::default_directory());
+  PhongShader shader(make_compute_context(pick_device(args.device)), cache);
+  ManyLightsMachine machine{cpu_model_name(), describe(shader.compute().device.info), load_average(),
+                            omp_get_max_threads(), gbuffer.width, gbuffer.height, kTileSize,
+                            "`" + scene.source.string() + "`" + (has_gbuffer ? "" : " (G-buffer ray-cast)")};
+  std::cout << "phongcl bench --many-lights: " << scene.source.string() << ", " << gbuffer.width << "x" << gbuffer.height
+            << "\n  device     " << machine.device << "\n  load       " << machine.loadavg << "\n";
+
+  ManyLightsBench bench(shader, gbuffer, std::max(args.runs, 5));
+  const std::vector<int> counts = args.lights.empty() ? std::vector<int>{} : parse_counts(args.lights);
+  std::vector<Scene> scenes;
+  if (counts.empty()) scenes.push_back(scene);
+  for (int count : counts) scenes.push_back(with_many_lights(scene, gbuffer, count));
+  if (!counts.empty()) {
+    // The unculled kernel's pixel-lights/s at 16 lights: what culling's effective rate is held to.
+    const Scene sixteen = with_many_lights(scene, gbuffer, kUnculledRateLights);
+    std::cout << "  lights     " << kUnculledRateLights << " (the unculled rate)\n";
+    bench.opencl(sixteen, false, mean_lights_reaching(sixteen, gbuffer, 97), nullptr);
+  }
+  for (const Scene& lit : scenes) {
+    const auto start = Clock::now();
+    const double reach = mean_lights_reaching(lit, gbuffer, 97);
+    std::cout << "  lights     " << lit.lights.size() << ": a shaded pixel is reached by " << reach
+              << " on average; reference rows..." << std::flush;
+    const ReferenceRows reference(lit, gbuffer);
+    std::cout << " every " << reference.step << "\n";
+    bench.opencl(lit, true, reach, &reference);
+    bench.opencl(lit, false, reach, &reference);
+    bench.cpp_tiled(lit, reach, reference);
+    std::cout << "    (" << static_cast<int>(elapsed_ms(start) / 1000) << " s)\n";
+  }
+  std::cout << "\n" << many_lights_table(bench.results());
+  if (!args.json_file.empty()) write_text_file(args.json_file, many_lights_json(machine, bench.results()));
+  if (!args.report_dir.empty()) {
+    write_many_lights_report(args.report_dir, machine, bench.results());
+    std::cout << "  wrote      " << args.report_dir << "/report.md, results.json, frame_ms_vs_lights.svg\n";
+  }
+}
+
+}  // namespace phongcl::cli

@@ -1,0 +1,240 @@
+// Falloff, range windows, spot cones and light linking: the kernel against the double reference in
+// every precision variant but half-storage, each specialised combination against the general
+// kernel, and what reaches the kernel's build options.
+#include "peers/many_lights.h"
+#include "shading_support.h"
+#include "shaped_lights.h"
+
+namespace phongcl {
+namespace {
+
+using testing::add_shaped_lights;
+using testing::describe_worst;
+using testing::random_scene;
+using testing::RandomSceneSpec;
+using testing::ShapedLightSpec;
+
+// The product's bound (test_shading.cpp says why float meets it). The new factors add a few ulp:
+// 1/d^k (k roundings of a correctly rounded rsqrt), the window (1 - x^4 loses digits only where the
+// window, and so the light's share, is near 0) and the smoothstep (s's error is about 3e-7 over a
+// penumbra of at least 5 degrees, cos difference >= 0.01: 3e-5 of s, but only where cone ~ s^2 is
+// small beside the pixel's other terms).
+constexpr double kRelativeBound = 5e-4;
+constexpr double kAbsoluteFloor = 1e-6;
+
+struct Case {
+  const char* name;
+  ShapedLightSpec lights;
+};
+
+std::vector<Case> feature_cases() {
+  std::vector<Case> cases;
+  auto add = [&](const char* name, auto edit) {
+    ShapedLightSpec spec;
+    spec.falloff = spec.range = spec.spots = false;
+    edit(spec);
+    cases.push_back({name, spec});
+  };
+  add("quadratic falloff", [](ShapedLightSpec& s) { s.falloff = true; });
+  add("mixed falloff", [](ShapedLightSpec& s) { s.falloff = s.mixed_falloff = true; });
+  add("range", [](ShapedLightSpec& s) { s.range = true; });
+  add("soft spots", [](ShapedLightSpec& s) { s.spots = true; });
+  add("hard spots", [](ShapedLightSpec& s) { s.spots = s.hard_spots = true; });
+  add("linking", [](ShapedLightSpec& s) { s.linking = true; });
+  add("everything", [](ShapedLightSpec& s) { s.falloff = s.mixed_falloff = s.range = s.spots = s.linking = true; });
+  add("quadratic, range, spots", [](ShapedLightSpec& s) { s.falloff = s.range = s.spots = true; });
+  return cases;
+}
+
+std::pair<Scene, GBuffer> shaped_scene(const Case& c, unsigned seed, int materials = 4) {
+  RandomSceneSpec spec;
+  spec.point_lights = 1;  // one plain point light beside the shaped ones
+  spec.directional_lights = 1;
+  spec.materials = materials;
+  auto [scene, gbuffer] = random_scene(spec, seed);
+  add_shaped_lights(scene, c.lights, seed + 1);
+  return {scene, gbuffer};
+}
+
+ErrorStats kernel_vs_reference(PhongShader& shader, const Scene& scene, const GBuffer& gbuffer,
+                               const ShadeOptions& options) {
+  const ShadeResult result = shader.shade(scene, gbuffer, options);
+  testing::expect_background_exact(result.image, scene, gbuffer);
+  const std::vector<bool> mask = testing::away_from_hard_edges(scene, gbuffer, testing::shaded_mask(gbuffer));
+  return compare_images(result.image, reference_image(scene, gbuffer), kAbsoluteFloor, mask);
+}
+
+TEST(Lights, EveryFeatureMatchesReferenceInEveryVariantAndLaneCount) {
+  PHONGCL_REQUIRE_DEVICE(shader);
+  unsigned seed = 9100;
+  for (const Case& c : feature_cases()) {
+    for (Precision precision : {Precision::precise, Precision::fast, Precision::double_precision}) {
+      if (precision == Precision::double_precision && !shader.compute().device.info.has_fp64) continue;
+      for (int lanes : {1, 16}) {
+        const auto [scene, gbuffer] = shaped_scene(c, ++seed);
+        ShadeOptions options;
+        options.precision = precision;
+        options.lanes = lanes;
+        const ErrorStats stats = kernel_vs_reference(shader, scene, gbuffer, options);
+        EXPECT_EQ(stats.nonfinite_mismatches, 0u) << c.name;
+        EXPECT_LE(stats.max_rel, kRelativeBound) << c.name << ", " << to_string(precision) << ", " << lanes
+                                                 << " lanes: " << describe_worst(stats);
+      }
+    }
+  }
+}
+
+// More than 32 materials: linking masks of two words.
+TEST(Lights, LinkingBeyondThirtyTwoMaterials) {
+  PHONGCL_REQUIRE_DEVICE(shader);
+  ShapedLightSpec spec;
+  spec.linking = true;
+  const auto [scene, gbuffer] = shaped_scene({"linking, 40 materials", spec}, 77, 40);
+  const ShadeResult result = shader.shade(scene, gbuffer, {});
+  EXPECT_NE(result.build_options.find("-DLIGHT_LINKING=2"), std::string::npos) << result.build_options;
+  const ErrorStats stats = kernel_vs_reference(shader, scene, gbuffer, {});
+  EXPECT_LE(stats.max_rel, kRelativeBound) << describe_worst(stats);
+}
+
+TEST(Lights, EachSpecialisedCombinationMatchesTheGeneralKernel) {
+  PHONGCL_REQUIRE_DEVICE(shader);
+  ShadeOptions general;
+  general.specialise = false;
+  for (int mask = 0; mask < 16; ++mask) {
+    ShapedLightSpec spec;
+    spec.falloff = mask & 1;
+    spec.range = mask & 2;
+    spec.spots = mask & 4;
+    spec.linking = mask & 8;
+    const auto [scene, gbuffer] = shaped_scene({"combination", spec}, 500 + static_cast<unsigned>(mask));
+    const ShadeResult specialised = shader.shade(scene, gbuffer, {});
+    const std::string& options = specialised.build_options;
+    EXPECT_EQ(options.find("-DFALLOFF") != std::string::npos, spec.falloff) << options;
+    EXPECT_EQ(options.find("-DRANGE_WINDOW") != std::string::npos, spec.range) << options;
+    EXPECT_EQ(options.find("-DSPOT_LIGHTS") != std::string::npos, spec.spots) << options;
+    EXPECT_EQ(options.find("-DLIGHT_LINKING=1") != std::string::npos, spec.linking) << options;
+    const ShadeResult unspecialised = shader.shade(scene, gbuffer, general);
+    // Both are float, same formula: a few ulp of the light sum apart, far inside the product's bound.
+    const ErrorStats stats = compare_images(specialised.image, unspecialised.image, kAbsoluteFloor,
+                                            testing::away_from_hard_edges(scene, gbuffer, testing::shaded_mask(gbuffer)));
+    EXPECT_LE(stats.max_rel, 1e-5) << "combination " << mask << ": " << describe_worst(stats);
+  }
+}
+
+// A scene with only the seed's light fields builds exactly the options it built before them.
+TEST(Lights, SeedLightsBuildTheSeedKernel) {
+  PHONGCL_REQUIRE_DEVICE(shader);
+  const auto [scene, gbuffer] = random_scene({}, 3);
+  const std::string options = make_recipe(scene, gbuffer, shader.compute().device.info, {}).build_options();
+  for (const char* shape : {"FALLOFF", "RANGE_WINDOW", "SPOT_LIGHTS", "LIGHT_LINKING", "TILED_CULLING"})
+    EXPECT_EQ(options.find(shape), std::string::npos) << options;
+}
+
+// d -> 0 with 1/d^3: +Inf where the exact value exceeds float, never NaN, and a colour channel or
+// kd of exactly 0 stays 0 (0 * Inf would be NaN).
+TEST(Lights, OverflowingFalloffGivesInfinityNotNaN) {
+  PHONGCL_REQUIRE_DEVICE(shader);
+  RandomSceneSpec spec;
+  spec.point_lights = spec.directional_lights = 0;
+  spec.materials = 1;
+  spec.background_fraction = 0.0;
+  auto [scene, gbuffer] = random_scene(spec, 5);
+  scene.materials[0].kd = scene.materials[0].ks = {1.0, 0.0, 1.0};
+  scene.materials[0].ka = glm::dvec3(0.0);
+  // Positions reach the kernel as floats relative to the eye: d = 1e-20 survives only near it.
+  scene.camera.eye = glm::dvec3(0.0);
+  const double z = -1e-14;
+  for (int c = 0; c < 3; ++c) {
+    gbuffer.position[c][0] = c == 2 ? static_cast<float>(z) : 0.0f;
+    gbuffer.normal[c][0] = c == 2 ? 1.0f : 0.0f;
+  }
+  Light light;
+  light.position = {0.0, 0.0, z + 1e-20};
+  light.color = {1.0, 1.0, 0.0};
+  light.falloff = Falloff::cubic;
+  scene.lights = {light};
+  for (Precision precision : {Precision::precise, Precision::double_precision}) {
+    ShadeOptions options;
+    options.precision = precision;
+    const ShadeResult result = shader.shade(scene, gbuffer, options);
+    const float* pixel = result.image.pixel(0);
+    EXPECT_EQ(pixel[0], std::numeric_limits<float>::infinity()) << to_string(precision);
+    EXPECT_EQ(pixel[1], 0.0f) << to_string(precision) << ": kd.g = ks.g = 0";
+    EXPECT_EQ(pixel[2], 0.0f) << to_string(precision) << ": colour.b = 0";
+    for (std::size_t i = 0; i < gbuffer.pixel_count(); ++i)
+      for (int c = 0; c < 3; ++c) ASSERT_FALSE(std::isnan(result.image.pixel(i)[c])) << "pixel " << i;
+  }
+}
+
+// The default scene's geometry at width x height, its lights replaced by `count` ranged ones that
+// reach `reach` of them per shaded pixel on average.
+std::pair<Scene, GBuffer> default_scene_with_many_lights(int width, int height, int count, double reach) {
+  Scene scene = load_scene(std::filesystem::path(PHONGCL_SOURCE_DIR) / "scenes/default/scene.json");
+  scene.camera.width = width;
+  scene.camera.height = height;
+  GBuffer gbuffer = generate_gbuffer(scene);
+  return {with_many_lights(scene, gbuffer, count, reach), std::move(gbuffer)};
+}
+
+// The default scene at 203 x 97 (a width no tile size or lane count divides) with 300 ranged lights:
+// tiled culling must give the unculled image to float rounding (a culled light adds exactly 0;
+// only the grouping of the compensated sum differs) and match the reference, for lanes 1 and 16,
+// tiles of 16 and of 5 (work-items reaching into the next tile), and launches split into pieces.
+TEST(Lights, TiledCullingEqualsUnculledAndReference) {
+  PHONGCL_REQUIRE_DEVICE(shader);
+  auto [scene, gbuffer] = default_scene_with_many_lights(203, 97, 300, 12.0);
+  scene.lights.push_back({LightType::directional, {}, {-0.3, -1.0, -0.5}, glm::dvec3(0.2)});
+  const Image reference = reference_image(scene, gbuffer);
+  const std::vector<bool> mask = testing::shaded_mask(gbuffer);
+  for (int lanes : {1, 16}) {
+    ShadeOptions unculled;
+    unculled.lanes = lanes;
+    unculled.culling = Culling::none;
+    const ShadeResult all = shader.shade(scene, gbuffer, unculled);
+    EXPECT_EQ(all.build_options.find("TILED_CULLING"), std::string::npos);
+    for (int tile : {16, 5}) {
+      for (std::size_t pieces : {std::size_t{0}, std::size_t{4001}}) {
+        ShadeOptions tiled = unculled;
+        tiled.culling = Culling::automatic;  // 300 lights with a range: automatic chooses tiles
+        tiled.tile_size = tile;
+        tiled.max_tile_pixels = pieces;
+        const ShadeResult culled = shader.shade(scene, gbuffer, tiled);
+        const std::string where = std::to_string(lanes) + " lanes, tile " + std::to_string(tile) +
+                                  (pieces ? ", in pieces" : "");
+        ASSERT_NE(culled.build_options.find("-DTILED_CULLING"), std::string::npos) << culled.build_options;
+        const ErrorStats same = compare_images(culled.image, all.image, kAbsoluteFloor, mask);
+        EXPECT_LE(same.max_rel, 1e-5) << where << ": " << describe_worst(same);
+        EXPECT_EQ(same.nonfinite_mismatches, 0u) << where;
+        const ErrorStats exact = compare_images(culled.image, reference, kAbsoluteFloor, mask);
+        EXPECT_LE(exact.max_rel, kRelativeBound) << where << ": " << describe_worst(exact);
+        // The culling must have culled: a tile keeps far fewer than all 300 lights.
+        EXPECT_GT(culled.culling.shaded_tiles, 0u) << where;
+        EXPECT_LT(culled.culling.mean_lights_per_tile(), 150.0) << where;
+        EXPECT_LT(culled.culling.kept_pairs, 0.5 * 300.0 * static_cast<double>(culled.counts.shaded)) << where;
+      }
+    }
+  }
+}
+
+// Spots and linking inside tiles; lights without a range are in every tile's list.
+TEST(Lights, TiledCullingKeepsUnrangedLightsEverywhere) {
+  PHONGCL_REQUIRE_DEVICE(shader);
+  auto [scene, gbuffer] = default_scene_with_many_lights(64, 48, 80, 10.0);
+  scene.lights[3].range = 0.0;  // reaches everything
+  scene.lights[4].materials = std::vector<int>{1, 3};
+  ShadeOptions tiled;
+  tiled.culling = Culling::tiled;
+  const ShadeResult culled = shader.shade(scene, gbuffer, tiled);
+  EXPECT_GE(culled.culling.mean_lights_per_tile(), 1.0);
+  ShadeOptions unculled;
+  unculled.culling = Culling::none;
+  const ErrorStats same = compare_images(culled.image, shader.shade(scene, gbuffer, unculled).image, kAbsoluteFloor,
+                                         testing::shaded_mask(gbuffer));
+  EXPECT_LE(same.max_rel, 1e-5) << describe_worst(same);
+  const ErrorStats exact = compare_images(culled.image, reference_image(scene, gbuffer), kAbsoluteFloor,
+                                          testing::shaded_mask(gbuffer));
+  EXPECT_LE(exact.max_rel, kRelativeBound) << describe_worst(exact);
+}
+
+}  // namespace
+}  // namespace phongcl
