@@ -1,6 +1,7 @@
 #pragma once
 // An RGBA float image (interleaved, row-major, row 0 at the top of the data window) and its files.
 #include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -48,7 +49,12 @@ struct DisplaySettings {
   double exposure_stops = 0.0;
   ToneMap tone_map = ToneMap::reinhard;
 };
-// Writes an 8-bit sRGB RGBA PNG, atomically. NaN displays as 0, +Inf as white.
+// 8-bit sRGB RGBA of rows [first_row, first_row + rows) into out (4 bytes a pixel, indexed from
+// the image's first pixel), and of the whole image. NaN displays as 0, +Inf as white.
+void display_rgba8(const Image& image, const DisplaySettings& display, std::size_t first_row, std::size_t rows,
+                   std::uint8_t* out);
+std::vector<std::uint8_t> display_rgba8(const Image& image, const DisplaySettings& display);
+// Writes display_rgba8 as a PNG (tagged sRGB), atomically.
 void write_png(const Image& image, const std::filesystem::path& file, const DisplaySettings& display = {});
 
 // Per-pixel error of `test` against `expected` over the pixels where `mask` is true (all if empty),
