@@ -12,5 +12,6 @@ void add_compare_command(CLI::App& app);
 void add_devices_command(CLI::App& app);
 void add_bench_command(CLI::App& app);
 void add_stability_command(CLI::App& app);
+void add_serve_command(CLI::App& app);
 
 }  // namespace phongcl::cli

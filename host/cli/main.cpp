@@ -16,6 +16,7 @@ int main(int argc, char** argv) {
   phongcl::cli::add_devices_command(app);
   phongcl::cli::add_bench_command(app);
   phongcl::cli::add_stability_command(app);
+  phongcl::cli::add_serve_command(app);
   try {
     app.parse(argc, argv);
     return 0;
