@@ -54,7 +54,10 @@ struct DisplaySettings {
 void display_rgba8(const Image& image, const DisplaySettings& display, std::size_t first_row, std::size_t rows,
                    std::uint8_t* out);
 std::vector<std::uint8_t> display_rgba8(const Image& image, const DisplaySettings& display);
-// Writes display_rgba8 as a PNG (tagged sRGB), atomically.
+// A PNG (tagged sRGB, fast zlib settings) of display_rgba8's bytes, in memory. Throws
+// std::runtime_error with libpng's message when it refuses (e.g. an empty image).
+std::string encode_png(const std::vector<std::uint8_t>& rgba, int width, int height);
+// Writes display_rgba8 as a PNG, atomically.
 void write_png(const Image& image, const std::filesystem::path& file, const DisplaySettings& display = {});
 
 // Per-pixel error of `test` against `expected` over the pixels where `mask` is true (all if empty),

@@ -3,6 +3,8 @@
 
 #include <cstdint>
 #include <cstring>
+#include <fstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -12,20 +14,38 @@
 
 namespace phongcl {
 
-void write_png(const Image& image, const std::filesystem::path& file, const DisplaySettings& display) {
-  const std::vector<std::uint8_t> bytes = display_rgba8(image, display);
-
+std::string encode_png(const std::vector<std::uint8_t>& rgba, int width, int height) {
   // libpng's simplified API reports errors in png_image::message instead of longjmp-ing through
   // our destructors, and tags 8-bit non-linear output as sRGB.
+  png_image png;
+  std::memset(&png, 0, sizeof png);
+  png.version = PNG_IMAGE_VERSION;
+  png.width = static_cast<png_uint_32>(width);
+  png.height = static_cast<png_uint_32>(height);
+  png.format = PNG_FORMAT_RGBA;
+  png.flags = PNG_IMAGE_FLAG_FAST;
+  png_alloc_size_t size = 0;
+  if (!png_image_write_to_memory(&png, nullptr, &size, 0, rgba.data(), 0, nullptr))
+    throw std::runtime_error(png.message);
+  std::string bytes(size, '\0');
+  if (!png_image_write_to_memory(&png, bytes.data(), &size, 0, rgba.data(), 0, nullptr))
+    throw std::runtime_error(png.message);
+  bytes.resize(size);
+  return bytes;
+}
+
+void write_png(const Image& image, const std::filesystem::path& file, const DisplaySettings& display) {
+  std::string bytes;
+  try {
+    bytes = encode_png(display_rgba8(image, display), image.width, image.height);
+  } catch (const std::runtime_error& error) {
+    throw InputError(file, std::string("cannot write PNG (") + error.what() + ")");
+  }
   write_atomically(file, [&](const std::filesystem::path& temp) {
-    png_image png;
-    std::memset(&png, 0, sizeof png);
-    png.version = PNG_IMAGE_VERSION;
-    png.width = static_cast<png_uint_32>(image.width);
-    png.height = static_cast<png_uint_32>(image.height);
-    png.format = PNG_FORMAT_RGBA;
-    if (!png_image_write_to_file(&png, temp.c_str(), 0, bytes.data(), 0, nullptr))
-      throw InputError(file, std::string("cannot write PNG (") + png.message + ")");
+    std::ofstream stream(temp, std::ios::binary);
+    stream.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+    stream.close();
+    if (!stream) throw InputError(file, "cannot write PNG");
   });
 }
 

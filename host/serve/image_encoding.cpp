@@ -1,6 +1,5 @@
 #include "serve/image_encoding.h"
 
-#include <png.h>
 #include <stdlib.h>
 #include <turbojpeg.h>
 #include <unistd.h>
@@ -33,22 +32,7 @@ std::vector<std::uint8_t> parallel_display_bytes(const Image& image, const Displ
 }
 
 std::string encode_png(const Image& image, const DisplaySettings& display) {
-  const std::vector<std::uint8_t> rgba = parallel_display_bytes(image, display);
-  png_image png;
-  std::memset(&png, 0, sizeof png);
-  png.version = PNG_IMAGE_VERSION;
-  png.width = static_cast<png_uint_32>(image.width);
-  png.height = static_cast<png_uint_32>(image.height);
-  png.format = PNG_FORMAT_RGBA;
-  png.flags = PNG_IMAGE_FLAG_FAST;
-  png_alloc_size_t size = 0;
-  if (!png_image_write_to_memory(&png, nullptr, &size, 0, rgba.data(), 0, nullptr))
-    throw std::runtime_error(std::string("PNG encoding failed: ") + png.message);
-  std::string bytes(size, '\0');
-  if (!png_image_write_to_memory(&png, bytes.data(), &size, 0, rgba.data(), 0, nullptr))
-    throw std::runtime_error(std::string("PNG encoding failed: ") + png.message);
-  bytes.resize(size);
-  return bytes;
+  return phongcl::encode_png(parallel_display_bytes(image, display), image.width, image.height);
 }
 
 std::string encode_jpeg(const Image& image, const DisplaySettings& display) {
