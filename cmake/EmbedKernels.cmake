@@ -11,5 +11,5 @@ add_custom_command(
   DEPENDS ${PHONGCL_KERNEL_FILES} ${PROJECT_SOURCE_DIR}/cmake/WriteEmbeddedKernels.cmake
   COMMENT "Embedding OpenCL kernels"
   VERBATIM)
-add_library(phongcl_kernels STATIC ${PHONGCL_EMBEDDED_CPP})
+add_library(phongcl_kernels OBJECT ${PHONGCL_EMBEDDED_CPP})
 target_include_directories(phongcl_kernels PUBLIC ${PROJECT_SOURCE_DIR}/host ${PROJECT_SOURCE_DIR})

@@ -4,8 +4,32 @@
 #ifndef PHONGCL_LAYOUT_H
 #define PHONGCL_LAYOUT_H
 
-/* float is 32-bit IEEE on both sides (OpenCL C requires it; the host static-asserts the sizes). */
+/* float and int are 32 bits on both sides (OpenCL C requires it; the host static-asserts the sizes). */
 typedef float layout_float;
+typedef int layout_int;
+typedef unsigned int layout_uint;
+
+/* Lights per block of the kernel's compensated sum (phong.cl's light loops). */
+#define PHONGCL_LIGHT_BLOCK 16
+/* Up to this many lights of a type, the count is a compile-time constant and the loop unrolls: one
+ * block, so an unrolled loop needs no compensation between blocks. */
+#define PHONGCL_UNROLL_LIGHT_LIMIT PHONGCL_LIGHT_BLOCK
+
+/* The kernel's output planes: R G B A, and with WRITE_TERMS the terms ambient, diffuse, specular RGB. */
+#define PHONGCL_OUTPUT_PLANES 4
+#define PHONGCL_TERM_PLANES 9
+
+/* The per-frame scalars, one kernel argument (by value) rather than a row of floats that compiles
+ * with two of them swapped. Colours are scaled by 2^-radiance_exponent so that sums of HDR values
+ * near float's limits cannot overflow early; the kernel multiplies by a * b = 2^e at the end. */
+typedef struct {
+  layout_float ambient[4];                        /* La, rgb scaled; a unused */
+  layout_float background[4];                     /* rgb, not scaled; a unused */
+  layout_float radiance_scale_a, radiance_scale_b; /* two power-of-two factors, each a normal float */
+  layout_int point_count, directional_count;      /* entries in the light tables */
+  layout_uint plane_stride;                       /* values per plane in every buffer, a multiple of PHONGCL_LANES */
+  layout_uint padding[3];
+} FrameScalars;
 
 /* A point light. position is relative to the eye: the host rebases in double so that a scene far
  * from the origin loses nothing when converted to float. color is scaled by 2^-radiance_exponent. */

@@ -14,8 +14,8 @@
  *   PHONGCL_DOUBLE                     fp64 arithmetic (see phong_math.h)
  *   PHONGCL_FAST                       built with -cl-fast-relaxed-math (see unscale)
  *   WRITE_TERMS                        also write ambient, diffuse, specular separately (AOVs)
- * Every buffer is planar with `plane_stride` values per plane, a multiple of PHONGCL_LANES (the host
- * pads each tile with background pixels).
+ * Every buffer is planar with frame.plane_stride values per plane, a multiple of PHONGCL_LANES (the
+ * host pads each tile with background pixels).
  */
 #include "layout.h"
 #include "phong_math.h"
@@ -32,21 +32,18 @@
 #ifdef POINT_COUNT
 #define POINT_LOOP_COUNT POINT_COUNT
 #else
-#define POINT_LOOP_COUNT point_count
+#define POINT_LOOP_COUNT frame.point_count
 #endif
 #ifdef DIRECTIONAL_COUNT
 #define DIRECTIONAL_LOOP_COUNT DIRECTIONAL_COUNT
 #else
-#define DIRECTIONAL_LOOP_COUNT directional_count
+#define DIRECTIONAL_LOOP_COUNT frame.directional_count
 #endif
 
 /* Sums of Li*max(0, n.l) and Li*spec over the lights; the material multiplies once at the end. */
 typedef struct {
   vec3 diffuse, specular;
 } LightSums;
-
-/* Lights per block of the compensated sum (see the light loops). */
-#define LIGHT_BLOCK 16
 
 /* sum += value, with the rounding error carried in compensation (Kahan). */
 inline void kahan_add(realv* sum, realv* compensation, realv value) {
@@ -92,11 +89,15 @@ inline void add_light(LightSums* sums, vec3 n, vec3 v, vec3 toward, realv invers
 #endif
 }
 
-/* One field of a material record; `field` is a float offset within MaterialRecord (layout.h).
- * Through a function returning a private value: clang 15 (PoCL 3.1) crashes on a vector literal
- * cast straight from a __constant lvalue. */
+/* One field of a material record; `field` is a float offset within MaterialRecord (layout.h),
+ * read through the named array it falls in (indexing past ka[4] is undefined behaviour; `field` is
+ * a constant at every call, so the choice folds away). Through a function returning a private
+ * value: clang 15 (PoCL 3.1) crashes on a vector literal cast straight from a __constant lvalue. */
 inline real material_scalar(UNIFORM_SPACE const MaterialRecord* record, int field) {
-  return ((const UNIFORM_SPACE float*)record)[field];
+  return field < MATERIAL_KD ? record->ka[field - MATERIAL_KA]
+         : field < MATERIAL_KS ? record->kd[field - MATERIAL_KD]
+         : field < MATERIAL_SHININESS ? record->ks[field - MATERIAL_KS]
+                                      : record->shininess;
 }
 
 #if defined(MATERIAL_COUNT)
@@ -117,7 +118,7 @@ inline realv select_field(UNIFORM_SPACE const MaterialRecord* table, intv index,
  * indexing in OpenCL C). */
 inline realv gather_field(UNIFORM_SPACE const MaterialRecord* table, const int* index, int field) {
   real values[PHONGCL_LANES];
-  for (int k = 0; k < PHONGCL_LANES; ++k) values[k] = ((const UNIFORM_SPACE float*)&table[index[k]])[field];
+  for (int k = 0; k < PHONGCL_LANES; ++k) values[k] = material_scalar(&table[index[k]], field);
   return PHONGCL_XCAT(vload, PHONGCL_LANES)(0, values);
 }
 #define MATERIAL_FIELD(field) gather_field(materials, lane_material, field)
@@ -138,7 +139,8 @@ inline realv gather_field(UNIFORM_SPACE const MaterialRecord* table, const int* 
  * a * b = 2^128 overflows (3e38 lights gave +Inf for a finite 1.5e38, and 0 * Inf = NaN in dark
  * pixels), so the fast variant uses ldexp, which no flag rewrites. */
 #ifdef PHONGCL_FAST
-inline floatv unscale(realv value, float a, float b) { return TO_FLOATV(ldexp(value, ilogb(a) + ilogb(b))); }
+/* A vector exponent rather than ldexp(floatn, int): Oclgrind 21.10 gets that overload's lanes wrong. */
+inline floatv unscale(realv value, float a, float b) { return TO_FLOATV(ldexp(value, (intv)(ilogb(a) + ilogb(b)))); }
 #else
 inline floatv unscale(realv value, float a, float b) { return TO_FLOATV(value * a * b); }
 #endif
@@ -151,18 +153,19 @@ inline void store3(vec3 value, float a, float b, size_t group, __global float* r
 
 __kernel void phong_shade(
     /* G-buffer tile: planes (see layout.h), positions relative to the eye */
-    __global const STORAGE* restrict planes, uint plane_stride,
+    __global const STORAGE* restrict planes,
     __global const int* restrict material_index,
     /* scene; colours scaled by 2^-radiance_exponent, undone by the two scale factors */
     UNIFORM_SPACE const MaterialRecord* restrict materials,
-    UNIFORM_SPACE const PointLight* restrict point_lights, int point_count,
-    UNIFORM_SPACE const DirectionalLight* restrict directional_lights, int directional_count,
-    float ambient_r, float ambient_g, float ambient_b,
-    float radiance_scale_a, float radiance_scale_b,
-    float background_r, float background_g, float background_b,
-    /* output planes: R G B A; with WRITE_TERMS also ambient, diffuse, specular RGB (9 planes) */
+    UNIFORM_SPACE const PointLight* restrict point_lights,
+    UNIFORM_SPACE const DirectionalLight* restrict directional_lights,
+    /* ambient, background, radiance scales, light counts, plane stride (layout.h) */
+    const FrameScalars frame,
+    /* output planes (PHONGCL_OUTPUT_PLANES): R G B A; with WRITE_TERMS also the terms (PHONGCL_TERM_PLANES) */
     __global float* restrict out_rgba, __global float* restrict out_terms) {
   const size_t group = get_global_id(0);
+  const uint plane_stride = frame.plane_stride;
+  const float radiance_scale_a = frame.radiance_scale_a, radiance_scale_b = frame.radiance_scale_b;
   const intv index = VLOAD_INT(group, material_index);
   const intv background = index == PHONGCL_BACKGROUND;
   /* Background lanes read material 0 and are replaced by the background colour at the end. */
@@ -182,16 +185,16 @@ __kernel void phong_shade(
   const vec3 v = unit_or_zero(make_vec3(-p.x, -p.y, -p.z));
 
   const realv zero = 0;
-  /* Lights are summed in blocks of LIGHT_BLOCK in plain float, and the block sums compensated
+  /* Lights are summed in blocks of PHONGCL_LIGHT_BLOCK in plain float, and the block sums compensated
    * (Kahan): the error stays a few ulp plus one block's however many lights there are (10,000 lights,
    * one of 1 then 9,999 of 3e-8: plain float 3.0e-4 relative, blocked Kahan 4.5e-7). Unrolled
    * counts up to 16 are one block. -cl-fast-relaxed-math may fold the compensation away (fast). */
   const LightSums no_light = {{zero, zero, zero}, {zero, zero, zero}};
   LightSums sums = no_light, compensation = no_light;
 #ifdef POINT_LIGHTS
-  for (int first = 0; first < POINT_LOOP_COUNT; first += LIGHT_BLOCK) {
+  for (int first = 0; first < POINT_LOOP_COUNT; first += PHONGCL_LIGHT_BLOCK) {
     LightSums block = no_light;
-    for (int k = first; k < min(first + LIGHT_BLOCK, POINT_LOOP_COUNT); ++k) {
+    for (int k = first; k < min(first + PHONGCL_LIGHT_BLOCK, POINT_LOOP_COUNT); ++k) {
       UNIFORM_SPACE const PointLight* light = &point_lights[k];
       const vec3 position = make_vec3(light->position[0], light->position[1], light->position[2]);
       vec3 toward = sub3(position, p);
@@ -202,9 +205,9 @@ __kernel void phong_shade(
   }
 #endif
 #ifdef DIRECTIONAL_LIGHTS
-  for (int first = 0; first < DIRECTIONAL_LOOP_COUNT; first += LIGHT_BLOCK) {
+  for (int first = 0; first < DIRECTIONAL_LOOP_COUNT; first += PHONGCL_LIGHT_BLOCK) {
     LightSums block = no_light;
-    for (int k = first; k < min(first + LIGHT_BLOCK, DIRECTIONAL_LOOP_COUNT); ++k) {
+    for (int k = first; k < min(first + PHONGCL_LIGHT_BLOCK, DIRECTIONAL_LOOP_COUNT); ++k) {
       UNIFORM_SPACE const DirectionalLight* light = &directional_lights[k];
       const vec3 l = make_vec3(light->to_light[0], light->to_light[1], light->to_light[2]);
       add_light(&block, n, v, l, 1, light->color, shininess);
@@ -235,7 +238,7 @@ __kernel void phong_shade(
 #else
   const vec3 ka = MATERIAL_FIELD3(MATERIAL_KA);
 #endif
-  const vec3 ambient = make_vec3(ka.x * ambient_r, ka.y * ambient_g, ka.z * ambient_b);
+  const vec3 ambient = make_vec3(ka.x * frame.ambient[0], ka.y * frame.ambient[1], ka.z * frame.ambient[2]);
 #else
   const vec3 ambient = make_vec3(zero, zero, zero);
 #endif
@@ -243,9 +246,9 @@ __kernel void phong_shade(
   const floatv shaded_r = unscale(ambient.x + diffuse.x + specular.x, radiance_scale_a, radiance_scale_b);
   const floatv shaded_g = unscale(ambient.y + diffuse.y + specular.y, radiance_scale_a, radiance_scale_b);
   const floatv shaded_b = unscale(ambient.z + diffuse.z + specular.z, radiance_scale_a, radiance_scale_b);
-  VSTORE_FLOAT(background ? (floatv)background_r : shaded_r, group, out_rgba);
-  VSTORE_FLOAT(background ? (floatv)background_g : shaded_g, group, out_rgba + plane_stride);
-  VSTORE_FLOAT(background ? (floatv)background_b : shaded_b, group, out_rgba + 2 * (size_t)plane_stride);
+  VSTORE_FLOAT(background ? (floatv)frame.background[0] : shaded_r, group, out_rgba);
+  VSTORE_FLOAT(background ? (floatv)frame.background[1] : shaded_g, group, out_rgba + plane_stride);
+  VSTORE_FLOAT(background ? (floatv)frame.background[2] : shaded_b, group, out_rgba + 2 * (size_t)plane_stride);
   VSTORE_FLOAT(background ? (floatv)0.0f : (floatv)1.0f, group, out_rgba + 3 * (size_t)plane_stride);
 #ifdef WRITE_TERMS
   /* Background lanes: the host ignores terms where alpha is 0. */

@@ -126,7 +126,8 @@ inline realv exp2_nonpositive(realv y) { return exp2(y); }
 inline vec3 rescaled(vec3 v) {
   /* |x| as bits orders like |x| (non-negative floats); NaN and Inf give the largest exponent. */
   const intv largest = max(AS_INTV(fabs(v.x)), max(AS_INTV(fabs(v.y)), AS_INTV(fabs(v.z))));
-  const intv exponent = min(largest >> 23, 253); /* 2^(127 - e) stays a normal float */
+  /* 2^(127 - e) stays a normal float. A vector bound: Oclgrind 21.10 gets min(intn, int) wrong. */
+  const intv exponent = min(largest >> 23, (intv)253);
   return scale3(v, AS_FLOATV((254 - exponent) << 23));
 }
 

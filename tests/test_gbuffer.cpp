@@ -1,6 +1,7 @@
 // G-buffer files: layouts OpenEXR can produce (scanline, tiled, half/float/uint, offset windows),
 // the errors a user can meet, and which pixels get shaded.
 #include <gtest/gtest.h>
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include <ImfChannelList.h>
@@ -14,8 +15,10 @@
 #include <atomic>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <limits>
 #include <map>
 #include <string>
@@ -23,6 +26,7 @@
 
 #include "common/error.h"
 #include "gbuffer/gbuffer.h"
+#include "gbuffer/layouts.h"
 
 #include "temp_dir.h"
 
@@ -291,6 +295,128 @@ TEST(GBufferErrors, TruncatedFileIsDetected) {
       EXPECT_NE(message.find("truncated or corrupt"), std::string::npos) << what << message;
     }
   }
+}
+
+// Rewrites the data window in the header of a file written by OpenEXR (the attribute
+// "dataWindow", type "box2i", 16 bytes: x_min, y_min, x_max, y_max), as a hostile file would.
+void patch_data_window(const fs::path& file, int width, int height) {
+  std::fstream stream(file, std::ios::in | std::ios::out | std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(stream)), std::istreambuf_iterator<char>());
+  const std::string name("dataWindow\0box2i\0", 17);
+  const std::size_t at = bytes.find(name);
+  ASSERT_NE(at, std::string::npos);
+  const std::int32_t box[4] = {0, 0, width - 1, height - 1};
+  stream.seekp(static_cast<std::streamoff>(at + name.size() + 4));
+  stream.write(reinterpret_cast<const char*>(box), sizeof box);
+}
+
+// OpenEXR 3.1's C++ reader accepted a 4x4 file patched to 100000x1 and returned whatever its
+// buffers held (MALLOC_PERTURB_ changed the shaded image); the one chunk decodes to 4x4 pixels.
+TEST(GBufferHostile, ChunkShorterThanItsWindowIsCorrupt) {
+  TempDir dir;
+  for (bool tiled : {false, true}) {
+    const fs::path file = dir / "g.exr";
+    const GBuffer g = make_gbuffer({0, 0, 3, 3}, false);
+    if (tiled)
+      write_by_hand(file, g, channels_of(g), true);
+    else
+      write_gbuffer(g, file);
+    patch_data_window(file, tiled ? 16 : 100000, tiled ? 2 : 1);  // still one tile or one chunk
+    const std::string message = read_error(file);
+    EXPECT_NE(message.find(file.string() + ": truncated or corrupt"), std::string::npos) << (tiled ? "tiled: " : "scanline: ") << message;
+  }
+}
+
+// Turns a one-chunk scanline file into one declaring width x height whose offset table is
+// complete: `chunks` entries, every one pointing at the file's only chunk.
+void declare_window_with_complete_offsets(const fs::path& file, int width, int height, std::uint64_t chunks) {
+  patch_data_window(file, width, height);
+  std::ifstream in(file, std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  in.close();
+  // The single offset-table entry is the one 8-byte value that points just past itself.
+  std::size_t table = 0;
+  for (std::uint64_t value = 0; table + 8 <= bytes.size(); ++table) {
+    std::memcpy(&value, bytes.data() + table, 8);
+    if (value == table + 8) break;
+  }
+  ASSERT_LT(table + 8, bytes.size());
+  const std::uint64_t chunk = table + 8 * chunks;
+  std::string offsets;
+  for (std::uint64_t i = 0; i < chunks; ++i) offsets.append(reinterpret_cast<const char*>(&chunk), 8);
+  std::ofstream(file, std::ios::binary | std::ios::trunc) << bytes.substr(0, table) << offsets << bytes.substr(table + 8);
+}
+
+// An 8.6 KB file declaring 16384x16384 with a complete offset table made phongcl allocate and zero
+// 7.2 GB over 17 s before it failed; 100000x100000 ended in "phongcl: std::bad_alloc", which names
+// no file.
+TEST(GBufferHostile, HugeDeclaredWindowFailsBeforeAllocating) {
+  TempDir dir;
+  const fs::path file = dir / "g.exr";
+  write_gbuffer(make_gbuffer({0, 0, 3, 3}, false), file);
+  declare_window_with_complete_offsets(file, 16384, 16384, 16384 / 16);  // ZIP: 16 lines per chunk
+  ASSERT_LT(fs::file_size(file), 9000u);
+  std::string message = read_error(file);
+  EXPECT_NE(message.find(file.string() + ": truncated or corrupt EXR: a 16384x16384 data window needs 1024 chunks"),
+            std::string::npos)
+      << message;
+  write_gbuffer(make_gbuffer({0, 0, 3, 3}, false), file);
+  declare_window_with_complete_offsets(file, 100000, 100000, 100000 / 16);
+  message = read_error(file);
+  EXPECT_NE(message.find(file.string() + ": declares a 100000x100000 data window (10000000000 pixels), more than the "
+                                         "limit of 268435456 pixels (--max-pixels)"),
+            std::string::npos)
+      << message;
+}
+
+TEST(GBufferHostile, MaxPixelsIsTheCallersLimit) {
+  TempDir dir;
+  const fs::path file = dir / "g.exr";
+  write_gbuffer(make_gbuffer({0, 0, 3, 3}, false), file);
+  ReadOptions options;
+  options.max_pixels = 16;
+  EXPECT_EQ(read_gbuffer(file, options).gbuffer.pixel_count(), 16u);
+  options.max_pixels = 15;
+  try {
+    read_gbuffer(file, options);
+    FAIL() << "read a 4x4 file with a limit of 15 pixels";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("more than the limit of 15 pixels"), std::string::npos) << e.what();
+  }
+}
+
+#if defined(__SANITIZE_ADDRESS__)
+#define PHONGCL_ASAN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define PHONGCL_ASAN 1
+#endif
+#endif
+
+// A window within the limit that this machine (here: an address-space limit) cannot hold.
+TEST(GBufferHostile, AllocationFailureNamesTheFileAndTheSize) {
+#ifdef PHONGCL_ASAN
+  GTEST_SKIP() << "AddressSanitizer reserves terabytes of address space: an RLIMIT_AS would stop it";
+#else
+  TempDir dir;
+  const fs::path file = dir / "g.exr";
+  write_gbuffer(make_gbuffer({0, 0, 3, 3}, false), file);
+  patch_data_window(file, 10000000, 16);  // one ZIP chunk, 160 M pixels, 7 planes: 4.5 GB
+  rlimit saved{};
+  ASSERT_EQ(::getrlimit(RLIMIT_AS, &saved), 0);
+  std::ifstream status("/proc/self/status");
+  std::string line;
+  long vm_kb = 0;
+  while (std::getline(status, line))
+    if (line.rfind("VmSize:", 0) == 0) vm_kb = std::stol(line.substr(7));
+  rlimit limited = saved;
+  limited.rlim_cur = static_cast<rlim_t>(vm_kb + 1024 * 1024) * 1024;  // 1 GB more than now
+  ASSERT_EQ(::setrlimit(RLIMIT_AS, &limited), 0);
+  const std::string message = read_error(file);
+  ::setrlimit(RLIMIT_AS, &saved);
+  EXPECT_NE(message.find(file.string() + ": cannot allocate 4.5 GB for 7 planes of 10000000x16 pixels"), std::string::npos)
+      << message;
+#endif
 }
 
 TEST(GBufferErrors, FileCutInsideTheHeader) {

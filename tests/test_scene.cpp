@@ -253,6 +253,37 @@ TEST(Scene, EachProblemIsAOneLineInputErrorNamingFileAndPlace) {
   }
 }
 
+// `depth` transforms, each the only child of the one before, around a sphere.
+std::string nested_transforms(int depth) {
+  std::string objects;
+  for (int i = 0; i < depth; ++i) objects += R"({"type": "transform", "children": [)";
+  objects += R"({"type": "sphere", "radius": 1})";
+  for (int i = 0; i < depth; ++i) objects += "]}";
+  return scene_json(R"("objects": [)" + objects + "]");
+}
+
+// 10,000 levels overflowed the stack of the recursive object reader (SIGSEGV) and 6,000 took
+// 854 MB of path strings; now the parser refuses them with one line.
+TEST(Scene, DeepNestingIsAOneLineErrorNotACrash) {
+  for (int depth : {200, 10000, 100000}) {
+    const std::string message = error_of(nested_transforms(depth));
+    EXPECT_NE(message.find("some/dir/scene.json: invalid JSON: nested deeper than 256 levels"), std::string::npos)
+        << "depth " << depth << ": " << message;
+  }
+  // Plain arrays count as well: nothing past the limit reaches the readers.
+  EXPECT_NE(error_of(scene_json(R"("lights": )" + std::string(300, '[') + std::string(300, ']'))).find("nested deeper"),
+            std::string::npos);
+}
+
+TEST(Scene, NestingWithinTheLimitParses) {
+  const Scene scene = parse_scene(nested_transforms(120), kSource);
+  const Object* object = &scene.objects.at(0);
+  int depth = 0;
+  for (; object->kind == Object::Kind::transform; ++depth) object = &object->children.at(0);
+  EXPECT_EQ(depth, 120);
+  EXPECT_EQ(object->kind, Object::Kind::sphere);
+}
+
 TEST(Scene, MissingFileCannotBeOpened) {
   const std::filesystem::path missing = std::filesystem::temp_directory_path() / "phongcl-no-such-dir" / "scene.json";
   try {

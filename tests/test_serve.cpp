@@ -38,9 +38,7 @@ std::string file_text(const std::filesystem::path& file) { return testing::read_
 class RunningServer {
  public:
   explicit RunningServer(const std::filesystem::path& save_path = {})
-      : cache_(std::filesystem::path()),
-        session_(read_gbuffer(PHONGCL_SOURCE_DIR "/scenes/default/gbuffer.exr"), make_compute_context(pick_device("")),
-                 cache_),
+      : session_(read_gbuffer(PHONGCL_SOURCE_DIR "/scenes/default/gbuffer.exr"), ""),
         live_(session_, file_text(kSceneFile), kSceneFile, RenderSettings{}),
         server_(live_, {"127.0.0.1", 0, save_path, "test device"}) {
     port_ = server_.bind();
@@ -59,7 +57,6 @@ class RunningServer {
   RelightServer& server() { return server_; }
 
  private:
-  ProgramCache cache_;
   RelightSession session_;
   LiveRelighter live_;
   RelightServer server_;

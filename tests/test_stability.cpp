@@ -1,6 +1,6 @@
-// The stability catalogue (host/stability), one test per case on every precision variant the
+// The stability catalogue (lab/stability), one test per case on every precision variant the
 // device runs; no NaN from finite extreme inputs in any variant; the two accuracy bars of issue 4
-// over many pixels. The catalogue's cases carry their own tolerances (host/stability/case_builder.h).
+// over many pixels. The catalogue's cases carry their own tolerances (lab/stability/case_builder.h).
 #include <cmath>
 #include <limits>
 #include <random>

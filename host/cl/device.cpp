@@ -14,6 +14,19 @@ namespace phongcl {
 
 namespace {
 
+std::string lower(std::string text) {
+  std::transform(text.begin(), text.end(), text.begin(), [](unsigned char c) { return std::tolower(c); });
+  return text;
+}
+
+// By name: no OpenCL query says "simulated". Oclgrind, Intel's FPGA emulator, and the like.
+bool is_simulator(const DeviceInfo& info) {
+  const std::string names = lower(info.platform + " " + info.name + " " + info.vendor);
+  for (const char* word : {"oclgrind", "simulat", "emulat"})
+    if (names.find(word) != std::string::npos) return true;
+  return false;
+}
+
 DeviceInfo read_info(const cl::Platform& platform, const cl::Device& device, int index) {
   DeviceInfo info;
   info.index = index;
@@ -24,6 +37,8 @@ DeviceInfo read_info(const cl::Platform& platform, const cl::Device& device, int
   info.driver_version = device.getInfo<CL_DRIVER_VERSION>();
   info.device_version = device.getInfo<CL_DEVICE_VERSION>();
   info.is_cpu = (device.getInfo<CL_DEVICE_TYPE>() & CL_DEVICE_TYPE_CPU) != 0;
+  info.is_gpu = (device.getInfo<CL_DEVICE_TYPE>() & CL_DEVICE_TYPE_GPU) != 0;
+  info.is_simulator = is_simulator(info);
   info.has_fp64 = device.getInfo<CL_DEVICE_EXTENSIONS>().find("cl_khr_fp64") != std::string::npos;
   info.compute_units = device.getInfo<CL_DEVICE_MAX_COMPUTE_UNITS>();
   info.global_memory = device.getInfo<CL_DEVICE_GLOBAL_MEM_SIZE>();
@@ -32,11 +47,6 @@ DeviceInfo read_info(const cl::Platform& platform, const cl::Device& device, int
   info.max_constant_args = device.getInfo<CL_DEVICE_MAX_CONSTANT_ARGS>();
   info.preferred_float_width = device.getInfo<CL_DEVICE_PREFERRED_VECTOR_WIDTH_FLOAT>();
   return info;
-}
-
-std::string lower(std::string text) {
-  std::transform(text.begin(), text.end(), text.begin(), [](unsigned char c) { return std::tolower(c); });
-  return text;
 }
 
 // PoCL keeps compiled kernels in $POCL_CACHE_DIR, else $XDG_CACHE_HOME/pocl, else ~/.cache/pocl, and
@@ -89,8 +99,13 @@ Device pick_device(const std::string& selector) {
         "reports none when it cannot create its kernel cache, so check that POCL_CACHE_DIR is writable");
   }
   if (selector.empty()) {
-    const auto cpu = std::find_if(devices.begin(), devices.end(), [](const Device& d) { return d.info.is_cpu; });
-    return cpu != devices.end() ? *cpu : devices.front();
+    std::vector<DeviceInfo> infos;
+    for (const auto& device : devices) infos.push_back(device.info);
+    const DefaultChoice choice = choose_default_device(infos);
+    if (choice.index < 0)
+      throw std::runtime_error("every OpenCL device here is a simulator or emulator (" + describe(infos.front()) +
+                               "): choose one with --device, or install a real driver such as pocl-opencl-icd");
+    return devices[static_cast<std::size_t>(choice.index)];
   }
   if (std::all_of(selector.begin(), selector.end(), [](unsigned char c) { return std::isdigit(c); })) {
     // More digits than any device count has is simply out of range (and would overflow stoul).
@@ -107,9 +122,31 @@ Device pick_device(const std::string& selector) {
   throw std::runtime_error("--device " + selector + ": no OpenCL device matches (see `phongcl devices`)");
 }
 
+DefaultChoice choose_default_device(const std::vector<DeviceInfo>& devices) {
+  // Rank: GPU, then CPU, then anything else; within a rank the most compute units; first listed on a tie.
+  const auto rank = [](const DeviceInfo& d) { return d.is_gpu ? 2 : d.is_cpu ? 1 : 0; };
+  DefaultChoice choice;
+  for (std::size_t i = 0; i < devices.size(); ++i) {
+    const DeviceInfo& d = devices[i];
+    if (d.is_simulator) continue;
+    if (choice.index >= 0) {
+      const DeviceInfo& best = devices[static_cast<std::size_t>(choice.index)];
+      if (rank(d) < rank(best) || (rank(d) == rank(best) && d.compute_units <= best.compute_units)) continue;
+    }
+    choice.index = static_cast<int>(i);
+  }
+  if (choice.index < 0) return {-1, "every device is a simulator or emulator: choose one with --device"};
+  const DeviceInfo& chosen = devices[static_cast<std::size_t>(choice.index)];
+  const std::string units = std::to_string(chosen.compute_units) + " compute units";
+  choice.reason = chosen.is_gpu   ? "a GPU, the one with the most compute units (" + units + ")"
+                  : chosen.is_cpu ? "no GPU; the CPU device with the most compute units (" + units + ")"
+                                  : "no GPU or CPU device; the one with the most compute units (" + units + ")";
+  return choice;
+}
+
 std::string describe(const DeviceInfo& info) {
   return info.name + " (" + info.platform + ", " + info.device_version + ", driver " + info.driver_version + ", " +
-         (info.is_cpu ? "CPU" : "non-CPU") + ", " + std::to_string(info.compute_units) + " compute units)";
+         (info.is_gpu ? "GPU" : info.is_cpu ? "CPU" : "other") + (info.is_simulator ? " simulator" : "") + ", " + std::to_string(info.compute_units) + " compute units)";
 }
 
 }  // namespace phongcl

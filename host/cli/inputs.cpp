@@ -20,6 +20,9 @@ void SceneInputs::add_options(CLI::App& command) {
   command.add_option("--depth-convention", depth_convention,
                      "Depth pass meaning, when positions come from depth: distance (along the ray, default) or viewz")
       ->check(CLI::IsMember({"distance", "viewz"}));
+  command.add_option("--max-pixels", max_pixels,
+                     "Refuse G-buffers whose data window has more pixels, before allocating (default 268435456 = 16384^2)")
+      ->check(CLI::PositiveNumber);
 }
 
 Scene SceneInputs::load_scene() const {
@@ -31,6 +34,7 @@ LoadedGBuffer SceneInputs::load_described_gbuffer(const Scene& scene) const {
   ReadOptions options;
   options.layout = parse_layout(layout);
   options.view_layer = view_layer;
+  options.max_pixels = max_pixels;
   for (const auto& assignment : channels) {
     auto [pass, names] = parse_channel_assignment(assignment);
     options.channels[pass] = std::move(names);  // the last mapping of a pass wins

@@ -1,6 +1,7 @@
 #pragma once
 // The scene and G-buffer options that shade, reference and bench share: --scene/--gbuffer, and how
 // to read a renderer's G-buffer (--layout, --view-layer, --channel, --space, --depth-convention).
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -8,6 +9,7 @@
 #include <CLI/CLI.hpp>
 
 #include "gbuffer/gbuffer.h"
+#include "gbuffer/layouts.h"
 #include "scene/scene.h"
 
 namespace phongcl::cli {
@@ -25,6 +27,7 @@ struct SceneInputs {
   std::vector<std::string> channels;  // "position=Foo.X,Foo.Y,Foo.Z", ...
   std::string space = "world";
   std::string depth_convention = "distance";
+  std::uint64_t max_pixels = ReadOptions{}.max_pixels;
 
   void add_options(CLI::App& command);
   bool camera_space() const { return space == "camera"; }

@@ -6,6 +6,7 @@
 #include <map>
 #include <stdexcept>
 
+#include "common/atomic_file.h"
 #include "common/error.h"
 
 namespace phongcl::cli {
@@ -50,8 +51,31 @@ void ImageOutputs::add_aov_option(CLI::App& command) {
                      "Also write a multilayer EXR: ambient.RGB, diffuse.RGB, specular.RGB and the combined R G B A");
 }
 
-// The --out EXR is written last, so a failure on another output leaves an existing --out as it was.
+// Every output is written to a temporary first and all are renamed together (AtomicBatch), so a
+// failure or a kill leaves either all the old files or all the new ones, never a mix.
 std::string ImageOutputs::write(const Image& image) const {
+  AtomicBatch batch;
+  const std::string written = write_images(image);
+  batch.commit();
+  return written;
+}
+
+std::string ImageOutputs::write(const Image& image, const TermLayers& terms) const {
+  if (aov_file.empty()) return write(image);
+  AtomicBatch batch;
+  write_layered_exr({{"", &image, true},
+                     {"ambient", &terms.ambient, false},
+                     {"diffuse", &terms.diffuse, false},
+                     {"specular", &terms.specular, false}},
+                    aov_file, half ? ExrPixelType::half : ExrPixelType::float32);
+  const std::string aov_written =
+      aov_file + " (ambient, diffuse, specular + combined, " + (half ? "half" : "float32") + ")";
+  const std::string written = exr_file.empty() && png_file.empty() ? aov_written : write_images(image) + ", " + aov_written;
+  batch.commit();
+  return written;
+}
+
+std::string ImageOutputs::write_images(const Image& image) const {
   if (exr_file.empty() && png_file.empty()) throw std::invalid_argument("nothing to write: give --out and/or --png");
   std::string png_written;
   if (!png_file.empty()) {
@@ -61,18 +85,6 @@ std::string ImageOutputs::write(const Image& image) const {
   if (exr_file.empty()) return png_written;
   write_exr(image, exr_file, half ? ExrPixelType::half : ExrPixelType::float32);
   return exr_file + pixel_type_name(half) + (png_written.empty() ? "" : ", " + png_written);
-}
-
-std::string ImageOutputs::write(const Image& image, const TermLayers& terms) const {
-  if (aov_file.empty()) return write(image);
-  write_layered_exr({{"", &image, true},
-                     {"ambient", &terms.ambient, false},
-                     {"diffuse", &terms.diffuse, false},
-                     {"specular", &terms.specular, false}},
-                    aov_file, half ? ExrPixelType::half : ExrPixelType::float32);
-  const std::string aov_written =
-      aov_file + " (ambient, diffuse, specular + combined, " + (half ? "half" : "float32") + ")";
-  return exr_file.empty() && png_file.empty() ? aov_written : write(image) + ", " + aov_written;
 }
 
 }  // namespace phongcl::cli

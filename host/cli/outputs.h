@@ -27,10 +27,14 @@ struct ImageOutputs {
   bool wants_terms() const { return !aov_file.empty(); }
   // Throws (naming the file) when an output could not be written, before any work is done.
   void check_destinations() const;
-  // Each file is written atomically, the --out EXR last; returns "lit.exr (float32), lit.png".
+  // The files are replaced together (all new or all old, even if killed); returns
+  // "lit.exr (float32), lit.png".
   std::string write(const Image& image) const;
   // The same, plus --aov: layers ambient.*, diffuse.*, specular.* (R G B) and the combined R G B A.
   std::string write(const Image& image, const TermLayers& terms) const;
+
+ private:
+  std::string write_images(const Image& image) const;  // --out and --png, inside the caller's batch
 };
 
 }  // namespace phongcl::cli

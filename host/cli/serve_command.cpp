@@ -8,7 +8,6 @@
 #include <sstream>
 #include <thread>
 
-#include "cl/compute_context.h"
 #include "cli/commands.h"
 #include "cli/format.h"
 #include "cli/inputs.h"
@@ -57,19 +56,18 @@ void run_serve(const ServeArguments& args) {
   const Scene scene = args.inputs.load_scene();
   const LoadedGBuffer loaded = args.inputs.load_described_gbuffer(scene);
   const std::string scene_text = read_text(args.inputs.scene_file);
-  ProgramCache cache(ProgramCache::default_directory());
-  const Device device = pick_device(args.device);
-  RelightSession session(loaded.gbuffer, make_compute_context(device), cache);
+  RelightSession session(loaded.gbuffer, args.device);
+  const std::string device = session.device_description();
   RenderSettings settings;
   settings.precision = parse_precision(args.precision);
   LiveRelighter live(session, scene_text, scene.source, settings);
-  RelightServer server(live, {args.host, args.port, args.save, describe(device.info)});
+  RelightServer server(live, {args.host, args.port, args.save, device});
 
   const std::string host = args.host.find(':') != std::string::npos ? "[" + args.host + "]" : args.host;
   std::cout << "phongcl serve: " << scene.source.string() << " + " << loaded.gbuffer.source.string() << "\n"
             << "  layout     " << loaded.layout << "\n"
             << "  image      " << session.width() << " x " << session.height() << "\n"
-            << "  device     " << describe(device.info) << "\n"
+            << "  device     " << device << "\n"
             << (args.save.empty() ? "" : "  save       " + args.save + " (POST /api/save, the page's Save button)\n");
   if (!is_loopback(args.host))
     std::cout << "  warning    listening on " << args.host

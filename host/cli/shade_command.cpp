@@ -83,7 +83,7 @@ void add_shade_command(CLI::App& app) {
   args->inputs.add_options(*command);
   args->outputs.add_options(*command);
   args->outputs.add_aov_option(*command);
-  command->add_option("--device", args->device, "OpenCL device: index or name (default: first CPU device)");
+  command->add_option("--device", args->device, "OpenCL device: index or name (default: a GPU, else the CPU with most compute units; see phongcl devices)");
   command->add_option("--precision", args->precision, "double, precise (default), fast or half-storage")
       ->check(CLI::IsMember({"double", "precise", "fast", "half-storage"}));
   command->add_flag("--no-specialise", args->no_specialise, "Use the general kernel with everything compiled in");

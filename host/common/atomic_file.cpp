@@ -1,9 +1,15 @@
 #include "common/atomic_file.h"
 
+#include <fcntl.h>
+#include <signal.h>
 #include <unistd.h>
 
+#include <cerrno>
+#include <cstring>
+#include <stdexcept>
 #include <string>
 #include <system_error>
+#include <vector>
 
 #include "common/error.h"
 
@@ -11,22 +17,145 @@ namespace phongcl {
 
 namespace fs = std::filesystem;
 
-void write_atomically(const fs::path& destination, const std::function<void(const fs::path&)>& write) {
-  // Same directory as the destination so the final rename cannot cross file systems. The temporary
-  // keeps the destination's extension: some writers (OpenEXR, PNG) look at it.
-  const fs::path temp = destination.parent_path() /
-                        ("." + destination.stem().string() + ".tmp" + std::to_string(::getpid()) +
-                         destination.extension().string());
-  try {
-    write(temp);
-    std::error_code ec;
-    fs::rename(temp, destination, ec);
-    if (ec) throw InputError(destination, "cannot write: " + ec.message());
-  } catch (...) {
+// A new file's content: an unnamed O_TMPFILE inode (fd >= 0) or a named temporary.
+struct AtomicBatch::Pending {
+  fs::path destination;
+  int fd = -1;
+  fs::path named;  // the temporary's name once it has one
+};
+
+namespace {
+
+thread_local std::vector<AtomicBatch::Pending>* current_batch = nullptr;
+
+fs::path directory_of(const fs::path& destination) {
+  return destination.parent_path().empty() ? fs::path(".") : destination.parent_path();
+}
+
+// The temporary keeps the destination's extension: some writers look at it.
+std::string temp_prefix(const fs::path& destination) {
+  std::string prefix(1, '.');  // appends, not "." + stem: GCC 12 warns a false -Wrestrict on that
+  prefix += destination.stem().string();
+  prefix += ".tmp";
+  return prefix;
+}
+
+fs::path named_temp(const fs::path& destination) {
+  return directory_of(destination) /
+         (temp_prefix(destination) + std::to_string(::getpid()) + destination.extension().string());
+}
+
+fs::path fd_path(int fd) { return "/proc/self/fd/" + std::to_string(fd); }
+
+// Temporaries of destination left by processes that no longer exist (killed mid-write).
+void remove_stale_temporaries(const fs::path& destination) {
+  const std::string prefix = temp_prefix(destination), extension = destination.extension().string();
+  std::error_code ec;
+  for (const auto& entry : fs::directory_iterator(directory_of(destination), ec)) {
+    const std::string name = entry.path().filename().string();
+    if (name.size() <= prefix.size() + extension.size() || name.rfind(prefix, 0) != 0 ||
+        name.compare(name.size() - extension.size(), extension.size(), extension) != 0)
+      continue;
+    const std::string pid = name.substr(prefix.size(), name.size() - prefix.size() - extension.size());
+    if (pid.find_first_not_of("0123456789") != std::string::npos || pid.size() > 9) continue;
+    if (::kill(static_cast<pid_t>(std::stol(pid)), 0) == 0 || errno != ESRCH) continue;  // alive, or not ours to judge
     std::error_code ignored;
-    fs::remove(temp, ignored);
+    fs::remove(entry.path(), ignored);
+  }
+}
+
+// An unnamed file in destination's directory that writers can open by path, or -1 where the file
+// system (or a missing /proc) does not allow it.
+int open_unnamed(const fs::path& destination) {
+  const int fd = ::open(directory_of(destination).c_str(), O_TMPFILE | O_WRONLY | O_CLOEXEC, 0666);
+  if (fd < 0) return -1;
+  if (::access(fd_path(fd).c_str(), W_OK) != 0) {
+    ::close(fd);
+    return -1;
+  }
+  return fd;
+}
+
+void discard(AtomicBatch::Pending& pending) {
+  if (pending.fd >= 0) ::close(pending.fd);
+  pending.fd = -1;
+  std::error_code ignored;
+  if (!pending.named.empty()) fs::remove(pending.named, ignored);
+  pending.named.clear();
+}
+
+AtomicBatch::Pending write_temporary(const fs::path& destination, const std::function<void(const fs::path&)>& write) {
+  remove_stale_temporaries(destination);
+  AtomicBatch::Pending pending{destination, open_unnamed(destination), {}};
+  try {
+    if (pending.fd >= 0) {
+      write(fd_path(pending.fd));
+    } else {
+      pending.named = named_temp(destination);
+      write(pending.named);
+    }
+  } catch (...) {
+    discard(pending);
     throw;
   }
+  return pending;
+}
+
+// Names every unnamed temporary first (the only step that can fail for lack of space or a too long
+// name), then renames them all.
+void commit_all(std::vector<AtomicBatch::Pending>& all) {
+  for (auto& pending : all) {
+    if (pending.fd < 0) continue;
+    pending.named = named_temp(pending.destination);
+    std::error_code ignored;
+    fs::remove(pending.named, ignored);  // a leftover of an earlier process with our pid
+    if (::linkat(AT_FDCWD, fd_path(pending.fd).c_str(), AT_FDCWD, pending.named.c_str(), AT_SYMLINK_FOLLOW) != 0) {
+      const std::string problem = std::strerror(errno);
+      pending.named.clear();
+      throw InputError(pending.destination, "cannot write: " + problem);
+    }
+    ::close(pending.fd);
+    pending.fd = -1;
+  }
+  for (auto& pending : all) {
+    std::error_code ec;
+    fs::rename(pending.named, pending.destination, ec);
+    if (ec) throw InputError(pending.destination, "cannot write: " + ec.message());
+    pending.named.clear();
+  }
+}
+
+}  // namespace
+
+void write_atomically(const fs::path& destination, const std::function<void(const fs::path&)>& write) {
+  AtomicBatch::Pending pending = write_temporary(destination, write);
+  if (current_batch != nullptr) {
+    current_batch->push_back(std::move(pending));
+    return;
+  }
+  std::vector<AtomicBatch::Pending> one{std::move(pending)};
+  try {
+    commit_all(one);
+  } catch (...) {
+    discard(one.front());
+    throw;
+  }
+}
+
+AtomicBatch::AtomicBatch() : pending_(std::make_unique<std::vector<Pending>>()) {
+  if (current_batch != nullptr) throw std::logic_error("AtomicBatch: batches do not nest");
+  current_batch = pending_.get();
+}
+
+AtomicBatch::~AtomicBatch() {
+  if (current_batch == pending_.get()) current_batch = nullptr;
+  for (auto& pending : *pending_) discard(pending);
+}
+
+void AtomicBatch::commit() {
+  current_batch = nullptr;
+  commit_all(*pending_);
+  pending_->clear();
 }
 
 }  // namespace phongcl

@@ -6,17 +6,13 @@
 #include <filesystem>
 #include <vector>
 
+// Relative: this header is installed with the public API (include/phongcl/), beside its room.
+#include "../exr/pixel_window.h"
+
 namespace phongcl {
 
 using Plane = std::vector<float>;          // one channel, width*height values
 using Planes3 = std::array<Plane, 3>;      // x,y,z or r,g,b
-
-// Inclusive pixel bounds, as OpenEXR states data and display windows.
-struct PixelWindow {
-  int x_min = 0, y_min = 0, x_max = -1, y_max = -1;
-  int width() const { return x_max - x_min + 1; }
-  int height() const { return y_max - y_min + 1; }
-};
 
 struct GBuffer {
   int width = 0, height = 0;           // of the data window
@@ -60,7 +56,6 @@ void check_materials(const GBuffer& gbuffer, std::size_t material_count);
 // missing required channel, a truncated or corrupt file, or an unreadable one.
 GBuffer read_gbuffer(const std::filesystem::path& file);
 
-enum class ExrPixelType { half, float32 };
 // Writes `gbuffer` in the phongcl layout, atomically (temp file, then rename).
 void write_gbuffer(const GBuffer& gbuffer, const std::filesystem::path& file,
                    ExrPixelType type = ExrPixelType::float32);

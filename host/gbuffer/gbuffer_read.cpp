@@ -1,11 +1,13 @@
 // Reading a G-buffer EXR in any layout into planes: resolve the layout's channels against the
 // file, report everything missing at once, then read and mark background.
 #include <algorithm>
+#include <cstdio>
+#include <new>
 #include <string>
 #include <vector>
 
 #include "common/error.h"
-#include "gbuffer/exr_channels.h"
+#include "exr/exr_channels.h"
 #include "gbuffer/gbuffer.h"
 #include "gbuffer/layout_presets.h"
 #include "gbuffer/layouts.h"
@@ -134,10 +136,24 @@ void mark_background(GBuffer& g, const Plane& alpha, bool zero_normal_is_backgro
   }
 }
 
+// Every plane at once, so that a window too large for this machine is one line naming the file
+// and the size rather than std::bad_alloc.
+void allocate_planes(const std::vector<Plane*>& planes, const GBuffer& g, const std::filesystem::path& file) {
+  try {
+    for (Plane* plane : planes) plane->assign(g.pixel_count(), 0.0f);
+  } catch (const std::bad_alloc&) {
+    const double gigabytes = static_cast<double>(planes.size() * g.pixel_count() * sizeof(float)) / 1e9;
+    char size[32];
+    std::snprintf(size, sizeof size, "%.1f", gigabytes);
+    throw InputError(file, "cannot allocate " + std::string(size) + " GB for " + std::to_string(planes.size()) +
+                               " planes of " + std::to_string(g.width) + "x" + std::to_string(g.height) + " pixels");
+  }
+}
+
 }  // namespace
 
 GBufferRead read_gbuffer(const std::filesystem::path& file, const ReadOptions& options) {
-  exr::InputExr input(file);
+  exr::InputExr input(file, options.max_pixels);
   const std::vector<std::string> channel_names = input.channel_names();
   const LayoutSpec spec = options.layout == Layout::automatic
                               ? detect_layout(channel_names, options, file)
@@ -165,16 +181,20 @@ GBufferRead read_gbuffer(const std::filesystem::path& file, const ReadOptions& o
 
   Plane alpha;
   std::vector<exr::ReadSlice> slices;
+  std::vector<Plane*> planes;
   for (const auto& [pass, channels] : r.channels) {
     if (pass == Pass::depth && r.channels.count(Pass::position)) continue;  // only read what is used
-    const auto planes = destinations(pass, read, alpha);
+    const auto pass_planes = destinations(pass, read, alpha);
     for (std::size_t c = 0; c < channels.size(); ++c) {
-      planes[c]->resize(g.pixel_count());
-      slices.push_back({channels[c], planes[c]->data()});
+      planes.push_back(pass_planes[c]);
+      slices.push_back({channels[c], nullptr});
     }
   }
+  const bool material_read = r.channels.count(Pass::material) > 0;
+  if (!material_read) planes.push_back(&g.material);  // zeros: material 0
+  allocate_planes(planes, g, file);
+  for (std::size_t i = 0; i < slices.size(); ++i) slices[i].first = planes[i]->data();
   input.read(slices);
-  if (g.material.empty()) g.material.assign(g.pixel_count(), 0.0f);
   mark_background(g, alpha, spec.zero_normal_is_background);
   return read;
 }

@@ -3,7 +3,7 @@
 #include <string>
 #include <vector>
 
-#include "gbuffer/exr_channels.h"
+#include "exr/exr_channels.h"
 #include "gbuffer/gbuffer.h"
 #include "gbuffer/gbuffer_layout.h"
 

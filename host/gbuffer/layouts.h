@@ -2,6 +2,7 @@
 // Reading G-buffers as real renderers write them. A layout says which EXR channels hold which pass
 // (see layout_presets.h for each preset's exact channel names); `auto` picks one from the channel
 // list, and the user's --channel mapping overrides any pass of it.
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <string_view>
@@ -26,6 +27,8 @@ struct ReadOptions {
   Layout layout = Layout::automatic;
   std::string view_layer;  // blender: empty = the file's only layer (or "ViewLayer" among several)
   ChannelMap channels;     // user mapping; each pass named here replaces the layout's channels
+  // Larger data windows are refused before anything is allocated (--max-pixels).
+  std::uint64_t max_pixels = std::uint64_t{16384} * 16384;
 };
 
 struct GBufferRead {

@@ -4,7 +4,7 @@
 #include <vector>
 
 #include "common/error.h"
-#include "gbuffer/exr_channels.h"
+#include "exr/exr_channels.h"
 #include "image/image.h"
 
 namespace phongcl {

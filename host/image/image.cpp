@@ -1,5 +1,5 @@
 // Making output images that line up with the G-buffer they shade.
-#include "gbuffer/exr_channels.h"
+#include "exr/exr_channels.h"
 #include "image/image.h"
 
 namespace phongcl {

@@ -6,7 +6,9 @@
 #include <string>
 #include <vector>
 
-#include "gbuffer/gbuffer.h"  // PixelWindow, ExrPixelType
+// Relative: this header is installed with the public API (include/phongcl/), beside its rooms.
+#include "../exr/pixel_window.h"
+#include "../gbuffer/gbuffer.h"  // image_like
 
 namespace phongcl {
 
@@ -29,6 +31,10 @@ Image image_like(const GBuffer& gbuffer);
 
 // Writes channels R G B A (float32 or half), same data/display window as the image; atomic.
 void write_exr(const Image& image, const std::filesystem::path& file, ExrPixelType type = ExrPixelType::float32);
+// The same with the file first, as the public API (include/phongcl/phongcl.hpp) writes it.
+inline void write_exr(const std::filesystem::path& file, const Image& image, ExrPixelType type = ExrPixelType::float32) {
+  write_exr(image, file, type);
+}
 // One layer of a multilayer EXR: channels "<name>.R .G .B" (and ".A" with alpha), or plain
 // "R G B A" for the unnamed layer compositors show by default.
 struct ExrLayer {
@@ -59,6 +65,9 @@ std::vector<std::uint8_t> display_rgba8(const Image& image, const DisplaySetting
 std::string encode_png(const std::vector<std::uint8_t>& rgba, int width, int height);
 // Writes display_rgba8 as a PNG, atomically.
 void write_png(const Image& image, const std::filesystem::path& file, const DisplaySettings& display = {});
+inline void write_png(const std::filesystem::path& file, const Image& image, const DisplaySettings& display = {}) {
+  write_png(image, file, display);
+}
 
 // Per-pixel error of `test` against `expected` over the pixels where `mask` is true (all if empty),
 // on the R, G, B channels. Relative error is |t - e| / max(|e|, abs_floor).

@@ -6,6 +6,7 @@
 #include "scene/json_reader.h"
 #include "scene/object_json.h"
 #include "scene/scene.h"
+#include "scene/scene_check.h"
 
 namespace phongcl {
 namespace {
@@ -101,15 +102,28 @@ std::string json_problem(const nlohmann::json::exception& error) {
   return "invalid JSON: " + (end_of_tag == std::string::npos ? what : what.substr(end_of_tag + 2));
 }
 
-}  // namespace
+// Deeper documents are refused while parsing: the object reader recurses into transform children
+// and every value carries its path, so an unbounded depth would exhaust the stack (and memory).
+// 256 levels allow 127 nested transforms (each is an object inside a "children" array).
+constexpr int kMaxJsonDepth = 256;
 
-Scene parse_scene(std::string_view json_text, const std::filesystem::path& source) {
-  nlohmann::json document;
+nlohmann::json parse_document(std::string_view json_text, const std::filesystem::path& source) {
+  const auto limit_depth = [&](int depth, nlohmann::json::parse_event_t, nlohmann::json&) {
+    if (depth > kMaxJsonDepth)
+      throw InputError(source, "invalid JSON: nested deeper than " + std::to_string(kMaxJsonDepth) + " levels");
+    return true;
+  };
   try {
-    document = nlohmann::json::parse(json_text);
+    return nlohmann::json::parse(json_text, limit_depth);
   } catch (const nlohmann::json::exception& error) {
     throw InputError(source, json_problem(error));
   }
+}
+
+}  // namespace
+
+Scene parse_scene(std::string_view json_text, const std::filesystem::path& source) {
+  const nlohmann::json document = parse_document(json_text, source);
 
   const JsonObject top = JsonValue(document, "", source).object();
   top.expect_keys({"camera", "background", "ambient", "lights", "materials", "objects", "gbuffer"});
@@ -137,6 +151,21 @@ Scene load_scene(const std::filesystem::path& file) {
   text << stream.rdbuf();
   if (stream.bad()) throw InputError(file, "cannot read");
   return parse_scene(text.str(), file);
+}
+
+std::vector<Light> parse_lights(std::string_view json_text, const std::filesystem::path& source) {
+  const nlohmann::json document = parse_document(json_text, source);
+  std::vector<Light> lights;
+  for (const JsonValue& light : JsonValue(document, "lights", source).elements()) lights.push_back(read_light(light));
+  return lights;
+}
+
+std::vector<Material> parse_materials(std::string_view json_text, const std::filesystem::path& source) {
+  const nlohmann::json document = parse_document(json_text, source);
+  std::vector<Material> materials;
+  for (const JsonValue& material : JsonValue(document, "materials", source).elements())
+    materials.push_back(read_material(material));
+  return materials;
 }
 
 }  // namespace phongcl

@@ -7,6 +7,11 @@ extern "C" {
 #include "kernels/layout.h"
 }
 
+static_assert(sizeof(layout_float) == 4 && sizeof(layout_int) == 4 && sizeof(layout_uint) == 4);
+static_assert(sizeof(FrameScalars) == 64 && offsetof(FrameScalars, background) == 16 &&
+              offsetof(FrameScalars, radiance_scale_a) == 32 && offsetof(FrameScalars, point_count) == 40 &&
+              offsetof(FrameScalars, plane_stride) == 48);
+static_assert(PHONGCL_UNROLL_LIGHT_LIMIT <= PHONGCL_LIGHT_BLOCK, "an unrolled light loop is one compensated block");
 static_assert(sizeof(PointLight) == 32 && offsetof(PointLight, color) == 16);
 static_assert(sizeof(DirectionalLight) == 32 && offsetof(DirectionalLight, color) == 16);
 static_assert(sizeof(MaterialRecord) == 64);

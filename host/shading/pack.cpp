@@ -45,8 +45,8 @@ UniformData pack_uniforms(const Scene& scene) {
   // Scale so the brightest colour lands in [0.5, 1); split 2^e in two factors that are both normal floats.
   const int exponent = brightest > 0.0 ? std::ilogb(brightest) + 1 : 0;
   const double scale = std::ldexp(1.0, -exponent);
-  data.radiance_scale_a = static_cast<float>(std::ldexp(1.0, exponent / 2));
-  data.radiance_scale_b = static_cast<float>(std::ldexp(1.0, exponent - exponent / 2));
+  data.scalars.radiance_scale_a = static_cast<float>(std::ldexp(1.0, exponent / 2));
+  data.scalars.radiance_scale_b = static_cast<float>(std::ldexp(1.0, exponent - exponent / 2));
 
   const glm::dvec3& eye = scene.camera.eye;
   for (const Light& light : scene.lights) {
@@ -71,9 +71,11 @@ UniformData pack_uniforms(const Scene& scene) {
     data.materials.push_back(record);
   }
   for (int c = 0; c < 3; ++c) {
-    data.ambient[c] = static_cast<float>(scene.ambient[c] * scale);
-    data.background[c] = static_cast<float>(scene.background[c]);
+    data.scalars.ambient[c] = static_cast<float>(scene.ambient[c] * scale);
+    data.scalars.background[c] = static_cast<float>(scene.background[c]);
   }
+  data.scalars.point_count = static_cast<layout_int>(data.point_lights.size());
+  data.scalars.directional_count = static_cast<layout_int>(data.directional_lights.size());
   return data;
 }
 

@@ -17,10 +17,9 @@ struct UniformData {
   std::vector<PointLight> point_lights;
   std::vector<DirectionalLight> directional_lights;
   std::vector<MaterialRecord> materials;
-  std::array<float, 3> ambient{}, background{};
-  // Light and ambient colours are divided by 2^e (exact) so that sums of HDR values near float's
-  // limits cannot overflow early; the kernel multiplies by a * b = 2^e at the end.
-  float radiance_scale_a = 1.0f, radiance_scale_b = 1.0f;
+  // Ambient, background, radiance scales and light counts; the shader sets plane_stride. Light and
+  // ambient colours are divided by 2^e (exact), which the kernel undoes at the end.
+  FrameScalars scalars{};
 };
 UniformData pack_uniforms(const Scene& scene);
 

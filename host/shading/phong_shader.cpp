@@ -5,6 +5,7 @@
 #include <cstring>
 
 #include "cl/kernel_source.h"
+#include "shading/phong_launch.h"
 
 namespace phongcl {
 
@@ -16,50 +17,11 @@ double milliseconds(Clock::time_point start, Clock::time_point end) {
   return std::chrono::duration<double, std::milli>(end - start).count();
 }
 
-// OpenCL has no empty buffers: an unused table still gets one zeroed element.
-template <typename T>
-cl::Buffer uniform_buffer(const cl::Context& context, std::vector<T> values) {
-  if (values.empty()) values.resize(1);
-  return cl::Buffer(context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, values.size() * sizeof(T), values.data());
-}
-
-using PhongKernel = cl::KernelFunctor<
-    /* G-buffer */ cl::Buffer, cl_uint, cl::Buffer,
-    /* scene */ cl::Buffer, cl::Buffer, cl_int, cl::Buffer, cl_int, cl_float, cl_float, cl_float, cl_float, cl_float,
-    cl_float, cl_float, cl_float,
-    /* output */ cl::Buffer, cl::Buffer>;
-
-// Pixels per tile: the whole frame unless a buffer would exceed the device's largest allocation or
-// the tile's buffers its memory.
-std::size_t tile_pixels(const DeviceInfo& device, const Recipe& recipe, std::size_t pixels, std::size_t limit) {
-  const std::size_t plane_bytes = recipe.precision == Precision::half_storage ? 2 : 4;
-  const std::size_t largest_per_pixel = std::max<std::size_t>(recipe.plane_count() * plane_bytes, 4 * sizeof(float));
-  const std::size_t total_per_pixel = recipe.plane_count() * plane_bytes + sizeof(cl_int) + 4 * sizeof(float);
-  std::size_t tile = std::min<std::size_t>(pixels, device.max_allocation / largest_per_pixel);
-  tile = std::min<std::size_t>(tile, device.global_memory / 2 / total_per_pixel);
-  if (limit > 0) tile = std::min(tile, limit);
-  return std::max<std::size_t>(tile, 1);
-}
-
-std::size_t round_up(std::size_t value, std::size_t multiple) { return (value + multiple - 1) / multiple * multiple; }
-
-// The kernel writes planes (R, G, B, A, then the terms); images are interleaved RGBA. On every core:
-// the copy is part of each frame's end-to-end time.
-void interleave(const float* planes, std::size_t stride, std::size_t count, int channels, float* rgba) {
-  const auto pixels = static_cast<std::ptrdiff_t>(count);
-#pragma omp parallel for schedule(static)
-  for (std::ptrdiff_t t = 0; t < pixels; ++t) {
-    for (int c = 0; c < channels; ++c) rgba[4 * t + c] = planes[c * stride + t];
-  }
-}
-
-constexpr int kTermPlanes = 9;  // ambient, diffuse, specular RGB
-
 // Copies the kernel's term planes into the three term images, alpha from the combined image.
 void copy_terms(cl::CommandQueue& queue, const cl::Buffer& terms, std::size_t stride, std::size_t first,
                 std::size_t count, ShadeResult& result) {
   const auto* planes = static_cast<const float*>(
-      queue.enqueueMapBuffer(terms, CL_TRUE, CL_MAP_READ, 0, kTermPlanes * stride * sizeof(cl_float)));
+      queue.enqueueMapBuffer(terms, CL_TRUE, CL_MAP_READ, 0, PHONGCL_TERM_PLANES * stride * sizeof(cl_float)));
   Image* images[] = {&result.terms.ambient, &result.terms.diffuse, &result.terms.specular};
   for (int term = 0; term < 3; ++term) {
     float* out = images[term]->pixel(first);
@@ -80,15 +42,10 @@ ShadeResult PhongShader::shade(const Scene& scene, const GBuffer& gbuffer, const
   const BuiltProgram built = cache_.build(compute_, load_kernel_source("phong.cl"), result.build_options);
   result.cache = built.outcome;
   result.timings.build_ms = built.build_milliseconds;
-  PhongKernel kernel(built.program, "phong_shade");
 
   const auto start = Clock::now();
   const cl::Context& context = compute_.context;
   cl::CommandQueue& queue = compute_.queue;
-  const UniformData uniforms = pack_uniforms(scene);
-  const cl::Buffer materials = uniform_buffer(context, uniforms.materials);
-  const cl::Buffer point_lights = uniform_buffer(context, uniforms.point_lights);
-  const cl::Buffer directional_lights = uniform_buffer(context, uniforms.directional_lights);
 
   const std::size_t pixels = gbuffer.pixel_count();
   const bool half = recipe.precision == Precision::half_storage;
@@ -98,9 +55,10 @@ ShadeResult PhongShader::shade(const Scene& scene, const GBuffer& gbuffer, const
   const std::size_t plane_bytes = stride * recipe.plane_count() * (half ? sizeof(cl_half) : sizeof(cl_float));
   const cl::Buffer& planes = planes_.at_least(context, plane_bytes);
   const cl::Buffer& material_index = material_index_.at_least(context, stride * sizeof(cl_int));
-  const cl::Buffer& output = output_.at_least(context, 4 * stride * sizeof(cl_float));
+  const cl::Buffer& output = output_.at_least(context, PHONGCL_OUTPUT_PLANES * stride * sizeof(cl_float));
   const cl::Buffer& terms =
-      terms_.at_least(context, (recipe.write_terms ? kTermPlanes * stride : 1) * sizeof(cl_float));
+      terms_.at_least(context, (recipe.write_terms ? PHONGCL_TERM_PLANES * stride : 1) * sizeof(cl_float));
+  const DeviceUniforms uniforms = upload_uniforms(context, pack_uniforms(scene), stride);
   std::vector<float> half_staging(half ? stride * recipe.plane_count() : 0);
   std::size_t flushed_to_zero = 0;
 
@@ -135,15 +93,11 @@ ShadeResult PhongShader::shade(const Scene& scene, const GBuffer& gbuffer, const
     queue.enqueueUnmapMemObject(planes, mapped_planes, nullptr, &unmap_planes);
     queue.enqueueUnmapMemObject(material_index, mapped_index, nullptr, &unmap_index);
     const cl::Event launched =
-        kernel(cl::EnqueueArgs(queue, cl::NDRange(padded / lanes)), planes, static_cast<cl_uint>(stride),
-               material_index, materials, point_lights, recipe.point_lights, directional_lights,
-               recipe.directional_lights, uniforms.ambient[0], uniforms.ambient[1], uniforms.ambient[2],
-               uniforms.radiance_scale_a, uniforms.radiance_scale_b, uniforms.background[0], uniforms.background[1],
-               uniforms.background[2], output, terms);
+        launch_phong(built.program, queue, {planes, material_index, output, terms}, uniforms, padded, recipe.lanes);
 
     cl::Event map_output;
     const auto* shaded = static_cast<const float*>(
-        queue.enqueueMapBuffer(output, CL_TRUE, CL_MAP_READ, 0, 4 * stride * sizeof(cl_float), nullptr, &map_output));
+        queue.enqueueMapBuffer(output, CL_TRUE, CL_MAP_READ, 0, PHONGCL_OUTPUT_PLANES * stride * sizeof(cl_float), nullptr, &map_output));
     const auto copy_start = Clock::now();
     interleave(shaded, stride, count, 4, result.image.pixel(first));
     const double copy_ms = milliseconds(copy_start, Clock::now());

@@ -7,6 +7,7 @@
 #include "cl/device.h"
 #include "gbuffer/gbuffer.h"
 #include "scene/scene.h"
+#include "shading/device_layout.h"
 #include "shading/precision.h"
 
 namespace phongcl {
@@ -40,8 +41,8 @@ struct Recipe {
   std::string summary() const;  // one line: "precise, specialised: 2 point (unrolled) + 1 directional, ..."
 };
 
-// Lights up to this many of a type become compile-time constants.
-inline constexpr int kUnrollLightLimit = 16;
+// Lights up to this many of a type become compile-time constants (kernels/layout.h).
+inline constexpr int kUnrollLightLimit = PHONGCL_UNROLL_LIGHT_LIMIT;
 
 // Throws std::runtime_error when the device cannot run the precision (double without fp64).
 Recipe make_recipe(const Scene& scene, const GBuffer& gbuffer, const DeviceInfo& device, const ShadeOptions& options);

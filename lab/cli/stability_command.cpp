@@ -6,7 +6,7 @@
 #include <memory>
 
 #include "cl/compute_context.h"
-#include "cli/commands.h"
+#include "cli/lab_commands.h"
 #include "common/atomic_file.h"
 #include "shading/phong_shader.h"
 #include "stability/catalogue.h"
@@ -61,7 +61,7 @@ void run_stability(const StabilityArguments& args) {
 void add_stability_command(CLI::App& app) {
   auto args = std::make_shared<StabilityArguments>();
   CLI::App* command = app.add_subcommand("stability", "Run the numerical stability catalogue on a device");
-  command->add_option("--device", args->device, "OpenCL device: index or name (default: first CPU device)");
+  command->add_option("--device", args->device, "OpenCL device: index or name (default: a GPU, else the CPU with most compute units; see phongcl devices)");
   command->add_option("--report", args->report_directory, "Also write DIR/stability.md and DIR/stability.json");
   command->callback([args] { run_stability(*args); });
 }

@@ -160,7 +160,7 @@ void write_throughput_report(const std::string& directory, const MachineLimits& 
         "- Roofline bound = min(bandwidth / bytes per pixel, FMA peak / flops per pixel); bytes are compulsory\n"
         "  traffic (the inputs the formula needs read once: P and N only with lights; RGBA float written once),\n"
         "  flops the formula's work counted on the peers'\n"
-        "  code (host/peers/work_model.h), the same for every implementation; the double variant's peak is half.\n"
+        "  code (lab/peers/work_model.h), the same for every implementation; the double variant's peak is half.\n"
         "- max rel err: against the double-precision reference on shaded pixels (1e-6 absolute floor), over every\n"
         "  n-th row where the reference would be too slow on the whole frame (\"rows 1/n\").\n\n";
   md += "## Results\n\n" + markdown_table(results) + "\n";

@@ -2,7 +2,7 @@
 #include <memory>
 
 #include "cli/bench_arguments.h"
-#include "cli/commands.h"
+#include "cli/lab_commands.h"
 
 namespace phongcl::cli {
 
@@ -10,7 +10,7 @@ void add_bench_command(CLI::App& app) {
   auto args = std::make_shared<BenchArguments>();
   CLI::App* command = app.add_subcommand("bench", "Measure every kernel variant: error against run time, or throughput");
   args->inputs.add_options(*command);
-  command->add_option("--device", args->device, "OpenCL device: index or name (default: first CPU device)");
+  command->add_option("--device", args->device, "OpenCL device: index or name (default: a GPU, else the CPU with most compute units; see phongcl devices)");
   command->add_option("--runs", args->runs, "Timed runs per measurement, after one warm-up (default 10)")
       ->check(CLI::Range(1, 1000000));
   command->add_option("--report", args->report_dir, "Directory for report.md, report.json and the chart");

@@ -4,7 +4,7 @@
 #include <memory>
 #include <stdexcept>
 
-#include "cli/commands.h"
+#include "cli/lab_commands.h"
 #include "common/error.h"
 #include "image/image.h"
 

@@ -3,11 +3,7 @@
 namespace phongcl {
 
 Image reference_image(const Scene& scene, const GBuffer& gbuffer) {
-  // Built from the G-buffer's size and windows directly (what image_like does), so the reference
-  // needs nothing from the image room but the struct.
-  Image image(gbuffer.width, gbuffer.height);
-  image.data_window = gbuffer.data_window;
-  image.display_window = gbuffer.display_window;
+  Image image = image_like(gbuffer);
   for (std::size_t i = 0; i < gbuffer.pixel_count(); ++i) {
     float* out = image.pixel(i);
     if (classify_pixel(gbuffer, i) == PixelClass::shaded) {

@@ -3,7 +3,7 @@
 #include <iostream>
 #include <memory>
 
-#include "cli/commands.h"
+#include "cli/lab_commands.h"
 #include "cli/format.h"
 #include "cli/inputs.h"
 #include "cli/outputs.h"

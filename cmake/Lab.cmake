@@ -1,0 +1,19 @@
+# The lab: what checks and measures the product. It links the product; nothing in the product links
+# it, and none of it is installed. The C++ peers' native-ISA code stays here.
+phongcl_lab_room(reference)
+phongcl_lab_room(report)
+phongcl_lab_room(peers)
+# The C++ peers must be strong: every vector unit, contraction to FMA, and no errno/trap semantics
+# (which stop GCC from vectorising floor and if-converting selects; results are unchanged: we never
+# read errno or unmask FP exceptions). 512-bit vectors: GCC's Sapphire Rapids tuning prefers 256.
+target_compile_options(phongcl_peers PRIVATE -O3 -march=native -mprefer-vector-width=512 -fno-math-errno
+                       -fno-trapping-math -ffp-contract=fast)
+phongcl_lab_room(stability DEPS phongcl_reference phongcl_report)
+
+add_library(phongcl_lab INTERFACE)
+target_link_libraries(phongcl_lab INTERFACE phongcl_reference phongcl_report phongcl_peers phongcl_stability)
+
+# phongcl-lab: reference, compare, bench, stability. `phongcl` hands those commands to it.
+file(GLOB PHONGCL_LAB_CLI_SOURCES CONFIGURE_DEPENDS lab/cli/*.cpp)
+add_executable(phongcl-lab ${PHONGCL_LAB_CLI_SOURCES})
+target_link_libraries(phongcl-lab PRIVATE phongcl_lab phongcl_cli_support)

@@ -1,0 +1,16 @@
+#pragma once
+// What EXR files say about pixels that G-buffers and images share: windows and the stored type.
+
+namespace phongcl {
+
+// Inclusive pixel bounds, as OpenEXR states data and display windows.
+struct PixelWindow {
+  int x_min = 0, y_min = 0, x_max = -1, y_max = -1;
+  int width() const { return x_max - x_min + 1; }
+  int height() const { return y_max - y_min + 1; }
+};
+
+// How channels are stored in a written EXR.
+enum class ExrPixelType { half, float32 };
+
+}  // namespace phongcl

@@ -1,0 +1,45 @@
+#include "scene/scene_check.h"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace phongcl {
+
+namespace {
+
+bool finite(const glm::dvec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+bool non_negative(const glm::dvec3& v) { return finite(v) && v.x >= 0.0 && v.y >= 0.0 && v.z >= 0.0; }
+
+void require(bool ok, const std::string& entry, const char* problem) {
+  if (!ok) throw std::invalid_argument(entry + ": " + problem);
+}
+
+}  // namespace
+
+void check_lights(const std::vector<Light>& lights) {
+  for (std::size_t i = 0; i < lights.size(); ++i) {
+    const Light& light = lights[i];
+    const std::string entry = "lights[" + std::to_string(i) + "]";
+    require(non_negative(light.color), entry + ".color", "must be finite and >= 0");
+    if (light.type == LightType::point) {
+      require(finite(light.position), entry + ".position", "must be finite");
+    } else {
+      require(finite(light.direction), entry + ".direction", "must be finite");
+      require(light.direction != glm::dvec3(0.0), entry + ".direction", "must not be zero");
+    }
+  }
+}
+
+void check_material_table(const std::vector<Material>& materials) {
+  for (std::size_t i = 0; i < materials.size(); ++i) {
+    const Material& m = materials[i];
+    const std::string entry = "materials[" + std::to_string(i) + "]";
+    require(non_negative(m.ka), entry + ".ka", "must be finite and >= 0");
+    require(non_negative(m.kd), entry + ".kd", "must be finite and >= 0");
+    require(non_negative(m.ks), entry + ".ks", "must be finite and >= 0");
+    require(std::isfinite(m.shininess) && m.shininess >= 0.0, entry + ".shininess", "must be finite and >= 0");
+  }
+}
+
+}  // namespace phongcl

@@ -1,0 +1,61 @@
+#include "shading/phong_launch.h"
+
+#include <algorithm>
+#include <vector>
+
+namespace phongcl {
+
+namespace {
+
+// phong.cl's phong_shade, argument for argument.
+using PhongKernel = cl::KernelFunctor<
+    /* G-buffer planes, material index */ cl::Buffer, cl::Buffer,
+    /* materials, point lights, directional lights */ cl::Buffer, cl::Buffer, cl::Buffer,
+    /* per-frame scalars */ FrameScalars,
+    /* output planes, term planes */ cl::Buffer, cl::Buffer>;
+
+// OpenCL has no empty buffers: an unused table still gets one zeroed element.
+template <typename T>
+cl::Buffer uniform_buffer(const cl::Context& context, std::vector<T> values) {
+  if (values.empty()) values.resize(1);
+  return cl::Buffer(context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, values.size() * sizeof(T), values.data());
+}
+
+}  // namespace
+
+std::size_t tile_pixels(const DeviceInfo& device, const Recipe& recipe, std::size_t pixels, std::size_t limit) {
+  const std::size_t plane_bytes = recipe.precision == Precision::half_storage ? 2 : 4;
+  const std::size_t largest_per_pixel =
+      std::max<std::size_t>(recipe.plane_count() * plane_bytes, PHONGCL_OUTPUT_PLANES * sizeof(float));
+  const std::size_t total_per_pixel =
+      recipe.plane_count() * plane_bytes + sizeof(cl_int) + PHONGCL_OUTPUT_PLANES * sizeof(float);
+  std::size_t tile = std::min<std::size_t>(pixels, device.max_allocation / largest_per_pixel);
+  tile = std::min<std::size_t>(tile, device.global_memory / 2 / total_per_pixel);
+  if (limit > 0) tile = std::min(tile, limit);
+  return std::max<std::size_t>(tile, 1);
+}
+
+DeviceUniforms upload_uniforms(const cl::Context& context, const UniformData& uniforms, std::size_t plane_stride) {
+  DeviceUniforms device{uniform_buffer(context, uniforms.materials), uniform_buffer(context, uniforms.point_lights),
+                        uniform_buffer(context, uniforms.directional_lights), uniforms.scalars};
+  device.scalars.plane_stride = static_cast<layout_uint>(plane_stride);
+  return device;
+}
+
+cl::Event launch_phong(const cl::Program& program, cl::CommandQueue& queue, const TileBuffers& tile,
+                       const DeviceUniforms& uniforms, std::size_t slots, int lanes) {
+  PhongKernel kernel(program, "phong_shade");
+  return kernel(cl::EnqueueArgs(queue, cl::NDRange(slots / static_cast<std::size_t>(lanes))), tile.planes,
+                tile.material_index, uniforms.materials, uniforms.point_lights, uniforms.directional_lights,
+                uniforms.scalars, tile.output, tile.terms);
+}
+
+void interleave(const float* planes, std::size_t stride, std::size_t count, int channels, float* rgba) {
+  const auto pixels = static_cast<std::ptrdiff_t>(count);
+#pragma omp parallel for schedule(static)
+  for (std::ptrdiff_t t = 0; t < pixels; ++t) {
+    for (int c = 0; c < channels; ++c) rgba[4 * t + c] = planes[c * stride + t];
+  }
+}
+
+}  // namespace phongcl

@@ -1,0 +1,12 @@
+#pragma once
+// The lab's subcommands, registered on phongcl-lab's app like the product's (cli/commands.h).
+#include <CLI/CLI.hpp>
+
+namespace phongcl::cli {
+
+void add_reference_command(CLI::App& app);
+void add_compare_command(CLI::App& app);
+void add_bench_command(CLI::App& app);
+void add_stability_command(CLI::App& app);
+
+}  // namespace phongcl::cli

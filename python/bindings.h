@@ -1,0 +1,31 @@
+#pragma once
+// The phongcl Python module, one binder per part of the API (python/*.cpp).
+#include <array>
+#include <vector>
+
+#include <glm/glm.hpp>
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+
+#include "scene/scene.h"
+
+namespace phongcl::python {
+
+namespace py = pybind11;
+
+// A C-contiguous float32 array, converted from other dtypes and layouts (one copy) where needed.
+using FloatArray = py::array_t<float, py::array::c_style | py::array::forcecast>;
+
+inline std::array<double, 3> to_array(const glm::dvec3& v) { return {v.x, v.y, v.z}; }
+inline glm::dvec3 to_vec3(const std::array<double, 3>& a) { return {a[0], a[1], a[2]}; }
+
+// Light or Material objects, or dicts in the scene file's form (InputError names the bad entry).
+std::vector<Light> lights_from_python(const py::handle& lights);
+std::vector<Material> materials_from_python(const py::handle& materials);
+
+void bind_scene(py::module_& module);
+void bind_gbuffer(py::module_& module);
+void bind_images(py::module_& module);
+void bind_relighter(py::module_& module);
+
+}  // namespace phongcl::python

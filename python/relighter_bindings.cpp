@@ -1,0 +1,108 @@
+// phongcl.Relighter: the resident G-buffer; shade() releases the GIL and writes straight into the
+// NumPy array it returns (or the caller's).
+#include <phongcl/relighter.hpp>
+
+#include <pybind11/stl.h>
+
+#include "bindings.h"
+
+namespace phongcl::python {
+
+namespace {
+
+std::string device_selector(const py::object& device) {
+  if (device.is_none()) return "";
+  if (py::isinstance<py::int_>(device)) return std::to_string(device.cast<long>());
+  return device.cast<std::string>();
+}
+
+py::array_t<float> shade(Relighter& relighter, const std::optional<py::array>& out) {
+  const py::ssize_t height = relighter.height(), width = relighter.width();
+  py::array_t<float> image;
+  if (out) {
+    const auto& array = *out;
+    if (!py::isinstance<py::array_t<float>>(array) || !(array.flags() & py::array::c_style) || !array.writeable() ||
+        array.ndim() != 3 || array.shape(0) != height || array.shape(1) != width || array.shape(2) != 4)
+      throw py::value_error("out must be a writeable C-contiguous float32 array of shape (" + std::to_string(height) +
+                            ", " + std::to_string(width) + ", 4)");
+    image = py::reinterpret_borrow<py::array_t<float>>(array);
+  } else {
+    image = py::array_t<float>({height, width, py::ssize_t{4}});
+  }
+  float* pixels = image.mutable_data();
+  const std::size_t floats = static_cast<std::size_t>(image.size());
+  {
+    py::gil_scoped_release release;
+    relighter.shade_into(pixels, floats);
+  }
+  return image;
+}
+
+py::dict timings(const Relighter& relighter) {
+  const RelightTimings t = relighter.last_timings();
+  py::dict d;
+  d["build_ms"] = t.build_ms;
+  d["pack_ms"] = t.pack_ms;
+  d["upload_ms"] = t.upload_ms;
+  d["kernel_ms"] = t.kernel_ms;
+  d["download_ms"] = t.download_ms;
+  d["total_ms"] = t.total_ms;
+  d["rebuilt"] = t.rebuilt;
+  d["gbuffer_uploaded"] = t.gbuffer_uploaded;
+  return d;
+}
+
+}  // namespace
+
+void bind_relighter(py::module_& module) {
+  py::class_<Relighter>(module, "Relighter",
+                        "A G-buffer kept in an OpenCL device's memory and shaded again after each change of "
+                        "lights, materials or eye: a re-shade uploads only what changed, and the kernel is "
+                        "rebuilt only when the recipe changes (e.g. the number of lights).")
+      .def(py::init([](const Scene& scene, const GBuffer& gbuffer, const py::object& device,
+                       const std::string& precision, bool specialise, int lanes) {
+             RelighterOptions options{device_selector(device), parse_precision(precision), specialise, lanes};
+             py::gil_scoped_release release;  // the kernel build and the packing take a while
+             return Relighter(scene, gbuffer, options);
+           }),
+           py::arg("scene"), py::arg("gbuffer"), py::arg("device") = py::none(), py::arg("precision") = "precise",
+           py::arg("specialise") = true, py::arg("lanes") = 0,
+           "device: None (the first CPU device), an index or a name; precision: 'precise', 'fast', 'double' "
+           "or 'half-storage'; specialise=False for the general kernel; lanes: pixels per work-item (0: the "
+           "device's choice).")
+      .def("shade", &shade, py::arg("out") = py::none(),
+           "Shades the frame: float32 (H, W, 4), RGBA, background alpha 0. With out=, writes into that "
+           "array (C-contiguous float32 (H, W, 4)) and returns it. Releases the GIL while shading.")
+      .def(
+          "set_lights", [](Relighter& r, const py::object& lights) { r.set_lights(lights_from_python(lights)); },
+          py::arg("lights"), "New lights: Light objects or dicts in the scene file's form.")
+      .def(
+          "set_materials",
+          [](Relighter& r, const py::object& materials) { r.set_materials(materials_from_python(materials)); },
+          py::arg("materials"), "A new material table: Material objects or dicts in the scene file's form.")
+      .def(
+          "set_camera_eye",
+          [](Relighter& r, const std::array<double, 3>& eye) { r.set_camera_eye(to_vec3(eye)); }, py::arg("eye"),
+          "A new eye position (the G-buffer is re-packed relative to it at the next shade).")
+      .def_property_readonly("width", &Relighter::width)
+      .def_property_readonly("height", &Relighter::height)
+      .def_property_readonly("scene", &Relighter::scene, "The scene with every change so far (a copy).")
+      .def_property_readonly(
+          "device", [](const Relighter& r) { return describe(r.device()); }, "The OpenCL device, in one line.")
+      .def_property_readonly("kernel_summary", &Relighter::kernel_summary, "The kernel's recipe in one line.")
+      .def_property_readonly("build_options", &Relighter::build_options)
+      .def_property_readonly("last_timings", &timings,
+                             "What the last shade() cost, in ms: build, pack, upload, kernel, download, total; "
+                             "and whether the kernel was rebuilt and the G-buffer uploaded.");
+
+  module.def(
+      "devices",
+      [] {
+        std::vector<std::string> names;
+        for (const DeviceInfo& info : available_devices()) names.push_back(describe(info));
+        return names;
+      },
+      "Every OpenCL device, in the order Relighter(device=N) counts them.");
+}
+
+}  // namespace phongcl::python

@@ -1,0 +1,150 @@
+"""The Python module against an independent NumPy reference, relit in a loop, and on bad inputs."""
+import math
+import os
+import pathlib
+
+import numpy as np
+import pytest
+
+import phongcl
+import numpy_reference
+
+SCENES = pathlib.Path(__file__).resolve().parents[2] / "scenes"
+DEFAULT = SCENES / "default" / "scene.json"
+DEFAULT_GBUFFER = SCENES / "default" / "gbuffer.exr"
+# The product's bound (README "Accuracy"; derived in tests/test_shading.cpp): 5e-4 relative, 1e-6
+# absolute near zero, on every shaded pixel.
+RELATIVE_BOUND = 5e-4
+
+needs_device = pytest.mark.skipif(not phongcl.devices(), reason="no OpenCL device on this machine")
+
+
+@pytest.fixture(scope="module")
+def scene():
+    return phongcl.load_scene(str(DEFAULT))
+
+
+@pytest.fixture(scope="module")
+def gbuffer():
+    return phongcl.read_gbuffer(str(DEFAULT_GBUFFER))
+
+
+def check_against_reference(image, scene, gb, step):
+    expected = numpy_reference.shade(scene, gb.P, gb.N, gb.material)
+    shaded = expected[..., 3] == 1
+    assert shaded.sum() > 1000, "the test scene should have shaded pixels"
+    np.testing.assert_array_equal(image[~shaded], expected[~shaded].astype(np.float32), err_msg=step + ": background")
+    error, worst = numpy_reference.worst_relative_error(image, expected, shaded)
+    assert error <= RELATIVE_BOUND, (
+        f"{step}: max relative error {error:.3g} at pixel (x={worst[1]}, y={worst[0]}) channel {'RGB'[worst[2]]}: "
+        f"kernel {image[worst]:.9g}, reference {expected[worst]:.9g}")
+
+
+@needs_device
+def test_kernel_matches_the_numpy_double_reference(scene, gbuffer):
+    relighter = phongcl.Relighter(scene, gbuffer, device=None, precision="precise")
+    image = relighter.shade()
+    assert image.shape == (gbuffer.height, gbuffer.width, 4) and image.dtype == np.float32
+    check_against_reference(image, scene, gbuffer, "default scene")
+
+
+@needs_device
+def test_a_moving_light_relit_in_a_loop(scene, gbuffer):
+    relighter = phongcl.Relighter(scene, gbuffer)
+    relighter.shade()
+    previous = None
+    for step in range(6):
+        angle = 2 * math.pi * step / 6
+        lights = [{"type": "point", "position": [6 * math.cos(angle), 5, 6 * math.sin(angle)], "color": [1, 0.9, 0.8]},
+                  {"type": "directional", "direction": [-0.3, -1, -0.5], "color": [0.2, 0.2, 0.2]}]
+        relighter.set_lights(lights)
+        image = relighter.shade()
+        timings = relighter.last_timings
+        if step > 0:
+            # Same light count and types: the same kernel, and the G-buffer stays on the device.
+            assert not timings["rebuilt"] and not timings["gbuffer_uploaded"], f"step {step}: {timings}"
+            assert np.abs(image - previous).max() > 1e-3, f"step {step}: the light moved but the image did not change"
+        check_against_reference(image, relighter.scene, gbuffer, f"step {step}")
+        previous = image
+
+
+@needs_device
+def test_shade_writes_into_a_callers_array(scene, gbuffer):
+    relighter = phongcl.Relighter(scene, gbuffer)
+    out = np.zeros((gbuffer.height, gbuffer.width, 4), dtype=np.float32)
+    returned = relighter.shade(out=out)
+    assert returned is out or np.shares_memory(returned, out)
+    np.testing.assert_array_equal(out, relighter.shade())
+    with pytest.raises(ValueError, match="C-contiguous float32"):
+        relighter.shade(out=np.zeros((gbuffer.height, gbuffer.width, 4), dtype=np.float64))
+    with pytest.raises(ValueError, match="C-contiguous float32"):
+        relighter.shade(out=np.zeros((gbuffer.height, gbuffer.width, 4), dtype=np.float32)[:, ::-1])
+
+
+@needs_device
+def test_arrays_of_other_dtypes_and_layouts_are_converted(scene, gbuffer):
+    P, N, material = gbuffer.P, gbuffer.N, np.array(gbuffer.material)
+    expected = phongcl.Relighter(scene, phongcl.GBuffer(P=P, N=N, material=material)).shade()
+    # float64, a Fortran-ordered copy, a transposed view and integer indices give the same G-buffer.
+    converted = phongcl.GBuffer(P=P.astype(np.float64), N=np.asfortranarray(N),
+                                material=np.where(material < 0, -1, material).astype(np.int32))
+    np.testing.assert_array_equal(phongcl.Relighter(scene, converted).shade(), expected)
+    transposed = np.ascontiguousarray(P.transpose(1, 0, 2)).transpose(1, 0, 2)
+    assert not transposed.flags["C_CONTIGUOUS"]
+    np.testing.assert_array_equal(
+        phongcl.Relighter(scene, phongcl.GBuffer(P=transposed, N=N, material=material)).shade(), expected)
+
+
+def test_the_material_plane_is_a_read_only_view(gbuffer):
+    view = gbuffer.material
+    assert view.shape == (gbuffer.height, gbuffer.width) and view.dtype == np.float32
+    assert not view.flags["WRITEABLE"] and not view.flags["OWNDATA"]
+
+
+def test_wrong_shapes_are_clear_errors(gbuffer):
+    P, N, material = gbuffer.P, gbuffer.N, gbuffer.material
+    with pytest.raises(ValueError, match=r"N must have shape \(480, 640, 3\), got \(480, 640\)"):
+        phongcl.GBuffer(P=P, N=N[..., 0], material=material)
+    with pytest.raises(ValueError, match=r"material must have shape \(480, 640\)"):
+        phongcl.GBuffer(P=P, N=N, material=material[:10])
+    with pytest.raises(ValueError, match=r"P must have shape \(H, W, 3\)"):
+        phongcl.GBuffer(P=P[0], N=N, material=material)
+    with pytest.raises(ValueError):
+        phongcl.write_exr("never-written.exr", np.zeros((4, 4, 2), dtype=np.float32))
+    assert not os.path.exists("never-written.exr")
+
+
+def test_bad_files_and_values_raise_the_command_lines_messages(tmp_path, scene):
+    with pytest.raises(phongcl.InputError, match="no-such.exr: no such file"):
+        phongcl.read_gbuffer(str(tmp_path / "no-such.exr"))
+    with pytest.raises(phongcl.InputError, match="missing key 'camera'"):
+        phongcl.Scene.from_dict({"lights": []})
+    with pytest.raises(phongcl.InputError, match=r"unknown light type 'spot' in lights\[0\]"):
+        phongcl.Scene.from_dict({"camera": {"eye": [0, 0, 5]}, "lights": [{"type": "spot"}]})
+
+
+@needs_device
+def test_bad_changes_are_refused(scene, gbuffer):
+    relighter = phongcl.Relighter(scene, gbuffer)
+    with pytest.raises(phongcl.InputError, match=r"lights\[0\]\.color\[0\] must be >= 0"):
+        relighter.set_lights([{"type": "point", "position": [0, 1, 0], "color": [-1, 0, 0]}])
+    with pytest.raises(ValueError, match=r"lights\[0\]\.position: must be finite"):
+        relighter.set_lights([phongcl.Light("point", position=[math.nan, 0, 0])])
+    with pytest.raises(phongcl.InputError, match="material"):
+        relighter.set_materials(scene.materials[:1])  # the G-buffer uses indices up to 4
+    with pytest.raises(RuntimeError, match="no OpenCL device matches"):
+        phongcl.Relighter(scene, gbuffer, device="no-such-device-anywhere")
+    with pytest.raises(ValueError, match="precision"):
+        phongcl.Relighter(scene, gbuffer, precision="sloppy")
+    check_against_reference(relighter.shade(), scene, gbuffer, "after refused changes")
+
+
+def test_scene_from_dict_reads_the_files_form():
+    scene = phongcl.Scene.from_dict({
+        "camera": {"eye": [0, 1, 6]}, "ambient": [0.1, 0.1, 0.1],
+        "lights": [{"type": "directional", "direction": [-1, -1, -1], "color": [0.5, 0.5, 0.5]}],
+        "materials": [{"name": "red", "ka": [0.2, 0, 0], "kd": [0.8, 0.1, 0.1], "ks": [0.5, 0.5, 0.5], "shininess": 32}],
+    })
+    assert scene.camera.eye == [0, 1, 6]
+    assert scene.lights[0].type == "directional" and scene.lights[0].color == [0.5, 0.5, 0.5]
+    assert scene.materials[0].name == "red" and scene.materials[0].shininess == 32

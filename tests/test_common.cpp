@@ -1,0 +1,131 @@
+// Atomic outputs: a killed or failing writer leaves the old files and nothing else.
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <iterator>
+#include <set>
+#include <stdexcept>
+#include <string>
+
+#include "common/atomic_file.h"
+
+#include "temp_dir.h"
+
+namespace phongcl {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct TempDir : testing::TempDir {
+  TempDir() : testing::TempDir("common") {}
+};
+
+std::string content(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+std::set<std::string> names_in(const fs::path& directory) {
+  std::set<std::string> names;
+  for (const auto& entry : fs::directory_iterator(directory)) names.insert(entry.path().filename().string());
+  return names;
+}
+
+void write_text(const fs::path& file, const std::string& text) { std::ofstream(file, std::ios::binary) << text; }
+
+// Runs body in a child process that SIGKILLs itself where body says; true if it died that way.
+bool killed_in_child(const std::function<void()>& body) {
+  const pid_t child = ::fork();
+  if (child == 0) {
+    body();
+    ::_exit(0);  // not killed: the parent sees exit status 0
+  }
+  int status = 0;
+  ::waitpid(child, &status, 0);
+  return WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL;
+}
+
+void write_then_die(const fs::path& temp) {
+  write_text(temp, std::string(1 << 20, 'n'));  // a megabyte of new content, then killed mid-run
+  ::kill(::getpid(), SIGKILL);
+}
+
+// 17 of 19 SIGKILLs during a 1080p shade left hidden .NAME.tmpPID.exr files of up to 17 MB.
+TEST(AtomicFile, KilledWriterLeavesOnlyTheOldFile) {
+  TempDir dir;
+  write_text(dir / "lit.exr", "old");
+  ASSERT_TRUE(killed_in_child([&] { write_atomically(dir / "lit.exr", write_then_die); }));
+  EXPECT_EQ(names_in(dir.path), std::set<std::string>{"lit.exr"});
+  EXPECT_EQ(content(dir / "lit.exr"), "old");
+}
+
+// Where a temporary does get a name (no O_TMPFILE, or a kill between naming and renaming), the
+// next write of that destination removes it once its process is gone, and only then.
+TEST(AtomicFile, NextWriteRemovesTemporariesOfDeadProcesses) {
+  TempDir dir;
+  const pid_t dead = ::fork();
+  if (dead == 0) ::_exit(0);
+  ::waitpid(dead, nullptr, 0);
+  const std::string stale = ".lit.tmp" + std::to_string(dead) + ".exr";
+  const std::string live = ".lit.tmp" + std::to_string(::getppid()) + ".exr";  // a process that exists
+  for (const std::string& name : {stale, live, std::string(".other.tmp") + std::to_string(dead) + ".exr"})
+    write_text(dir / name, "leftover");
+  write_atomically(dir / "lit.exr", [](const fs::path& temp) { write_text(temp, "new"); });
+  EXPECT_EQ(names_in(dir.path), (std::set<std::string>{"lit.exr", live, ".other.tmp" + std::to_string(dead) + ".exr"}));
+  EXPECT_EQ(content(dir / "lit.exr"), "new");
+}
+
+// A kill between the PNG and the EXR of one run used to leave the new PNG beside the old EXR.
+TEST(AtomicBatch, KillBeforeCommitLeavesAllOldFiles) {
+  TempDir dir;
+  write_text(dir / "lit.png", "old png");
+  write_text(dir / "lit.exr", "old exr");
+  ASSERT_TRUE(killed_in_child([&] {
+    AtomicBatch batch;
+    write_atomically(dir / "lit.png", [](const fs::path& temp) { write_text(temp, "new png"); });
+    write_atomically(dir / "lit.exr", write_then_die);
+    batch.commit();
+  }));
+  EXPECT_EQ(names_in(dir.path), (std::set<std::string>{"lit.exr", "lit.png"}));
+  EXPECT_EQ(content(dir / "lit.png"), "old png");
+  EXPECT_EQ(content(dir / "lit.exr"), "old exr");
+}
+
+TEST(AtomicBatch, FailedWriteLeavesAllOldFiles) {
+  TempDir dir;
+  write_text(dir / "lit.png", "old png");
+  EXPECT_THROW(
+      {
+        AtomicBatch batch;
+        write_atomically(dir / "lit.png", [](const fs::path& temp) { write_text(temp, "new png"); });
+        write_atomically(dir / "lit.exr", [](const fs::path&) { throw std::runtime_error("disk full"); });
+        batch.commit();
+      },
+      std::runtime_error);
+  EXPECT_EQ(names_in(dir.path), std::set<std::string>{"lit.png"});
+  EXPECT_EQ(content(dir / "lit.png"), "old png");
+}
+
+TEST(AtomicBatch, CommitReplacesEveryFile) {
+  TempDir dir;
+  write_text(dir / "lit.png", "old png");
+  {
+    AtomicBatch batch;
+    write_atomically(dir / "lit.png", [](const fs::path& temp) { write_text(temp, "new png"); });
+    write_atomically(dir / "lit.exr", [](const fs::path& temp) { write_text(temp, "new exr"); });
+    EXPECT_EQ(content(dir / "lit.png"), "old png");  // nothing visible before the commit
+    EXPECT_FALSE(fs::exists(dir / "lit.exr"));
+    batch.commit();
+  }
+  EXPECT_EQ(names_in(dir.path), (std::set<std::string>{"lit.exr", "lit.png"}));
+  EXPECT_EQ(content(dir / "lit.png"), "new png");
+  EXPECT_EQ(content(dir / "lit.exr"), "new exr");
+}
+
+}  // namespace
+}  // namespace phongcl
