@@ -18,6 +18,7 @@ const state = {
 // Input-event-to-image-displayed figures, read by scripts/checks/70-browser.sh.
 const metrics = { edits: [], latencies: [], displayed: [] };
 window.phongclMetrics = metrics;
+window.phongclState = state;
 
 function setStatus(text, isError) {
   const status = $('status');
@@ -346,7 +347,7 @@ function setUpImageInput() {
     if (!pixel) return;
     if (mode() === 'material') return pickAt(pixel, selectMaterialAt);
     dragging = true;
-    view.setPointerCapture(event.pointerId);
+    try { view.setPointerCapture(event.pointerId); } catch { /* a synthetic event's pointer is not active */ }
     pickAt(pixel, placeSelectedLight);
   });
   view.addEventListener('pointermove', (event) => {
