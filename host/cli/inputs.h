@@ -1,6 +1,7 @@
 #pragma once
 // The scene and G-buffer options that shade, reference and bench share: --scene/--gbuffer, and how
-// to read a renderer's G-buffer (--layout, --view-layer, --channel, --space, --depth-convention).
+// to read a renderer's G-buffer (--layout, --view-layer, --channel, --space, --depth-convention,
+// --kd-from, --ks-from).
 #include <cstdint>
 #include <filesystem>
 #include <string>
@@ -17,6 +18,7 @@ namespace phongcl::cli {
 struct LoadedGBuffer {
   GBuffer gbuffer;
   std::string layout;  // what was read, for the summary: "blender (view layer 'ViewLayer': ...)"
+  std::vector<std::string> warnings;
 };
 
 struct SceneInputs {
@@ -26,7 +28,8 @@ struct SceneInputs {
   std::string view_layer;
   std::vector<std::string> channels;  // "position=Foo.X,Foo.Y,Foo.Z", ...
   std::string space = "world";
-  std::string depth_convention = "distance";
+  std::string depth_convention = "auto";
+  std::string kd_from = "auto", ks_from = "auto";
   std::uint64_t max_pixels = ReadOptions{}.max_pixels;
 
   void add_options(CLI::App& command);

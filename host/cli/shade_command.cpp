@@ -65,6 +65,7 @@ void run_shade(const ShadeArguments& args) {
             << mpixels_per_second(gbuffer.pixel_count(), t.kernel_ms) << ")\n";
   if (result.tiles > 1) std::cout << "  tiles      " << result.tiles << " (frame larger than one device allocation)\n";
   print_unshaded(result.counts);
+  for (const auto& warning : loaded.warnings) std::cout << "  warning    " << warning << "\n";
   for (const auto& warning : result.warnings) std::cout << "  warning    " << warning << "\n";
   if (!cache.disk_problem().empty()) std::cout << "  note       " << cache.disk_problem() << "\n";
   if (args.explain) {

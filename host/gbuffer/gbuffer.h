@@ -23,6 +23,10 @@ struct GBuffer {
   // Optional per-pixel material channels; an empty group means "use the material table".
   Planes3 ka, kd, ks;
   Plane shininess;
+  // Optional: the fraction of each pixel the surface covers, in [0, 1] (anti-aliased edges of
+  // renderers' files). Shaded pixels then output colour * coverage with alpha = coverage
+  // (premultiplied); empty means 1 everywhere.
+  Plane coverage;
   std::filesystem::path source;        // for messages
 
   std::size_t pixel_count() const { return static_cast<std::size_t>(width) * height; }
@@ -30,6 +34,7 @@ struct GBuffer {
   bool has_per_pixel_kd() const { return !kd[0].empty(); }
   bool has_per_pixel_ks() const { return !ks[0].empty(); }
   bool has_per_pixel_shininess() const { return !shininess.empty(); }
+  bool has_coverage() const { return !coverage.empty(); }
 };
 
 // Why a pixel is or is not shaded. The kernel's packing and the reference both use this, so the

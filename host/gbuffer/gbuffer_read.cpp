@@ -2,12 +2,14 @@
 // file, report everything missing at once, then read and mark background.
 #include <algorithm>
 #include <cstdio>
+#include <map>
 #include <new>
 #include <string>
 #include <vector>
 
 #include "common/error.h"
 #include "exr/exr_channels.h"
+#include "gbuffer/edge_policy.h"
 #include "gbuffer/gbuffer.h"
 #include "gbuffer/layout_presets.h"
 #include "gbuffer/layouts.h"
@@ -47,11 +49,20 @@ const PassSource* best_source(const PassSpec& spec, const exr::InputExr& input) 
 struct Resolution {
   ChannelMap channels;
   std::vector<std::string> labels;  // of the passes used, in the layout's order
+  std::map<Pass, std::string> label_of;  // of each pass used
+  std::vector<std::string> unused;       // colour passes present but not used: "GlossCol not used as ks"
   std::vector<std::string> missing_required, missing_from_partial_group;
 };
 
-Resolution resolve(const LayoutSpec& spec, const ChannelMap& user, const exr::InputExr& input,
+ColourSource colour_choice(Pass pass, const ReadOptions& options) {
+  if (pass == Pass::kd) return options.kd;
+  if (pass == Pass::ks) return options.ks;
+  return ColourSource::layout_default;
+}
+
+Resolution resolve(const LayoutSpec& spec, const ReadOptions& options, const exr::InputExr& input,
                    const std::filesystem::path& file, const std::string& found) {
+  const ChannelMap& user = options.channels;
   for (const auto& [pass, channels] : user)
     for (const auto& name : channels)
       if (!input.has_channel(name))
@@ -69,16 +80,25 @@ Resolution resolve(const LayoutSpec& spec, const ChannelMap& user, const exr::In
   for (const auto& pass_spec : spec.passes) {
     const Pass pass = pass_spec.pass;
     if (depth_stands_in && pass == Pass::position) continue;
-    if (pass == Pass::depth && r.channels.count(Pass::position)) continue;  // positions are there already
     if (const auto mapped = user.find(pass); mapped != user.end()) {
       r.channels[pass] = mapped->second;
       r.labels.push_back(user_label(pass, mapped->second));
       continue;
     }
     const PassSource* source = best_source(pass_spec, input);
+    const ColourSource choice = colour_choice(pass, options);
+    const bool wanted = choice == ColourSource::pass || (choice == ColourSource::layout_default && pass_spec.used_by_default);
+    if (choice == ColourSource::pass && (source == nullptr || present_count(*source, input) == 0))
+      throw InputError(file, "--" + std::string(pass_name(pass)) + "-from pass: the file has no " + pass_name(pass) + " pass" + found);
+    if (!wanted) {
+      if (complete(source, input))
+        r.unused.push_back(source->label + " not used as " + pass_name(pass) + " (--" + pass_name(pass) + "-from pass uses it)");
+      continue;
+    }
     if (complete(source, input)) {
       r.channels[pass] = source->channels;
       r.labels.push_back(source->label);
+      r.label_of[pass] = source->label;
       continue;
     }
     const bool required = pass_spec.required && !(pass == Pass::position && depth_available);
@@ -102,11 +122,33 @@ Resolution resolve(const LayoutSpec& spec, const ChannelMap& user, const exr::In
 std::string describe(const LayoutSpec& spec, const Resolution& r) {
   std::string text = layout_name(spec.layout);
   text += " (";
-  if (spec.layout == Layout::blender) text += "view layer '" + spec.view_layer + "': ";
+  if (spec.file_output) text += "File Output node: ";
+  else if (spec.layout == Layout::blender) text += "view layer '" + spec.view_layer + "': ";
   text += join(r.labels);
   if (!r.channels.count(Pass::material)) text += "; no material pass: material 0";
   if (!r.channels.count(Pass::position)) text += "; positions from depth";
+  // Where the file has colour passes, say which became kd and ks.
+  if (spec.layout != Layout::phongcl && (r.channels.count(Pass::kd) || r.channels.count(Pass::ks) || !r.unused.empty())) {
+    const auto from = [&](Pass pass) {
+      const auto label = r.label_of.find(pass);
+      return label != r.label_of.end() ? label->second : r.channels.count(pass) ? "--channel" : "the scene's table";
+    };
+    text += "; kd from " + from(Pass::kd) + ", ks from " + from(Pass::ks);
+  }
+  for (const auto& unused : r.unused) text += "; " + unused;
   return text + ")";
+}
+
+// Every shaded pixel at material 0 while the file has a material pass: Blender's pass indices
+// were most likely never set, and the sky has index 0 too.
+bool every_surface_is_material_zero(const GBuffer& g) {
+  bool any_surface = false;
+  for (std::size_t i = 0; i < g.pixel_count(); ++i) {
+    if (g.material[i] < 0.0f) continue;
+    if (g.material[i] != 0.0f) return false;
+    any_surface = true;
+  }
+  return any_surface;
 }
 
 // Where each pass's channels go: the G-buffer's planes, or the reader's own for depth and alpha.
@@ -162,7 +204,7 @@ GBufferRead read_gbuffer(const std::filesystem::path& file, const ReadOptions& o
   const std::string found = " (" + context + "found: " + join(channel_names) + ")";
 
   // Every problem with the channel list is reported before any pixel is read.
-  const Resolution r = resolve(spec, options.channels, input, file, found);
+  const Resolution r = resolve(spec, options, input, file, found);
   if (!r.missing_required.empty())
     throw InputError(file, (r.missing_required.size() == 1 ? "missing channel " : "missing channels ") +
                                join(r.missing_required) + found);
@@ -172,6 +214,8 @@ GBufferRead read_gbuffer(const std::filesystem::path& file, const ReadOptions& o
   GBufferRead read;
   read.layout = spec.layout;
   read.description = describe(spec, r);
+  read.depth_convention = options.depth_convention.value_or(spec.depth_convention);
+  read.depth_convention_reason = options.depth_convention ? "as --depth-convention says" : spec.depth_reason;
   GBuffer& g = read.gbuffer;
   g.source = file;
   g.data_window = input.data_window();
@@ -183,7 +227,7 @@ GBufferRead read_gbuffer(const std::filesystem::path& file, const ReadOptions& o
   std::vector<exr::ReadSlice> slices;
   std::vector<Plane*> planes;
   for (const auto& [pass, channels] : r.channels) {
-    if (pass == Pass::depth && r.channels.count(Pass::position)) continue;  // only read what is used
+    // Depth is read even beside a position pass: it tells the renderer's sky samples (edge_policy.h).
     const auto pass_planes = destinations(pass, read, alpha);
     for (std::size_t c = 0; c < channels.size(); ++c) {
       planes.push_back(pass_planes[c]);
@@ -196,6 +240,18 @@ GBufferRead read_gbuffer(const std::filesystem::path& file, const ReadOptions& o
   for (std::size_t i = 0; i < slices.size(); ++i) slices[i].first = planes[i]->data();
   input.read(slices);
   mark_background(g, alpha, spec.zero_normal_is_background);
+  if (spec.zero_normal_is_background) {  // a renderer's file: its edges (gbuffer/edge_policy.h)
+    const std::size_t sky = mark_sky_samples(g, read.depth, spec.no_hit_depth);
+    if (sky > 0) read.description += ", " + std::to_string(sky) + " sky samples with a filtered normal as background";
+    const CoverageSource coverage = estimate_coverage(g, alpha);
+    if (coverage != CoverageSource::none) read.description += std::string(", coverage from ") + coverage_source_name(coverage);
+    const std::size_t repaired = repair_surface_edges(g);
+    if (repaired > 0) read.description += ", " + std::to_string(repaired) + " edge pixels between surfaces given their centre surface's normal";
+  }
+  if (material_read && every_surface_is_material_zero(g))
+    read.warnings.push_back("every surface pixel has material index 0: pass indices were probably never set (in "
+                            "Blender: each material's Pass Index), so every surface gets material 0's ka, kd, ks and "
+                            "shininess");
   return read;
 }
 

@@ -1,6 +1,7 @@
 #include "gbuffer/layout_presets.h"
 
 #include <algorithm>
+#include <limits>
 #include <set>
 #include <stdexcept>
 
@@ -10,6 +11,8 @@
 namespace phongcl {
 
 namespace {
+
+constexpr float kNoNoHitDepth = std::numeric_limits<float>::infinity();
 
 bool has(const std::vector<std::string>& channels, const std::string& name) {
   return std::find(channels.begin(), channels.end(), name) != channels.end();
@@ -39,7 +42,7 @@ LayoutSpec phongcl_spec() {
       if (candidate == plane) return pass;
     return Pass::material;  // unreachable: the table covers every plane of gbuffer_layout
   };
-  LayoutSpec spec{Layout::phongcl, "", {}, false};
+  LayoutSpec spec{Layout::phongcl, "", {}, false, false, DepthConvention::distance, "", kNoNoHitDepth};
   for (const auto& group : gbuffer_layout(g)) {
     PassSource source;
     for (const auto& channel : group.channels) source.channels.emplace_back(channel.name);
@@ -50,19 +53,33 @@ LayoutSpec phongcl_spec() {
 }
 
 // Blender writes "<layer>.<pass>.<channel>" into multilayer EXRs; passes renamed in 2.8x-4.x, so
-// both generations of names are accepted.
-LayoutSpec blender_spec(const std::string& layer) {
+// both generations of names are accepted. A File Output node writes "<pass>.<channel>", one-channel
+// passes as "<pass>.V". Cycles' and EEVEE's Depth is view-space z (measured on their renders:
+// tests/test_renderers.cpp).
+LayoutSpec blender_spec(const std::string& layer, bool file_output) {
   const std::string p = layer.empty() ? "" : layer + ".";
+  const std::string scalar = file_output ? ".V" : ".X";
+  std::vector<PassSource> alpha = {{"Combined.A", {p + "Combined.A"}}, {"A", {"A"}}};
+  if (file_output) alpha = {{"Alpha", {"Alpha.V"}}, {"Image.A", {"Image.A"}}};
   return {Layout::blender,
           layer,
           {{Pass::position, true, {{"Position", xyz(p + "Position")}}},
            {Pass::normal, true, {{"Normal", xyz(p + "Normal")}}},
-           {Pass::depth, false, {{"Depth", {p + "Depth.Z"}}}},
+           {Pass::depth, false, {{"Depth", {p + (file_output ? "Depth.V" : "Depth.Z")}}}},
            {Pass::kd, false, {{"DiffCol", rgb(p + "DiffCol")}, {"Diffuse Color", rgb(p + "Diffuse Color")}}},
-           {Pass::ks, false, {{"GlossCol", rgb(p + "GlossCol")}, {"Glossy Color", rgb(p + "Glossy Color")}}},
-           {Pass::material, false, {{"IndexMA", {p + "IndexMA.X"}}, {"Material Index", {p + "Material Index.X"}}}},
-           {Pass::alpha, false, {{"Combined.A", {p + "Combined.A"}}, {"A", {"A"}}}}},
-          true};
+           {Pass::ks, false, {{"GlossCol", rgb(p + "GlossCol")}, {"Glossy Color", rgb(p + "Glossy Color")}}, false},
+           {Pass::material, false, {{"IndexMA", {p + "IndexMA" + scalar}}, {"Material Index", {p + "Material Index" + scalar}}}},
+           {Pass::alpha, false, alpha}},
+          true,
+          file_output,
+          DepthConvention::view_z,
+          "Blender's Depth pass is view-space z",
+          65504.0f};
+}
+
+// The File Output node's unprefixed pass names.
+bool looks_like_file_output(const std::vector<std::string>& channels) {
+  return has(channels, "Normal.X") || has(channels, "Position.X") || has(channels, "Depth.V");
 }
 
 LayoutSpec aov_spec() {
@@ -78,12 +95,17 @@ LayoutSpec aov_spec() {
            {Pass::ks, false, {{"specular_albedo", rgb("specular_albedo")}}},
            {Pass::material, false, {{"material", {"material"}}}},
            {Pass::alpha, false, {{"A", {"A"}}}}},
-          true};
+          true,
+          false,
+          DepthConvention::distance,
+          "the aov layout's Z is taken as distance along the ray (Arnold's Z; RenderMan's z is viewz)",
+          kNoNoHitDepth};
 }
 
 // The passes phongcl requires, mapped by the user alone.
 LayoutSpec custom_spec() {
-  return {Layout::custom, "", {{Pass::position, true, {}}, {Pass::normal, true, {}}}, true};
+  return {Layout::custom, "", {{Pass::position, true, {}}, {Pass::normal, true, {}}}, true, false,
+          DepthConvention::distance, "the default for a custom mapping", kNoNoHitDepth};
 }
 
 // "<layer>" of every channel "<layer>.<pass>.<chan>" whose pass and channel are Blender's.
@@ -132,6 +154,10 @@ const char* layout_name(Layout layout) {
   return "?";
 }
 
+const char* depth_convention_name(DepthConvention convention) {
+  return convention == DepthConvention::view_z ? "viewz" : "distance";
+}
+
 Layout parse_layout(std::string_view name) {
   // custom is what auto reports for a file only --channel describes, not a choice of its own.
   for (const auto& [layout, known] : kLayoutNames)
@@ -143,7 +169,10 @@ LayoutSpec layout_spec(Layout layout, const std::string& view_layer, const std::
                        const std::filesystem::path& file) {
   switch (layout) {
     case Layout::phongcl: return phongcl_spec();
-    case Layout::blender: return blender_spec(view_layer.empty() ? pick_view_layer(channels, file) : view_layer);
+    case Layout::blender:
+      if (view_layer.empty() && blender_layers(channels).empty() && looks_like_file_output(channels))
+        return blender_spec("", true);
+      return blender_spec(view_layer.empty() ? pick_view_layer(channels, file) : view_layer, false);
     case Layout::aov: return aov_spec();
     case Layout::custom: return custom_spec();
     case Layout::automatic: break;
@@ -153,7 +182,7 @@ LayoutSpec layout_spec(Layout layout, const std::string& view_layer, const std::
 
 LayoutSpec detect_layout(const std::vector<std::string>& channels, const ReadOptions& options,
                          const std::filesystem::path& file) {
-  if (!options.view_layer.empty() || !blender_layers(channels).empty())
+  if (!options.view_layer.empty() || !blender_layers(channels).empty() || looks_like_file_output(channels))
     return layout_spec(Layout::blender, options.view_layer, channels, file);
   if (looks_like_aov(channels)) return aov_spec();
   if (has(channels, "material") || options.channels.empty()) return phongcl_spec();

@@ -58,4 +58,12 @@ void interleave(const float* planes, std::size_t stride, std::size_t count, int 
   }
 }
 
+void premultiply_by_coverage(const Plane& coverage, std::size_t first, std::size_t count, float* rgba) {
+  if (coverage.empty()) return;
+  for (std::size_t t = 0; t < count; ++t) {
+    if (rgba[4 * t + 3] != 1.0f) continue;
+    for (int c = 0; c < 4; ++c) rgba[4 * t + c] *= coverage[first + t];
+  }
+}
+
 }  // namespace phongcl

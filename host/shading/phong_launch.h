@@ -43,4 +43,9 @@ cl::Event launch_phong(const cl::Program& program, cl::CommandQueue& queue, cons
 // on every core: the copy is part of each frame's end-to-end time.
 void interleave(const float* planes, std::size_t stride, std::size_t count, int channels, float* rgba);
 
+// The edge policy (gbuffer/edge_policy.h), after the kernel: a shaded pixel (alpha 1) of a frame
+// with coverage gets colour and alpha times its coverage, premultiplied for compositing. Pixels
+// [first, first + count) of the frame, whose RGBA starts at rgba.
+void premultiply_by_coverage(const Plane& coverage, std::size_t first, std::size_t count, float* rgba);
+
 }  // namespace phongcl

@@ -17,16 +17,21 @@ double milliseconds(Clock::time_point start, Clock::time_point end) {
   return std::chrono::duration<double, std::milli>(end - start).count();
 }
 
-// Copies the kernel's term planes into the three term images, alpha from the combined image.
+// Copies the kernel's term planes into the three term images, alpha from the combined image
+// (premultiplied like it, so the terms still sum to it).
 void copy_terms(cl::CommandQueue& queue, const cl::Buffer& terms, std::size_t stride, std::size_t first,
-                std::size_t count, ShadeResult& result) {
+                std::size_t count, const Plane& coverage, ShadeResult& result) {
   const auto* planes = static_cast<const float*>(
       queue.enqueueMapBuffer(terms, CL_TRUE, CL_MAP_READ, 0, PHONGCL_TERM_PLANES * stride * sizeof(cl_float)));
   Image* images[] = {&result.terms.ambient, &result.terms.diffuse, &result.terms.specular};
   for (int term = 0; term < 3; ++term) {
     float* out = images[term]->pixel(first);
     interleave(planes + 3 * term * stride, stride, count, 3, out);
-    for (std::size_t t = 0; t < count; ++t) out[4 * t + 3] = result.image.pixel(first + t)[3];
+    for (std::size_t t = 0; t < count; ++t) {
+      out[4 * t + 3] = result.image.pixel(first + t)[3];
+      if (!coverage.empty() && out[4 * t + 3] > 0.0f)
+        for (int c = 0; c < 3; ++c) out[4 * t + c] *= coverage[first + t];
+    }
   }
   queue.enqueueUnmapMemObject(terms, const_cast<float*>(planes));
 }
@@ -100,9 +105,10 @@ ShadeResult PhongShader::shade(const Scene& scene, const GBuffer& gbuffer, const
         queue.enqueueMapBuffer(output, CL_TRUE, CL_MAP_READ, 0, PHONGCL_OUTPUT_PLANES * stride * sizeof(cl_float), nullptr, &map_output));
     const auto copy_start = Clock::now();
     interleave(shaded, stride, count, 4, result.image.pixel(first));
+    premultiply_by_coverage(gbuffer.coverage, first, count, result.image.pixel(first));
     const double copy_ms = milliseconds(copy_start, Clock::now());
     queue.enqueueUnmapMemObject(output, const_cast<float*>(shaded));
-    if (recipe.write_terms) copy_terms(queue, terms, stride, first, count, result);
+    if (recipe.write_terms) copy_terms(queue, terms, stride, first, count, gbuffer.coverage, result);
     queue.finish();
 
     result.timings.upload_ms += event_milliseconds(unmap_planes) + event_milliseconds(unmap_index);

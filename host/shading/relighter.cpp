@@ -117,6 +117,7 @@ struct Relighter::State {
         output, CL_TRUE, CL_MAP_READ, 0, PHONGCL_OUTPUT_PLANES * stride * sizeof(cl_float), nullptr, &map_output));
     const auto copy_start = Clock::now();
     interleave(shaded, stride, gbuffer.pixel_count(), PHONGCL_OUTPUT_PLANES, rgba);
+    premultiply_by_coverage(gbuffer.coverage, 0, gbuffer.pixel_count(), rgba);
     const double copy_ms = milliseconds(copy_start, Clock::now());
     queue.enqueueUnmapMemObject(output, const_cast<float*>(shaded));
     queue.finish();

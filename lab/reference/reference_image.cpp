@@ -9,8 +9,10 @@ Image reference_image(const Scene& scene, const GBuffer& gbuffer) {
     if (classify_pixel(gbuffer, i) == PixelClass::shaded) {
       const glm::dvec3 color = reference_shade_point(scene, reference_surface(scene, gbuffer, i)).total();
       // IEEE round-to-nearest: +Inf exactly when the double colour overflows float, never earlier.
-      for (int c = 0; c < 3; ++c) out[c] = static_cast<float>(color[c]);
-      out[3] = 1.0f;
+      // Edge policy: colour premultiplied by the pixel's coverage, which is its alpha.
+      const double coverage = gbuffer.has_coverage() ? gbuffer.coverage[i] : 1.0;
+      for (int c = 0; c < 3; ++c) out[c] = static_cast<float>(color[c] * coverage);
+      out[3] = static_cast<float>(coverage);
     } else {
       for (int c = 0; c < 3; ++c) out[c] = static_cast<float>(scene.background[c]);
       out[3] = 0.0f;

@@ -1,0 +1,241 @@
+"""Writes phongcl's scene JSON from a .blend, and with --render the G-buffer EXR phongcl reads.
+
+    blender -b file.blend --python scripts/blender/export_scene.py -- --out scene.json [--render gbuffer.exr]
+        [--samples N] [--falloff none|quadratic]
+
+Conventions (README "Renderers' G-buffers", "From a .blend"):
+- Camera: eye, forward (-Z) and up (+Y) of the camera's world matrix; the vertical field of view
+  from Blender's own view frame (Camera.view_frame), which applies the sensor fit: under AUTO the
+  sensor width spans the larger image side, so camera.data.angle_y is not the vertical fov of a
+  landscape frame. Lens shift and non-square pixels have no phongcl camera: refused.
+- Lights: Cycles lights a Lambertian surface of albedo rho with a point light of P watts as
+  rho * cos * P / (4 pi^2 d^2) (radiant intensity P / 4pi, BSDF rho / pi), and with a sun of S W/m^2
+  as rho * cos * S / pi, so phongcl's Li (kd * n.l * Li) is colour * P / (4 pi^2) (times 1/d^2) and
+  colour * S / pi. Spot lights become point lights (their cone is dropped, with a note); area
+  lights are skipped with a note. phongcl without --falloff quadratic has no distance falloff: a
+  point light's colour is then taken at its distance to the centre of the visible meshes.
+- Materials by pass index (Material.pass_index): Principled BSDF kd = base colour * (1 - metallic),
+  ks = mix(0.08 * specular, base colour, metallic) (the BSDF's normal-incidence reflectance),
+  shininess = (2 / alpha^2 - 2) / 4 with alpha = roughness^2 (Walter et al. 2007's Beckmann to
+  Blinn-Phong exponent, /4 for Phong's reflection-vector lobe), ka = kd; the ambient is the world
+  colour times its strength (a uniform environment lights an unoccluded Lambertian surface with
+  rho * L). Indices no material uses get a grey material.
+- --render enables the passes phongcl reads (Position, Normal, Depth, IndexMA, DiffCol, GlossCol)
+  and renders a multilayer 32-bit EXR with Cycles on the CPU.
+"""
+import argparse
+import json
+import math
+import os
+import sys
+
+import bpy
+from mathutils import Vector
+
+FALLBACK_MATERIAL = {"name": "unused pass index", "ka": [0.5] * 3, "kd": [0.5] * 3, "ks": [0.04] * 3, "shininess": 10.0}
+
+
+def note(text):
+    print("export_scene: " + text)
+
+
+def rounded(values, digits=7):
+    return [round(float(v), digits) for v in values]
+
+
+def image_size(scene):
+    r = scene.render
+    return (r.resolution_x * r.resolution_percentage // 100, r.resolution_y * r.resolution_percentage // 100)
+
+
+def camera_json(scene):
+    camera = scene.camera
+    if camera is None:
+        raise SystemExit("export_scene: the scene has no camera")
+    if camera.data.type != "PERSP":
+        raise SystemExit("export_scene: camera '%s' is %s; phongcl needs a perspective camera" % (camera.name, camera.data.type))
+    width, height = image_size(scene)
+    frame = camera.data.view_frame(scene=scene)  # camera space corners, sensor fit and aspect applied
+    xs, ys, depth = [v.x for v in frame], [v.y for v in frame], -frame[0].z
+    if abs(max(xs) + min(xs)) > 1e-6 * max(xs) or abs(max(ys) + min(ys)) > 1e-6 * max(ys):
+        raise SystemExit("export_scene: camera '%s' has a lens shift, which phongcl's camera cannot represent" % camera.name)
+    half_width, half_height = max(xs) / depth, max(ys) / depth
+    if abs(half_width / half_height - width / height) > 1e-4 * width / height:
+        raise SystemExit("export_scene: non-square pixels (pixel aspect %g:%g) are not supported"
+                         % (scene.render.pixel_aspect_x, scene.render.pixel_aspect_y))
+    rotation = camera.matrix_world.to_3x3()
+    eye = camera.matrix_world.translation
+    forward = (rotation @ Vector((0.0, 0.0, -1.0))).normalized()
+    up = (rotation @ Vector((0.0, 1.0, 0.0))).normalized()
+    return {"eye": rounded(eye), "look_at": rounded(eye + forward), "up": rounded(up),
+            "fov_y_deg": round(math.degrees(2.0 * math.atan(half_height)), 7), "width": width, "height": height}
+
+
+def visible_meshes(scene):
+    return [o for o in scene.objects if o.type == "MESH" and not o.hide_render]
+
+
+def meshes_centre(scene):
+    corners = [o.matrix_world @ Vector(c) for o in visible_meshes(scene) for c in o.bound_box]
+    if not corners:
+        return Vector((0.0, 0.0, 0.0))
+    return sum(corners, Vector((0.0, 0.0, 0.0))) / len(corners)
+
+
+def lights_json(scene, falloff):
+    lights = []
+    centre = meshes_centre(scene)
+    for light in (o for o in scene.objects if o.type == "LIGHT" and not o.hide_render):
+        data = light.data
+        colour = Vector(data.color)
+        if data.type == "SUN":
+            direction = light.matrix_world.to_3x3() @ Vector((0.0, 0.0, -1.0))
+            lights.append({"type": "directional", "direction": rounded(direction.normalized()),
+                           "color": rounded(colour * data.energy / math.pi)})
+            continue
+        if data.type not in ("POINT", "SPOT"):
+            note("light '%s' is an %s light, which phongcl has not: skipped" % (light.name, data.type.lower()))
+            continue
+        if data.type == "SPOT":
+            note("spot light '%s' exported as a point light (its cone is dropped)" % light.name)
+        position = light.matrix_world.translation
+        entry = {"type": "point", "position": rounded(position)}
+        intensity = colour * data.energy / (4.0 * math.pi ** 2)
+        if falloff == "quadratic":
+            entry["falloff"] = "quadratic"
+        else:
+            distance = max((position - centre).length, 1e-6)
+            intensity = intensity / distance ** 2
+            note("point light '%s' at %.3g from the meshes' centre, taken at that distance (no falloff)" % (light.name, distance))
+        entry["color"] = rounded(intensity)
+        lights.append(entry)
+    return lights
+
+
+def principled(material):
+    if material.use_nodes and material.node_tree is not None:
+        for node in material.node_tree.nodes:
+            if node.type == "BSDF_PRINCIPLED":
+                return node
+    return None
+
+
+def material_json(material):
+    node = principled(material)
+    if node is None:
+        base, metallic, specular, roughness = Vector(material.diffuse_color[:3]), material.metallic, 0.5, material.roughness
+    else:
+        inputs = node.inputs
+        base = Vector(inputs["Base Color"].default_value[:3])
+        metallic, specular, roughness = (inputs[n].default_value for n in ("Metallic", "Specular", "Roughness"))
+    kd = base * (1.0 - metallic)
+    ks = Vector((0.08 * specular,) * 3).lerp(base, metallic)
+    alpha = max(roughness, 1e-3) ** 2
+    shininess = min(max((2.0 / alpha ** 2 - 2.0) / 4.0, 0.0), 1e6)
+    return {"name": material.name, "ka": rounded(kd), "kd": rounded(kd), "ks": rounded(ks), "shininess": round(shininess, 4)}
+
+
+def materials_json(scene):
+    by_index = {}
+    for obj in visible_meshes(scene):
+        for slot in obj.material_slots:
+            material = slot.material
+            if material is None:
+                continue
+            chosen = by_index.setdefault(material.pass_index, material)
+            if chosen is not material:
+                note("materials '%s' and '%s' share pass index %d: '%s' is used"
+                     % (chosen.name, material.name, material.pass_index, chosen.name))
+    if not by_index:
+        return [dict(FALLBACK_MATERIAL)]
+    return [material_json(by_index[i]) if i in by_index else dict(FALLBACK_MATERIAL) for i in range(max(by_index) + 1)]
+
+
+def ambient_json(scene):
+    world = scene.world
+    if world is None:
+        return [0.0, 0.0, 0.0]
+    if world.use_nodes and world.node_tree is not None:
+        for node in world.node_tree.nodes:
+            if node.type == "BACKGROUND":
+                return rounded(Vector(node.inputs["Color"].default_value[:3]) * node.inputs["Strength"].default_value)
+    return rounded(world.color)
+
+
+def scene_json(scene, falloff="none", gbuffer=None):
+    document = {"camera": camera_json(scene), "background": [0.0, 0.0, 0.0], "ambient": ambient_json(scene),
+                "lights": lights_json(scene, falloff), "materials": materials_json(scene)}
+    if gbuffer:
+        document["gbuffer"] = gbuffer
+    return document
+
+
+def write_json(document, path):
+    temp = path + ".tmp"
+    # One line per camera, light and material: readable, and diffs stay small.
+    lines = []
+    for key, value in document.items():
+        if isinstance(value, list) and value and isinstance(value[0], dict):
+            items = ",\n".join("    " + json.dumps(item) for item in value)
+            lines.append('  "%s": [\n%s\n  ]' % (key, items))
+        else:
+            lines.append("  %s: %s" % (json.dumps(key), json.dumps(value)))
+    with open(temp, "w") as out:
+        out.write("{\n" + ",\n".join(lines) + "\n}\n")
+    os.replace(temp, path)
+
+
+def enable_passes(view_layer, position=True, material_index=True):
+    view_layer.use_pass_combined = True
+    view_layer.use_pass_z = True
+    view_layer.use_pass_normal = True
+    view_layer.use_pass_diffuse_color = True
+    view_layer.use_pass_glossy_color = True
+    if position:
+        view_layer.use_pass_position = True
+    if material_index:
+        view_layer.use_pass_material_index = True
+
+
+def multilayer_exr(settings):
+    settings.file_format = "OPEN_EXR_MULTILAYER"
+    settings.color_depth = "32"
+    settings.exr_codec = "ZIP"
+
+
+def render_gbuffer(scene, path, samples=None):
+    """Renders the active view layer's passes to a multilayer EXR at `path` with Cycles on the CPU."""
+    scene.render.engine = "CYCLES"
+    scene.cycles.device = "CPU"
+    if samples:
+        scene.cycles.samples = samples
+    enable_passes(bpy.context.view_layer)
+    multilayer_exr(scene.render.image_settings)
+    scene.render.use_file_extension = False
+    scene.render.filepath = os.path.abspath(path)
+    bpy.ops.render.render(write_still=True)
+
+
+def parse(argv):
+    parser = argparse.ArgumentParser(prog="export_scene.py")
+    parser.add_argument("--out", required=True, help="scene JSON to write")
+    parser.add_argument("--render", help="also render the G-buffer EXR here (Cycles, CPU)")
+    parser.add_argument("--samples", type=int, help="Cycles samples for --render (default: the file's)")
+    parser.add_argument("--falloff", choices=("none", "quadratic"), default="none",
+                        help="quadratic: point lights fall off with 1/d^2 as in Blender (needs phongcl's light falloff)")
+    return parser.parse_args(argv)
+
+
+def main():
+    args = parse(sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else [])
+    scene = bpy.context.scene
+    gbuffer = None
+    if args.render:
+        render_gbuffer(scene, args.render, args.samples)
+        gbuffer = os.path.relpath(os.path.abspath(args.render), os.path.dirname(os.path.abspath(args.out)))
+    write_json(scene_json(scene, args.falloff, gbuffer), args.out)
+    note("wrote " + args.out + (" and " + args.render if args.render else ""))
+
+
+if __name__ == "__main__":
+    main()

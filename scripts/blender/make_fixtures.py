@@ -1,0 +1,142 @@
+"""Makes the Blender fixtures of tests/fixtures/blender/ (README "Renderers' G-buffers"):
+
+    blender -b --factory-startup --python scripts/blender/make_fixtures.py -- --out tests/fixtures/blender
+        [--width 64 --height 48]
+
+A sphere, a cube and a ground plane under a point light and a sun, sky above the horizon, rendered as
+  cycles.exr       Cycles multilayer render (Position, Normal, Depth, IndexMA, DiffCol, GlossCol), opaque film
+  file_output.exr  the same passes through a compositor File Output node (no view-layer prefix)
+  eevee.exr        EEVEE: Depth, Normal, DiffCol, GlossCol (no position, no material pass)
+  transparent.exr  Cycles with a transparent film and pass indices never set (all 0)
+  supersampled.exr Cycles at 4x the size, box filter of 0.01 px, 1 sample: every sub-pixel one
+                   centre sample, for measuring the edge policy
+and scene.json (scripts/blender/export_scene.py) for the 1x frame.
+"""
+import argparse
+import glob
+import math
+import os
+import shutil
+import sys
+
+import bpy
+from mathutils import Vector
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import export_scene  # noqa: E402
+
+
+def material(name, colour, roughness, pass_index):
+    m = bpy.data.materials.new(name)
+    m.use_nodes = True
+    bsdf = m.node_tree.nodes["Principled BSDF"]
+    bsdf.inputs["Base Color"].default_value = (*colour, 1.0)
+    bsdf.inputs["Roughness"].default_value = roughness
+    m.pass_index = pass_index
+    return m
+
+
+def build_scene(width, height):
+    bpy.ops.wm.read_factory_settings(use_empty=True)
+    scene = bpy.context.scene
+    scene.render.resolution_x, scene.render.resolution_y, scene.render.resolution_percentage = width, height, 100
+    world = bpy.data.worlds.new("World")
+    world.use_nodes = True
+    world.node_tree.nodes["Background"].inputs["Color"].default_value = (0.05, 0.05, 0.06, 1.0)
+    scene.world = world
+
+    bpy.ops.mesh.primitive_plane_add(size=30.0, location=(0.0, 0.0, 0.0))
+    bpy.context.object.data.materials.append(material("ground", (0.5, 0.5, 0.45), 0.8, 0))
+    bpy.ops.mesh.primitive_uv_sphere_add(radius=1.0, location=(0.0, 0.0, 1.0), segments=48, ring_count=24)
+    bpy.ops.object.shade_smooth()
+    bpy.context.object.data.materials.append(material("red", (0.8, 0.1, 0.1), 0.3, 1))
+    bpy.ops.mesh.primitive_cube_add(size=1.0, location=(1.4, -1.6, 0.5), rotation=(0.0, 0.0, 0.6))
+    bpy.context.object.data.materials.append(material("blue", (0.1, 0.2, 0.8), 0.5, 2))
+
+    bpy.ops.object.light_add(type="POINT", location=(3.0, -2.0, 5.0))
+    bpy.context.object.data.energy = 1000.0
+    bpy.ops.object.light_add(type="SUN", rotation=(math.radians(50.0), 0.0, math.radians(30.0)))
+    bpy.context.object.data.energy = 2.0
+
+    bpy.ops.object.camera_add(location=(6.0, -6.0, 2.5))
+    camera = bpy.context.object
+    camera.data.lens = 40.0
+    direction = Vector((0.0, 0.0, 0.8)) - camera.location
+    camera.rotation_euler = direction.to_track_quat("-Z", "Y").to_euler()
+    scene.camera = camera
+    bpy.context.view_layer.update()  # matrix_world of the objects just placed
+
+    scene.render.engine = "CYCLES"
+    scene.cycles.device = "CPU"
+    scene.cycles.samples = 16
+    scene.cycles.use_denoising = False
+    scene.cycles.use_adaptive_sampling = False
+    scene.cycles.seed = 1
+    return scene
+
+
+def render(scene, path):
+    export_scene.multilayer_exr(scene.render.image_settings)
+    scene.render.use_file_extension = False
+    scene.render.filepath = path
+    bpy.ops.render.render(write_still=True)
+
+
+def add_file_output(scene, directory):
+    """A File Output node writing the render layer's passes as a multilayer EXR; returns its file pattern."""
+    scene.use_nodes = True
+    tree = scene.node_tree
+    layers = tree.nodes["Render Layers"]
+    node = tree.nodes.new("CompositorNodeOutputFile")
+    export_scene.multilayer_exr(node.format)
+    node.base_path = os.path.join(directory, "file_output_")
+    node.layer_slots.clear()
+    for name in ("Image", "Alpha", "Depth", "Normal", "Position", "IndexMA", "DiffCol", "GlossCol"):
+        node.layer_slots.new(name)
+        tree.links.new(layers.outputs[name], node.inputs[name])
+    return os.path.join(directory, "file_output_[0-9]*")
+
+
+def main():
+    parser = argparse.ArgumentParser(prog="make_fixtures.py")
+    parser.add_argument("--out", required=True)
+    parser.add_argument("--width", type=int, default=64)
+    parser.add_argument("--height", type=int, default=48)
+    args = parser.parse_args(sys.argv[sys.argv.index("--") + 1:])
+    out = os.path.abspath(args.out)
+    os.makedirs(out, exist_ok=True)
+
+    scene = build_scene(args.width, args.height)
+    export_scene.enable_passes(bpy.context.view_layer)
+    export_scene.write_json(export_scene.scene_json(scene), os.path.join(out, "scene.json"))
+
+    pattern = add_file_output(scene, out)
+    render(scene, os.path.join(out, "cycles.exr"))
+    written = glob.glob(pattern)
+    shutil.move(written[0], os.path.join(out, "file_output.exr"))
+    scene.use_nodes = False
+
+    scene.cycles.pixel_filter_type, scene.cycles.filter_width, scene.cycles.samples = "BOX", 0.01, 1
+    scene.render.resolution_percentage = 400
+    bpy.context.view_layer.use_pass_glossy_color = False  # not needed there; keeps the file small
+    render(scene, os.path.join(out, "supersampled.exr"))
+    bpy.context.view_layer.use_pass_glossy_color = True
+    scene.cycles.pixel_filter_type, scene.cycles.filter_width, scene.cycles.samples = "BLACKMAN_HARRIS", 1.5, 16
+    scene.render.resolution_percentage = 100
+
+    scene.render.film_transparent = True
+    for m in bpy.data.materials:
+        m.pass_index = 0
+    render(scene, os.path.join(out, "transparent.exr"))
+    scene.render.film_transparent = False
+
+    scene.render.engine = "BLENDER_EEVEE"
+    scene.eevee.taa_render_samples = 16
+    view_layer = bpy.context.view_layer
+    view_layer.use_pass_position = False
+    view_layer.use_pass_material_index = False
+    render(scene, os.path.join(out, "eevee.exr"))
+
+
+if __name__ == "__main__":
+    main()
