@@ -75,8 +75,17 @@ async function loadScene() {
 
 // ---- Frames: long poll, newest only ----
 
+// With "stream at display size" the server scales the frame to the pixels the page shows it at:
+// at 1080p in a smaller window that is a fraction of the encoding and decoding.
+function streamWidth() {
+  const [width] = state.imageSize;
+  const shown = Math.ceil($('stage').clientWidth * window.devicePixelRatio);
+  return $('fit').checked && width > 0 ? `&width=${Math.max(1, Math.min(width, shown))}` : '';
+}
+
 function viewQuery() {
-  return `format=${$('format').value}&exposure=${$('exposure').value}&tonemap=${$('tonemap').value}&aov=${$('aov').value}`;
+  return `format=${$('format').value}&exposure=${$('exposure').value}&tonemap=${$('tonemap').value}` +
+         `&aov=${$('aov').value}${streamWidth()}`;
 }
 
 let pollAbort = null;
@@ -114,7 +123,6 @@ async function showFrame(response) {
   if (shownUrl) URL.revokeObjectURL(shownUrl);
   shownUrl = url;
   state.frameVersion = frameVersion;
-  state.imageSize = [view.naturalWidth, view.naturalHeight];
   metrics.displayed.push({ time: now, frameVersion, sceneVersion });
   for (const e of metrics.edits) {
     if (e.version !== null && e.version > 0 && e.version <= sceneVersion && e.shown === undefined) {
@@ -159,6 +167,7 @@ async function refreshKernel() {
     $('kernel').textContent = `${stats.frame.kernel} · build ${stats.frame.build} · ${stats.width}×${stats.height} · ${stats.device}`;
     if (stats.frame.error) setStatus(stats.frame.error, true);
   }
+  state.imageSize = [stats.width, stats.height];  // the G-buffer's pixels, whatever size is streamed
   $('precision').value = stats.settings.precision;
   $('save-server').disabled = !stats.save_path;
   $('save-server').title = stats.save_path ? `writes ${stats.save_path}` : 'start phongcl serve with --save FILE';
@@ -384,7 +393,8 @@ async function saveOnServer() {
 async function start() {
   $('add-point').addEventListener('click', () => addLight('point'));
   $('add-directional').addEventListener('click', () => addLight('directional'));
-  for (const id of ['tonemap', 'aov', 'format']) $(id).addEventListener('change', viewChanged);
+  for (const id of ['tonemap', 'aov', 'format', 'fit']) $(id).addEventListener('change', viewChanged);
+  window.addEventListener('resize', viewChanged);
   $('exposure').addEventListener('input', () => { $('exposure-value').textContent = $('exposure').value; viewChanged(); });
   $('precision').addEventListener('change', async () => {
     const response = await fetch('api/settings', {
@@ -396,8 +406,8 @@ async function start() {
   $('save-server').addEventListener('click', saveOnServer);
   setUpImageInput();
   await loadScene();
+  await refreshKernel();
   pollFrames();
-  refreshKernel();
   setInterval(refreshKernel, 2000);
 }
 
