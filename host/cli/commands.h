@@ -8,5 +8,6 @@ namespace phongcl::cli {
 void add_gbuffer_command(CLI::App& app);
 void add_shade_command(CLI::App& app);
 void add_devices_command(CLI::App& app);
+void add_serve_command(CLI::App& app);
 
 }  // namespace phongcl::cli

@@ -12,5 +12,6 @@ int main(int argc, char** argv) {
   phongcl::cli::add_gbuffer_command(app);
   phongcl::cli::add_shade_command(app);
   phongcl::cli::add_devices_command(app);
+  phongcl::cli::add_serve_command(app);
   return phongcl::cli::run_app(app, argc, argv);
 }

@@ -1,6 +1,7 @@
 #pragma once
 // An RGBA float image (interleaved, row-major, row 0 at the top of the data window) and its files.
 #include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -55,7 +56,15 @@ struct DisplaySettings {
   double exposure_stops = 0.0;
   ToneMap tone_map = ToneMap::reinhard;
 };
-// Writes an 8-bit sRGB RGBA PNG, atomically. NaN displays as 0, +Inf as white.
+// 8-bit sRGB RGBA of rows [first_row, first_row + rows) into out (4 bytes a pixel, indexed from
+// the image's first pixel), and of the whole image. NaN displays as 0, +Inf as white.
+void display_rgba8(const Image& image, const DisplaySettings& display, std::size_t first_row, std::size_t rows,
+                   std::uint8_t* out);
+std::vector<std::uint8_t> display_rgba8(const Image& image, const DisplaySettings& display);
+// A PNG (tagged sRGB, fast zlib settings) of display_rgba8's bytes, in memory. Throws
+// std::runtime_error with libpng's message when it refuses (e.g. an empty image).
+std::string encode_png(const std::vector<std::uint8_t>& rgba, int width, int height);
+// Writes display_rgba8 as a PNG, atomically.
 void write_png(const Image& image, const std::filesystem::path& file, const DisplaySettings& display = {});
 inline void write_png(const std::filesystem::path& file, const Image& image, const DisplaySettings& display = {}) {
   write_png(image, file, display);

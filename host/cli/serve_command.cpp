@@ -1,0 +1,112 @@
+// phongcl serve: interactive relighting in the browser (host/serve/).
+#include <signal.h>
+
+#include <atomic>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <sstream>
+#include <thread>
+
+#include "cli/commands.h"
+#include "cli/format.h"
+#include "cli/inputs.h"
+#include "common/error.h"
+#include "serve/relight_server.h"
+
+namespace phongcl::cli {
+
+namespace {
+
+struct ServeArguments {
+  SceneInputs inputs;
+  std::string host = "127.0.0.1";
+  int port = 8080;
+  std::string save;
+  std::string device;
+  std::string precision = "precise";
+};
+
+std::string read_text(const std::string& file) {
+  std::ifstream stream(file, std::ios::binary);
+  if (!stream) throw InputError(file, "cannot open");
+  std::ostringstream text;
+  text << stream.rdbuf();
+  return text.str();
+}
+
+bool is_loopback(const std::string& host) { return host == "127.0.0.1" || host == "localhost" || host == "::1"; }
+
+// SIGINT and SIGTERM are blocked in every thread (before any is started, PoCL's included) and
+// taken here synchronously, so stopping is ordinary code rather than a signal handler.
+sigset_t stop_signals() {
+  sigset_t signals;
+  sigemptyset(&signals);
+  sigaddset(&signals, SIGINT);
+  sigaddset(&signals, SIGTERM);
+  return signals;
+}
+
+void run_serve(const ServeArguments& args) {
+  const sigset_t signals = stop_signals();
+  pthread_sigmask(SIG_BLOCK, &signals, nullptr);
+
+  if (args.inputs.camera_space())
+    throw std::invalid_argument("serve: --space camera is not supported (lights are edited in the scene's world space)");
+  const Scene scene = args.inputs.load_scene();
+  const LoadedGBuffer loaded = args.inputs.load_described_gbuffer(scene);
+  const std::string scene_text = read_text(args.inputs.scene_file);
+  RelightSession session(loaded.gbuffer, args.device);
+  const std::string device = session.device_description();
+  RenderSettings settings;
+  settings.precision = parse_precision(args.precision);
+  LiveRelighter live(session, scene_text, scene.source, settings);
+  RelightServer server(live, {args.host, args.port, args.save, device});
+
+  const std::string host = args.host.find(':') != std::string::npos ? "[" + args.host + "]" : args.host;
+  std::cout << "phongcl serve: " << scene.source.string() << " + " << loaded.gbuffer.source.string() << "\n"
+            << "  layout     " << loaded.layout << "\n"
+            << "  image      " << session.width() << " x " << session.height() << "\n"
+            << "  device     " << device << "\n"
+            << (args.save.empty() ? "" : "  save       " + args.save + " (POST /api/save, the page's Save button)\n");
+  if (!is_loopback(args.host))
+    std::cout << "  warning    listening on " << args.host
+              << ": anyone who can reach this address can read and change the scene and read the G-buffer\n";
+  const int port = server.bind();
+
+  std::atomic<bool> done = false;
+  std::thread signal_waiter([&] {
+    const timespec poll{0, 200'000'000};
+    while (!done) {
+      const int signal = sigtimedwait(&signals, nullptr, &poll);
+      if (signal == SIGINT || signal == SIGTERM) {
+        std::cout << "phongcl serve: " << (signal == SIGINT ? "SIGINT" : "SIGTERM") << ", stopping" << std::endl;
+        server.stop();
+        return;
+      }
+    }
+  });
+
+  std::cout << "  url        http://" << host << ":" << port << "/" << std::endl;
+  server.run();
+  done = true;
+  signal_waiter.join();
+  std::cout << "phongcl serve: stopped" << std::endl;
+}
+
+}  // namespace
+
+void add_serve_command(CLI::App& app) {
+  auto args = std::make_shared<ServeArguments>();
+  CLI::App* command = app.add_subcommand("serve", "Relight interactively in the browser (HTTP server and page)");
+  args->inputs.add_options(*command);
+  command->add_option("--port", args->port, "TCP port (default 8080; 0: any free port)")->check(CLI::Range(0, 65535));
+  command->add_option("--host", args->host, "Address to listen on (default 127.0.0.1, this machine only)");
+  command->add_option("--save", args->save, "Scene file the page's Save button writes (atomically)");
+  command->add_option("--device", args->device, "OpenCL device: index or name (default: first CPU device)");
+  command->add_option("--precision", args->precision, "Starting precision: double, precise (default), fast or half-storage")
+      ->check(CLI::IsMember({"double", "precise", "fast", "half-storage"}));
+  command->callback([args] { run_serve(*args); });
+}
+
+}  // namespace phongcl::cli

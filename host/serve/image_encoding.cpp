@@ -1,0 +1,125 @@
+#include "serve/image_encoding.h"
+
+#include <stdlib.h>
+#include <turbojpeg.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <fstream>
+#include <memory>
+#include <sstream>
+#include <stdexcept>
+#include <vector>
+
+namespace phongcl {
+
+namespace {
+
+// Display bytes in row blocks on every core: at 1080p this is the largest part of encoding.
+std::vector<std::uint8_t> parallel_display_bytes(const Image& image, const DisplaySettings& display) {
+  std::vector<std::uint8_t> bytes(4 * image.pixel_count());
+  constexpr int kRowsPerBlock = 32;
+  const int blocks = (image.height + kRowsPerBlock - 1) / kRowsPerBlock;
+#pragma omp parallel for schedule(dynamic)
+  for (int block = 0; block < blocks; ++block) {
+    const int first = block * kRowsPerBlock;
+    display_rgba8(image, display, first, std::min(kRowsPerBlock, image.height - first), bytes.data());
+  }
+  return bytes;
+}
+
+std::string encode_png(const Image& image, const DisplaySettings& display) {
+  return phongcl::encode_png(parallel_display_bytes(image, display), image.width, image.height);
+}
+
+std::string encode_jpeg(const Image& image, const DisplaySettings& display) {
+  const std::vector<std::uint8_t> rgbx = parallel_display_bytes(image, display);
+  const std::unique_ptr<void, int (*)(tjhandle)> compressor(tjInitCompress(), tjDestroy);
+  if (!compressor) throw std::runtime_error(std::string("JPEG encoder: ") + tjGetErrorStr());
+  unsigned char* jpeg = nullptr;
+  unsigned long size = 0;
+  if (tjCompress2(compressor.get(), rgbx.data(), image.width, 0, image.height, TJPF_RGBX, &jpeg, &size, TJSAMP_420, 90,
+                  TJFLAG_FASTDCT) != 0) {
+    tjFree(jpeg);
+    throw std::runtime_error(std::string("JPEG encoding failed: ") + tjGetErrorStr2(compressor.get()));
+  }
+  std::string bytes(reinterpret_cast<const char*>(jpeg), size);
+  tjFree(jpeg);
+  return bytes;
+}
+
+// OpenEXR writes files; a private temporary one is read back and removed.
+std::string encode_exr(const Image& image) {
+  std::string name = (std::filesystem::temp_directory_path() / "phongcl-serve-XXXXXX.exr").string();
+  const int fd = mkstemps(name.data(), 4);
+  if (fd < 0) throw std::runtime_error("cannot create a temporary file for the EXR in " + name);
+  close(fd);
+  const std::unique_ptr<const std::string, void (*)(const std::string*)> remove_at_exit(
+      &name, [](const std::string* file) { std::filesystem::remove(*file); });
+  write_exr(image, name);
+  std::ifstream stream(name, std::ios::binary);
+  std::ostringstream bytes;
+  bytes << stream.rdbuf();
+  if (!stream) throw std::runtime_error("cannot read back the temporary EXR " + name);
+  return bytes.str();
+}
+
+}  // namespace
+
+ImageFormat parse_image_format(std::string_view name) {
+  if (name == "png") return ImageFormat::png;
+  if (name == "jpeg" || name == "jpg") return ImageFormat::jpeg;
+  if (name == "exr") return ImageFormat::exr;
+  throw std::invalid_argument("unknown image format '" + std::string(name) + "' (expected png, jpeg or exr)");
+}
+
+const char* content_type(ImageFormat format) {
+  switch (format) {
+    case ImageFormat::png: return "image/png";
+    case ImageFormat::jpeg: return "image/jpeg";
+    case ImageFormat::exr: return "image/x-exr";
+  }
+  return "application/octet-stream";
+}
+
+Image scale_to_width(const Image& image, int width) {
+  if (width < 1 || width > image.width)
+    throw std::invalid_argument("width must be in [1, " + std::to_string(image.width) + "] (got " +
+                                std::to_string(width) + ")");
+  if (width == image.width) return image;
+  const int height = std::max(1, static_cast<int>(std::lround(double(image.height) * width / image.width)));
+  Image scaled(width, height);
+  // Each output pixel averages the input pixels whose index range maps into it (at least one).
+  auto span = [](int out, int out_size, int in_size) {
+    const int begin = static_cast<int>(static_cast<long long>(out) * in_size / out_size);
+    const int end = static_cast<int>(static_cast<long long>(out + 1) * in_size / out_size);
+    return std::pair{begin, std::max(end, begin + 1)};
+  };
+  for (int y = 0; y < height; ++y) {
+    const auto [y0, y1] = span(y, height, image.height);
+    for (int x = 0; x < width; ++x) {
+      const auto [x0, x1] = span(x, width, image.width);
+      float* out = scaled.pixel(static_cast<std::size_t>(y) * width + x);
+      for (int sy = y0; sy < y1; ++sy)
+        for (int sx = x0; sx < x1; ++sx)
+          for (int c = 0; c < 4; ++c) out[c] += image.pixel(static_cast<std::size_t>(sy) * image.width + sx)[c];
+      const float count = static_cast<float>((y1 - y0) * (x1 - x0));
+      for (int c = 0; c < 4; ++c) out[c] /= count;
+    }
+  }
+  return scaled;
+}
+
+std::string encode_image(const Image& image, ImageFormat format, const DisplaySettings& display) {
+  switch (format) {
+    case ImageFormat::png: return encode_png(image, display);
+    case ImageFormat::jpeg: return encode_jpeg(image, display);
+    case ImageFormat::exr: return encode_exr(image);
+  }
+  throw std::invalid_argument("unknown image format");
+}
+
+}  // namespace phongcl

@@ -1,0 +1,142 @@
+#include "serve/live_relighter.h"
+
+#include <algorithm>
+#include <exception>
+
+#include <nlohmann/json.hpp>
+
+#include "common/error.h"
+
+namespace phongcl {
+
+namespace {
+
+constexpr std::chrono::seconds kFpsWindow{2};
+
+// The document is kept as sent (keys this program does not know survive for later readers),
+// normalised to one pretty-printed form.
+std::string normalised_json(std::string_view text) { return nlohmann::json::parse(text).dump(2) + "\n"; }
+
+}  // namespace
+
+LiveRelighter::LiveRelighter(RelightSession& session, std::string_view scene_text, std::filesystem::path scene_source,
+                             RenderSettings settings)
+    : session_(session), scene_source_(std::move(scene_source)), settings_(settings) {
+  scene_ = parse_scene(scene_text, scene_source_);
+  session_.check(scene_);
+  scene_json_ = normalised_json(scene_text);
+  render_thread_ = std::thread([this] { render_loop(); });
+}
+
+LiveRelighter::~LiveRelighter() {
+  stop();
+  render_thread_.join();
+}
+
+void LiveRelighter::stop() {
+  std::lock_guard lock(mutex_);
+  stopping_ = true;
+  state_changed_.notify_all();
+  frame_ready_.notify_all();
+}
+
+SceneSnapshot LiveRelighter::scene() const {
+  std::lock_guard lock(mutex_);
+  return {scene_version_, scene_json_};
+}
+
+std::uint64_t LiveRelighter::replace_scene(std::string_view text) {
+  Scene scene = parse_scene(text, scene_source_);  // outside the lock: a big scene takes a while
+  session_.check(scene);
+  std::string json = normalised_json(text);
+  std::lock_guard lock(mutex_);
+  if (scene.gbuffer != scene_.gbuffer)
+    throw InputError(scene_source_, "gbuffer: cannot change while serving (the server holds " +
+                                        (scene_.gbuffer.empty() ? session_.gbuffer().source : scene_.gbuffer).string() + ")");
+  scene_ = std::move(scene);
+  scene_json_ = std::move(json);
+  ++scene_version_;
+  ++version_;
+  state_changed_.notify_all();
+  return scene_version_;
+}
+
+RenderSettings LiveRelighter::settings() const {
+  std::lock_guard lock(mutex_);
+  return settings_;
+}
+
+void LiveRelighter::replace_settings(const RenderSettings& settings) {
+  std::lock_guard lock(mutex_);
+  settings_ = settings;
+  ++version_;
+  state_changed_.notify_all();
+}
+
+std::shared_ptr<const RenderedFrame> LiveRelighter::wait_locked(std::unique_lock<std::mutex>& lock,
+                                                                std::uint64_t min_version, bool need_terms,
+                                                                std::chrono::milliseconds timeout) {
+  if (need_terms && !terms_wanted_) {
+    terms_wanted_ = true;
+    ++version_;
+    min_version = std::max(min_version, version_);
+    state_changed_.notify_all();
+  }
+  auto ready = [&] {
+    return stopping_ || (latest_ && latest_->version >= min_version && (!need_terms || latest_->settings.terms));
+  };
+  if (!frame_ready_.wait_for(lock, timeout, ready) || stopping_) return nullptr;
+  return latest_;
+}
+
+std::shared_ptr<const RenderedFrame> LiveRelighter::wait_for_frame(std::uint64_t after_version, bool need_terms,
+                                                                   std::chrono::milliseconds timeout) {
+  std::unique_lock lock(mutex_);
+  return wait_locked(lock, after_version + 1, need_terms, timeout);
+}
+
+std::shared_ptr<const RenderedFrame> LiveRelighter::current_frame(bool need_terms, std::chrono::milliseconds timeout) {
+  std::unique_lock lock(mutex_);
+  return wait_locked(lock, version_, need_terms, timeout);
+}
+
+RenderCounters LiveRelighter::counters() const {
+  std::lock_guard lock(mutex_);
+  const auto since = std::chrono::steady_clock::now() - kFpsWindow;
+  const auto recent = std::count_if(recent_finishes_.begin(), recent_finishes_.end(), [&](auto t) { return t >= since; });
+  return {frames_, static_cast<double>(recent) / std::chrono::duration<double>(kFpsWindow).count()};
+}
+
+void LiveRelighter::render_loop() {
+  std::uint64_t rendered = 0;
+  for (;;) {
+    auto frame = std::make_shared<RenderedFrame>();
+    Scene scene;
+    {
+      std::unique_lock lock(mutex_);
+      state_changed_.wait(lock, [&] { return stopping_ || version_ > rendered; });
+      if (stopping_) return;
+      scene = scene_;
+      frame->version = version_;
+      frame->scene_version = scene_version_;
+      frame->settings = settings_;
+      frame->settings.terms = terms_wanted_;
+    }
+    try {
+      frame->frame = session_.shade(scene, frame->settings);
+    } catch (const std::exception& error) {
+      frame->error = error.what();
+    }
+    frame->finished = std::chrono::steady_clock::now();
+    rendered = frame->version;
+    std::lock_guard lock(mutex_);
+    latest_ = std::move(frame);
+    ++frames_;
+    recent_finishes_.push_back(latest_->finished);
+    const auto since = latest_->finished - kFpsWindow;
+    std::erase_if(recent_finishes_, [&](auto t) { return t < since; });
+    frame_ready_.notify_all();
+  }
+}
+
+}  // namespace phongcl

@@ -1,0 +1,31 @@
+#pragma once
+// Reading a request's query string strictly: unknown parameters, malformed numbers and values out
+// of range are errors (BadRequest, which the server answers with 400 and the message).
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <httplib.h>
+
+namespace phongcl {
+
+class BadRequest : public std::invalid_argument {
+ public:
+  using std::invalid_argument::invalid_argument;
+};
+
+class Query {
+ public:
+  // Throws BadRequest naming the first parameter not in `allowed`, or one given twice.
+  Query(const httplib::Request& request, const std::vector<std::string_view>& allowed);
+  std::optional<std::string> text(const std::string& name) const;
+  long long integer(const std::string& name, long long min, long long max, long long fallback) const;
+  double number(const std::string& name, double min, double max, double fallback) const;
+
+ private:
+  const httplib::Request& request_;
+};
+
+}  // namespace phongcl

@@ -1,0 +1,79 @@
+#pragma once
+// The server's only contact with the shading library: the G-buffer resident on the device
+// (phongcl::Relighter), shaded for whatever scene the page holds now, and read back under the
+// cursor. The AOV terms, which the Relighter does not produce, come from the one-shot shader.
+#include <memory>
+#include <optional>
+#include <string>
+
+#include <glm/glm.hpp>
+
+#include "gbuffer/gbuffer.h"
+#include "image/image.h"
+#include "phongcl/relighter.hpp"
+#include "scene/scene.h"
+#include "shading/phong_shader.h"
+
+namespace phongcl {
+
+struct RenderSettings {
+  Precision precision = Precision::precise;
+  bool specialise = true;
+  bool terms = false;  // also shade the ambient, diffuse and specular terms separately
+};
+
+// Milliseconds. transfer: packing and moving data between host and device (the G-buffer only
+// when the eye moved); shade: wall clock of the whole frame.
+struct FrameTimings {
+  double build_ms = 0.0, kernel_ms = 0.0, transfer_ms = 0.0, shade_ms = 0.0;
+};
+
+struct Frame {
+  Image image;
+  TermImages terms;        // empty unless RenderSettings::terms
+  FrameTimings timings;
+  std::string kernel;      // what was compiled in: "precise, specialised: 2 point (unrolled) + ..."
+  std::string build;       // whether this frame built (or fetched) a kernel
+  std::vector<std::string> warnings;
+};
+
+// What the G-buffer holds at one pixel (row 0 at the top).
+struct SurfacePick {
+  bool shaded = false;  // false: background, the other fields are zero
+  glm::dvec3 position{0.0}, normal{0.0};  // normal unit length (zero if the G-buffer's is zero)
+  int material = -1;
+};
+
+class RelightSession {
+ public:
+  // `device` as `phongcl shade --device` takes it (empty: the default device).
+  RelightSession(GBuffer gbuffer, std::string device);
+  ~RelightSession();
+
+  // Throws InputError (naming the G-buffer) when the scene cannot shade this G-buffer, e.g. a
+  // material index beyond the scene's table: call it before accepting a scene.
+  void check(const Scene& scene) const;
+  // Not thread-safe: one render thread calls it.
+  Frame shade(const Scene& scene, const RenderSettings& settings);
+  // Throws std::out_of_range outside the image.
+  SurfacePick pick(int x, int y) const;
+
+  int width() const { return gbuffer_.width; }
+  int height() const { return gbuffer_.height; }
+  const GBuffer& gbuffer() const { return gbuffer_; }
+  std::string device_description() const;
+
+ private:
+  Relighter& relighter_for(const Scene& scene, const RenderSettings& settings);
+  Frame shade_with_terms(const Scene& scene, const RenderSettings& settings);
+
+  GBuffer gbuffer_;
+  std::string device_;
+  std::optional<Relighter> relighter_;
+  RenderSettings relighter_settings_;
+  // Only once a page asks for the terms.
+  std::unique_ptr<ProgramCache> terms_cache_;
+  std::unique_ptr<PhongShader> terms_shader_;
+};
+
+}  // namespace phongcl

@@ -1,0 +1,328 @@
+#!/usr/bin/env python3
+"""The browser check of `phongcl serve` (run by 70-browser.sh): headless Chromium over WebDriver
+(chromedriver, Python's standard library only). Edits a light through the page, checks the served and
+the displayed image against the scalar reference of the edited scene, saves the scene, takes a
+screenshot, and measures input-event-to-image-displayed rates at 640x480 and 1920x1080."""
+import argparse, base64, json, os, re, socket, statistics, struct, subprocess, sys, time, urllib.request, zlib
+
+ELEMENT = "element-6066-11e4-a52e-4f735466cecf"
+
+
+def fail(message):
+    print(f"70-browser: FAILED: {message}", file=sys.stderr)
+    sys.exit(1)
+
+
+def free_port():
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+def http(method, url, body=None, timeout=120):
+    data = None if body is None else json.dumps(body).encode()
+    request = urllib.request.Request(url, data=data, method=method, headers={"Content-Type": "application/json"})
+    try:
+        with urllib.request.urlopen(request, timeout=timeout) as response:
+            return response.status, response.read(), response.headers
+    except urllib.error.HTTPError as error:
+        return error.code, error.read(), error.headers
+
+
+class WebDriver:
+    def __init__(self, port, profile, window):
+        self.base = f"http://127.0.0.1:{port}"
+        for _ in range(100):
+            try:
+                if http("GET", self.base + "/status", timeout=2)[0] == 200:
+                    break
+            except OSError:
+                time.sleep(0.1)
+        args = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
+                "--disable-background-networking", "--disable-component-update", "--disable-sync",
+                f"--user-data-dir={profile}", f"--window-size={window[0]},{window[1]}"]
+        caps = {"capabilities": {"alwaysMatch": {"browserName": "chrome",
+                "goog:chromeOptions": {"binary": "/usr/bin/chromium", "args": args}}}}
+        status, body, _ = http("POST", self.base + "/session", caps)
+        if status != 200:
+            fail(f"no WebDriver session: {body[:300]}")
+        self.session = f"{self.base}/session/{json.loads(body)['value']['sessionId']}"
+
+    def call(self, method, path, body=None):
+        status, data, _ = http(method, self.session + path, body)
+        value = json.loads(data)["value"] if data else None
+        if status != 200:
+            fail(f"WebDriver {method} {path}: {value}")
+        return value
+
+    def run(self, script, *args):
+        return self.call("POST", "/execute/sync", {"script": script, "args": list(args)})
+
+    def run_async(self, script, *args):
+        return self.call("POST", "/execute/async", {"script": script, "args": list(args)})
+
+    def find(self, css):
+        found = self.call("POST", "/element", {"using": "css selector", "value": css})
+        if not isinstance(found, dict) or ELEMENT not in found:
+            fail(f"no element {css} on the page: {found}")
+        return found[ELEMENT]
+
+    def wait(self, script, what, timeout=120):
+        end = time.time() + timeout
+        while time.time() < end:
+            if self.run(script):
+                return
+            time.sleep(0.05)
+        fail(f"timed out waiting for {what}")
+
+    def quit(self):
+        http("DELETE", self.session)
+
+
+def start_server(phongcl, arguments, log):
+    server = subprocess.Popen([phongcl, "serve", "--port", "0", *arguments], stdout=log, stderr=subprocess.STDOUT)
+    end = time.time() + 120
+    while time.time() < end:
+        match = re.search(r"url\s+(http://\S+)", open(log.name).read())
+        if match:
+            return server, match.group(1)
+        if server.poll() is not None:
+            fail(f"phongcl serve exited: {open(log.name).read()}")
+        time.sleep(0.05)
+    fail("phongcl serve printed no URL")
+
+
+def decode_png(data):
+    """8-bit RGBA, non-interlaced (what libpng's simplified API writes)."""
+    width, height, depth, kind = struct.unpack(">IIBB", data[16:26])
+    if (depth, kind) != (8, 6):
+        fail(f"reference PNG is not 8-bit RGBA (depth {depth}, colour type {kind})")
+    idat, at = b"", 8
+    while at < len(data):
+        length, tag = struct.unpack(">I4s", data[at:at + 8])
+        if tag == b"IDAT":
+            idat += data[at + 8:at + 8 + length]
+        at += 12 + length
+    raw, stride, rows, previous = zlib.decompress(idat), width * 4, [], bytearray(width * 4)
+    for y in range(height):
+        kind, line = raw[y * (stride + 1)], bytearray(raw[y * (stride + 1) + 1:(y + 1) * (stride + 1)])
+        for i in range(stride):
+            a = line[i - 4] if i >= 4 else 0
+            b = previous[i]
+            c = previous[i - 4] if i >= 4 else 0
+            if kind == 1: line[i] = (line[i] + a) & 255
+            elif kind == 2: line[i] = (line[i] + b) & 255
+            elif kind == 3: line[i] = (line[i] + (a + b) // 2) & 255
+            elif kind == 4:
+                p = a + b - c
+                pa, pb, pc = abs(p - a), abs(p - b), abs(p - c)
+                line[i] = (line[i] + (a if pa <= pb and pa <= pc else b if pb <= pc else c)) & 255
+        rows.append(bytes(line))
+        previous = line
+    return width, height, b"".join(rows)
+
+
+def settle(driver, url):
+    """Waits until the page shows the server's current scene and has no edit in flight."""
+    end = time.time() + 120
+    while time.time() < end:
+        _, _, headers = http("GET", url + "api/scene")
+        version = int(headers["X-Scene-Version"])
+        if driver.run("const s = window.phongclState, d = window.phongclMetrics.displayed;"
+                      "return !s.sending && !s.dirty && d.length > 0 && d[d.length - 1].sceneVersion >= arguments[0];",
+                      version):
+            return version
+        time.sleep(0.05)
+    fail("the page never showed the edited scene")
+
+
+# Synthetic pointer events at 60 Hz along a path across the image, then the page's figures: frames
+# displayed during the drag per second, and for each input event the time until an image that
+# includes it was on screen.
+DRAG = """
+const [seconds, done] = [arguments[0], arguments[arguments.length - 1]];
+const view = document.getElementById('view'), m = window.phongclMetrics;
+m.edits.length = 0; m.latencies.length = 0; m.displayed.length = 0;
+const box = view.getBoundingClientRect();
+const at = (t) => ({ clientX: box.left + box.width * (0.3 + 0.4 * t), clientY: box.top + box.height * (0.45 + 0.1 * Math.sin(6 * t)),
+                     pointerId: 1, bubbles: true, buttons: 1, isPrimary: true, pointerType: 'mouse' });
+view.dispatchEvent(new PointerEvent('pointerdown', at(0)));
+const start = performance.now();
+const timer = setInterval(() => {
+  const t = (performance.now() - start) / (seconds * 1000);
+  if (t >= 1) {
+    clearInterval(timer);
+    view.dispatchEvent(new PointerEvent('pointerup', at(1)));
+    const end = performance.now();
+    setTimeout(() => {
+      const frames = m.displayed.filter((d) => d.time >= start && d.time <= end).length;
+      done({ fps: frames / ((end - start) / 1000), latencies: m.latencies.slice(), events: m.edits.length,
+             width: view.naturalWidth, height: view.naturalHeight });
+    }, 1500);
+    return;
+  }
+  view.dispatchEvent(new PointerEvent('pointermove', at(t)));
+}, 16);
+"""
+
+
+def measure(driver, seconds):
+    driver.call("POST", "/timeouts", {"script": int((seconds + 30) * 1000)})
+    result = driver.run_async(DRAG, seconds)
+    latencies = sorted(result["latencies"])
+    if not latencies:
+        fail("no input event reached the screen during the drag")
+    result["median_ms"] = statistics.median(latencies)
+    result["p90_ms"] = latencies[int(0.9 * (len(latencies) - 1))]
+    return result
+
+
+def main():
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--phongcl", required=True)
+    parser.add_argument("--chromedriver", default="/usr/bin/chromedriver")
+    parser.add_argument("--work", required=True)
+    parser.add_argument("--large-gbuffer", required=True)
+    parser.add_argument("--screenshot", required=True)
+    parser.add_argument("--seconds", type=float, default=5)
+    args = parser.parse_args()
+    work = args.work
+    processes = []
+    try:
+        driver_port = free_port()
+        processes.append(subprocess.Popen([args.chromedriver, f"--port={driver_port}"],
+                                          stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL))
+        log = open(os.path.join(work, "serve.log"), "w")
+        saved = os.path.join(work, "saved.json")
+        server, url = start_server(args.phongcl, ["--scene", "scenes/default/scene.json", "--save", saved], log)
+        processes.append(server)
+        driver = WebDriver(driver_port, os.path.join(work, "profile"), (1400, 900))
+
+        # 1. The page loads and shows a frame.
+        driver.call("POST", "/url", {"url": url})
+        driver.wait("return window.phongclState.imageSize[0] === 640 && "
+                    "window.phongclMetrics.displayed.length > 0", "the first frame")
+
+        # 2. Light 0's colour (the picker, as its input event) and intensity (typed), then its
+        #    position by a real pointer drag across the red sphere.
+        picker = driver.find('li[data-light="0"] input[data-role="light-color"]')
+        driver.run("arguments[0].value = '#ff4020'; arguments[0].dispatchEvent(new Event('input'));", {ELEMENT: picker})
+        intensity = driver.find('li[data-light="0"] input[data-role="light-intensity"]')
+        driver.call("POST", f"/element/{intensity}/clear", {})
+        driver.call("POST", f"/element/{intensity}/value", {"text": "1.5"})
+        view = driver.find("#view")
+        origin = {ELEMENT: view}
+        steps = [{"type": "pointerMove", "origin": origin, "x": -60, "y": 0, "duration": 0}, {"type": "pointerDown", "button": 0}]
+        steps += [{"type": "pointerMove", "origin": origin, "x": -60 + 8 * i, "y": -4 * i, "duration": 30} for i in range(1, 11)]
+        steps += [{"type": "pointerUp", "button": 0}]
+        driver.call("POST", "/actions", {"actions": [{"type": "pointer", "id": "mouse", "parameters": {"pointerType": "mouse"},
+                                                      "actions": steps}]})
+        settle(driver, url)
+        driver.call("DELETE", "/actions")
+
+        _, body, _ = http("GET", url + "api/scene")
+        scene = json.loads(body)
+        light = scene["lights"][0]
+        expected_color = [1.5 * 0xff / 255, 1.5 * 0x40 / 255, 1.5 * 0x20 / 255]
+        if any(abs(a - b) > 1e-9 for a, b in zip(light["color"], expected_color)):
+            fail(f"light 0 colour {light['color']}, expected {expected_color}")
+        if light["position"] == [4, 6, 5]:
+            fail("the drag did not move light 0")
+        box = driver.run("const b = document.getElementById('view').getBoundingClientRect(); return [b.left, b.top, b.width, b.height];")
+        px = int((box[2] / 2 + 20) / box[2] * 640)
+        py = int((box[3] / 2 - 40) / box[3] * 480)
+        near = []
+        for dy in (-1, 0, 1):
+            for dx in (-1, 0, 1):
+                pick = json.loads(http("GET", f"{url}api/pick?x={px + dx}&y={py + dy}")[1])
+                if pick["shaded"]:
+                    placed = [p + n for p, n in zip(pick["position"], pick["normal"])]
+                    near.append(max(abs(a - b) for a, b in zip(placed, light["position"])))
+        if not near or min(near) > 1e-9:
+            fail(f"light 0 at {light['position']} is not 1 unit along the normal under the last pointer position")
+
+        # 3. The served EXR against the scalar reference of the edited scene, and the displayed
+        #    (PNG-streamed) image against the reference's display encoding.
+        edited = os.path.join(work, "edited.json")
+        json.dump(scene, open(edited, "w"))
+        status, exr, _ = http("GET", url + "api/image?format=exr")
+        open(os.path.join(work, "served.exr"), "wb").write(exr)
+        ref = subprocess.run([args.phongcl, "reference", "--scene", edited, "--gbuffer", "scenes/default/gbuffer.exr",
+                              "--out", os.path.join(work, "ref.exr"), "--png", os.path.join(work, "ref.png")],
+                             capture_output=True, text=True)
+        if ref.returncode != 0:
+            fail(f"phongcl reference: {ref.stderr}")
+        compare = subprocess.run([args.phongcl, "compare", os.path.join(work, "served.exr"), os.path.join(work, "ref.exr"),
+                                  "--tolerance", "5e-4"], capture_output=True, text=True)
+        if compare.returncode != 0:
+            fail(f"served image against the reference: {compare.stdout}{compare.stderr}")
+        driver.run("const f = document.getElementById('format'); f.value = 'png'; f.dispatchEvent(new Event('change'));"
+                   "const fit = document.getElementById('fit'); fit.checked = false; fit.dispatchEvent(new Event('change'));")
+        before = driver.run("return window.phongclMetrics.displayed.length;")
+        driver.wait(f"return window.phongclMetrics.displayed.length > {before} && "
+                    "document.getElementById('view').complete;", "the PNG frame")
+        pixels = base64.b64decode(driver.run(
+            "const v = document.getElementById('view'), c = document.createElement('canvas');"
+            "c.width = v.naturalWidth; c.height = v.naturalHeight; const g = c.getContext('2d');"
+            "g.drawImage(v, 0, 0); const d = g.getImageData(0, 0, c.width, c.height).data;"
+            "let s = ''; for (let i = 0; i < d.length; i += 8192) s += String.fromCharCode.apply(null, d.subarray(i, i + 8192));"
+            "return btoa(s);"))
+        width, height, reference = decode_png(open(os.path.join(work, "ref.png"), "rb").read())
+        worst, compared = 0, 0
+        for i in range(0, len(reference), 4):
+            if reference[i + 3] == 255:  # shaded pixels; the canvas premultiplies alpha 0 away
+                compared += 1
+                worst = max(worst, *(abs(pixels[i + c] - reference[i + c]) for c in range(3)))
+        # The kernel is within 5e-4 relative of the reference, so a byte may round the other way.
+        if compared == 0 or worst > 1:
+            fail(f"displayed image differs from the reference display encoding by {worst} (of {compared} pixels)")
+
+        # 4. Save on the server through the page's button; the file is the scene and shades.
+        driver.call("POST", f"/element/{driver.find('#save-server')}/click", {})
+        driver.wait("return document.getElementById('status').textContent.startsWith('saved');", "the save")
+        if json.load(open(saved)) != scene:
+            fail("the saved scene differs from the held one")
+        shade = subprocess.run([args.phongcl, "shade", "--scene", saved, "--gbuffer", "scenes/default/gbuffer.exr",
+                                "--out", os.path.join(work, "saved.exr")], capture_output=True, text=True)
+        if shade.returncode != 0:
+            fail(f"the saved scene does not shade: {shade.stderr}")
+
+        # 5. The screenshot the README shows.
+        driver.run("const f = document.getElementById('format'); f.value = 'jpeg'; f.dispatchEvent(new Event('change'));")
+        driver.run("document.getElementById('panel').scrollTop = 0;")
+        time.sleep(0.5)
+        open(args.screenshot, "wb").write(base64.b64decode(driver.call("GET", "/screenshot")))
+
+        # 6. Frame rates while dragging, 640x480 then 1920x1080.
+        small = measure(driver, args.seconds)
+        server.terminate()
+        server.wait(timeout=30)
+        large_log = open(os.path.join(work, "serve-large.log"), "w")
+        server, url = start_server(args.phongcl, ["--scene", "scenes/large/scene.json", "--gbuffer", args.large_gbuffer], large_log)
+        processes.append(server)
+        driver.call("POST", "/url", {"url": url})
+        driver.wait("return window.phongclState.imageSize[0] === 1920 && "
+                    "window.phongclMetrics.displayed.length > 0", "the first 1080p frame")
+        time.sleep(1)
+        large = measure(driver, args.seconds)
+        driver.run("const fit = document.getElementById('fit'); fit.checked = false; fit.dispatchEvent(new Event('change'));")
+        time.sleep(1)
+        large_full = measure(driver, args.seconds)
+        driver.quit()
+        for name, r, target in (("640x480", small, 25), ("1920x1080", large, 10), ("1920x1080 streamed at full size", large_full, 10)):
+            print(f"70-browser: {name}: {r['fps']:.1f} frames/s displayed while dragging (target >= {target}), "
+                  f"displayed at {r['width']}x{r['height']}, "
+                  f"input to image median {r['median_ms']:.0f} ms, p90 {r['p90_ms']:.0f} ms, {r['events']} input events")
+        print(f"70-browser: edited light through the page; served EXR within 5e-4 of the reference, displayed PNG within "
+              f"1/255 on {compared} pixels; scene saved and shades; screenshot {args.screenshot}")
+    finally:
+        for process in processes:
+            if process.poll() is None:
+                process.terminate()
+                try:
+                    process.wait(timeout=20)
+                except subprocess.TimeoutExpired:
+                    process.kill()
+
+
+main()

@@ -1,0 +1,481 @@
+// phongcl serve: every HTTP endpoint of the real server on a loopback port, valid and invalid
+// input, images checked against the scalar reference, and the binary's shutdown on SIGTERM.
+#include <gtest/gtest.h>
+#include <httplib.h>
+#include <png.h>
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <signal.h>
+#include <sys/socket.h>
+#include <turbojpeg.h>
+
+#include <chrono>
+#include <cstring>
+#include <fstream>
+#include <future>
+#include <memory>
+#include <thread>
+
+#include <nlohmann/json.hpp>
+
+#include "cl/device.h"
+#include "cli_runner.h"
+#include "reference/reference.h"
+#include "serve/relight_server.h"
+#include "temp_dir.h"
+
+namespace phongcl {
+namespace {
+
+using nlohmann::json;
+using testing::TempDir;
+
+const std::filesystem::path kSceneFile = PHONGCL_SOURCE_DIR "/scenes/default/scene.json";
+
+std::string file_text(const std::filesystem::path& file) { return testing::read_text(file); }
+
+// A server on an ephemeral loopback port, run on its own thread, stopped at the end.
+class RunningServer {
+ public:
+  explicit RunningServer(const std::filesystem::path& save_path = {})
+      : session_(read_gbuffer(PHONGCL_SOURCE_DIR "/scenes/default/gbuffer.exr"), ""),
+        live_(session_, file_text(kSceneFile), kSceneFile, RenderSettings{}),
+        server_(live_, {"127.0.0.1", 0, save_path, "test device"}) {
+    port_ = server_.bind();
+    thread_ = std::thread([this] { server_.run(); });
+  }
+  ~RunningServer() {
+    server_.stop();
+    thread_.join();
+  }
+  httplib::Client client() const {
+    httplib::Client client("127.0.0.1", port_);
+    client.set_read_timeout(std::chrono::seconds(120));
+    return client;
+  }
+  RelightSession& session() { return session_; }
+  RelightServer& server() { return server_; }
+
+ private:
+  RelightSession session_;
+  LiveRelighter live_;
+  RelightServer server_;
+  int port_ = 0;
+  std::thread thread_;
+};
+
+class Serve : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    if (!list_devices().empty()) server_ = new RunningServer();
+  }
+  static void TearDownTestSuite() {
+    delete server_;
+    server_ = nullptr;
+  }
+  void SetUp() override {
+    if (!server_) GTEST_SKIP() << "no OpenCL device on this machine";
+    // Each test starts from the scene file and the default settings.
+    auto client = server_->client();
+    ASSERT_EQ(client.Put("/api/scene", file_text(kSceneFile), "application/json")->status, 200);
+    ASSERT_EQ(client.Put("/api/settings", R"({"precision": "precise", "specialise": true})", "application/json")->status, 200);
+  }
+  static RunningServer* server_;
+};
+RunningServer* Serve::server_ = nullptr;
+
+json body_json(const httplib::Result& result) {
+  EXPECT_TRUE(result) << "no response";
+  if (!result) return {};
+  EXPECT_EQ(result->get_header_value("Content-Type"), "application/json");
+  return json::parse(result->body);
+}
+
+// A 4xx answered with {"error": "<one line>"} that contains `needle`.
+void expect_error(const httplib::Result& result, int status, const std::string& needle) {
+  ASSERT_TRUE(result);
+  EXPECT_EQ(result->status, status) << result->body;
+  const json body = body_json(result);
+  ASSERT_TRUE(body.contains("error")) << result->body;
+  const std::string message = body["error"];
+  EXPECT_NE(message.find(needle), std::string::npos) << "message: " << message;
+  EXPECT_EQ(message.find('\n'), std::string::npos) << "one line: " << message;
+}
+
+json default_scene() { return json::parse(file_text(kSceneFile)); }
+
+Image decode_exr(const std::string& bytes) {
+  TempDir dir("serve");
+  std::ofstream(dir / "image.exr", std::ios::binary) << bytes;
+  return read_exr(dir / "image.exr");
+}
+
+std::vector<std::uint8_t> decode_png(const std::string& bytes, int& width, int& height) {
+  png_image png;
+  std::memset(&png, 0, sizeof png);
+  png.version = PNG_IMAGE_VERSION;
+  if (!png_image_begin_read_from_memory(&png, bytes.data(), bytes.size())) throw std::runtime_error(png.message);
+  png.format = PNG_FORMAT_RGBA;
+  std::vector<std::uint8_t> rgba(PNG_IMAGE_SIZE(png));
+  if (!png_image_finish_read(&png, nullptr, rgba.data(), 0, nullptr)) throw std::runtime_error(png.message);
+  width = static_cast<int>(png.width);
+  height = static_cast<int>(png.height);
+  return rgba;
+}
+
+// The kernel against the scalar reference of the same scene: the accuracy the shading tests
+// hold it to (5e-4 relative, 1e-6 absolute near zero), on every pixel.
+void expect_matches_reference(const Image& served, const Scene& scene, const GBuffer& gbuffer) {
+  const Image expected = reference_image(scene, gbuffer);
+  ASSERT_EQ(served.width, expected.width);
+  ASSERT_EQ(served.height, expected.height);
+  const ErrorStats error = compare_images(served, expected, 1e-6 / 5e-4);
+  EXPECT_LE(error.max_rel, 5e-4) << "worst pixel (" << error.worst_x << ", " << error.worst_y << "): served "
+                                 << error.worst_test << ", reference " << error.worst_expected;
+  EXPECT_EQ(error.nonfinite_mismatches, 0u);
+}
+
+TEST_F(Serve, PageAndItsFilesAreServed) {
+  auto client = server_->client();
+  const auto page = client.Get("/");
+  ASSERT_TRUE(page);
+  EXPECT_EQ(page->status, 200);
+  EXPECT_EQ(page->get_header_value("Content-Type"), "text/html; charset=utf-8");
+  EXPECT_NE(page->body.find("<html"), std::string::npos);
+  for (const char* file : {"/app.js", "/style.css"}) {
+    const auto result = client.Get(file);
+    ASSERT_TRUE(result);
+    EXPECT_EQ(result->status, 200) << file;
+    EXPECT_NE(page->body.find(std::string(file).substr(1)), std::string::npos) << "the page loads " << file;
+  }
+}
+
+TEST_F(Serve, UnknownPathsAnswerJson404) {
+  auto client = server_->client();
+  expect_error(client.Get("/api/nothing"), 404, "GET /api/nothing");
+  expect_error(client.Delete("/api/scene"), 404, "DELETE /api/scene");
+}
+
+TEST_F(Serve, SceneRoundTripsAndEditsShadeLikeTheReference) {
+  auto client = server_->client();
+  const auto got = client.Get("/api/scene");
+  EXPECT_EQ(body_json(got), default_scene());
+  const int version = std::stoi(got->get_header_value("X-Scene-Version"));
+
+  json edited = default_scene();
+  edited["lights"][0]["color"] = {0.2, 0.9, 0.4};
+  edited["lights"][0]["position"] = {-2.0, 3.0, 1.5};
+  edited["materials"][0]["shininess"] = 7;
+  const json put = body_json(client.Put("/api/scene", edited.dump(), "application/json"));
+  EXPECT_EQ(put["scene_version"], version + 1);
+  EXPECT_EQ(body_json(client.Get("/api/scene")), edited);
+
+  const auto image = client.Get("/api/image?format=exr");
+  ASSERT_TRUE(image);
+  ASSERT_EQ(image->status, 200);
+  EXPECT_EQ(image->get_header_value("X-Scene-Version"), std::to_string(version + 1));
+  expect_matches_reference(decode_exr(image->body), parse_scene(edited.dump(), kSceneFile), server_->session().gbuffer());
+}
+
+TEST_F(Serve, BadScenesAre400AndLeaveTheHeldSceneUnchanged) {
+  auto client = server_->client();
+  const std::string before = client.Get("/api/scene")->body;
+  json unknown = default_scene();
+  unknown["lights"][0]["falloff_typo"] = 1;
+  json negative = default_scene();
+  negative["lights"][1]["color"] = {1, -1, 1};
+  json too_few_materials = default_scene();
+  too_few_materials["materials"] = json::array({too_few_materials["materials"][0]});
+  too_few_materials.erase("objects");
+  json other_gbuffer = default_scene();
+  other_gbuffer["gbuffer"] = "elsewhere.exr";
+  const std::pair<std::string, std::string> cases[] = {
+      {"{\"camera\": ", "invalid JSON"},
+      {"", "invalid JSON"},
+      {"[1, 2]", "object"},
+      {unknown.dump(), "unknown key 'falloff_typo'"},
+      {negative.dump(), "lights[1].color"},
+      {too_few_materials.dump(), "material"},
+      {other_gbuffer.dump(), "gbuffer: cannot change while serving"},
+  };
+  for (const auto& [body, needle] : cases) {
+    SCOPED_TRACE(body.substr(0, 60));
+    expect_error(client.Put("/api/scene", body, "application/json"), 400, needle);
+    EXPECT_EQ(client.Get("/api/scene")->body, before);
+  }
+}
+
+TEST_F(Serve, HugePayloadsAreRefused) {
+  auto client = server_->client();
+  const std::string before = client.Get("/api/scene")->body;
+  const std::string huge(kMaxRequestBytes + 1, ' ');
+  expect_error(client.Put("/api/scene", huge, "application/json"), 413, "too large");
+  EXPECT_EQ(client.Get("/api/scene")->body, before);
+}
+
+TEST_F(Serve, ImagesInEveryFormatAndWidth) {
+  auto client = server_->client();
+  const Image exr = decode_exr(client.Get("/api/image?format=exr")->body);
+  const auto png = client.Get("/api/image?format=png&exposure=0.5&tonemap=aces");
+  ASSERT_EQ(png->status, 200);
+  EXPECT_EQ(png->get_header_value("Content-Type"), "image/png");
+  int width = 0, height = 0;
+  const std::vector<std::uint8_t> rgba = decode_png(png->body, width, height);
+  ASSERT_EQ(width, 640);
+  ASSERT_EQ(height, 480);
+  EXPECT_EQ(rgba, display_rgba8(exr, {0.5, ToneMap::aces})) << "the PNG is the EXR's display encoding";
+
+  const auto jpeg = client.Get("/api/image?format=jpeg&width=320");
+  ASSERT_EQ(jpeg->status, 200);
+  EXPECT_EQ(jpeg->get_header_value("Content-Type"), "image/jpeg");
+  const std::unique_ptr<void, int (*)(tjhandle)> decoder(tjInitDecompress(), tjDestroy);
+  int subsampling = 0, colorspace = 0;
+  ASSERT_EQ(tjDecompressHeader3(decoder.get(), reinterpret_cast<const unsigned char*>(jpeg->body.data()),
+                                jpeg->body.size(), &width, &height, &subsampling, &colorspace), 0);
+  EXPECT_EQ(width, 320);
+  EXPECT_EQ(height, 240);
+
+  for (const char* term : {"ambient", "diffuse", "specular"}) {
+    const auto result = client.Get(std::string("/api/image?format=exr&aov=") + term);
+    ASSERT_EQ(result->status, 200) << term;
+    EXPECT_EQ(decode_exr(result->body).width, 640);
+  }
+}
+
+TEST_F(Serve, BadImageParametersAre400) {
+  auto client = server_->client();
+  const std::pair<std::string, std::string> cases[] = {
+      {"format=gif", "unknown image format 'gif'"},
+      {"width=0", "'width' must be in [1, 640]"},
+      {"width=641", "'width' must be in [1, 640]"},
+      {"width=12abc", "must be an integer"},
+      {"exposure=nan", "finite number"},
+      {"exposure=1e9", "'exposure' must be in"},
+      {"tonemap=filmic", "clamp, reinhard or aces"},
+      {"aov=normal", "combined, ambient, diffuse or specular"},
+      {"colour=red", "unknown parameter 'colour'"},
+      {"width=100&width=200", "more than once"},
+  };
+  for (const auto& [query, needle] : cases) expect_error(client.Get("/api/image?" + query), 400, needle);
+  expect_error(client.Get("/api/frame?after=-1"), 400, "'after' must be in");
+}
+
+TEST_F(Serve, LongPollWaitsForANewerFrameAndTimesOutWith204) {
+  auto client = server_->client();
+  const auto current = client.Get("/api/image?format=jpeg");
+  const std::string version = current->get_header_value("X-Frame-Version");
+  const auto idle = client.Get("/api/frame?format=jpeg&timeout_ms=200&after=" + version);
+  ASSERT_TRUE(idle);
+  EXPECT_EQ(idle->status, 204);
+
+  // A second client (another tab) edits while the first one waits.
+  auto poller = std::async(std::launch::async, [&] {
+    auto own = server_->client();
+    return own.Get("/api/frame?format=jpeg&timeout_ms=30000&after=" + version);
+  });
+  std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  json edited = default_scene();
+  edited["lights"][0]["color"] = {1, 0, 0};
+  const json put = body_json(client.Put("/api/scene", edited.dump(), "application/json"));
+  const auto frame = poller.get();
+  ASSERT_TRUE(frame);
+  ASSERT_EQ(frame->status, 200);
+  EXPECT_GT(std::stoull(frame->get_header_value("X-Frame-Version")), std::stoull(version));
+  EXPECT_EQ(frame->get_header_value("X-Scene-Version"), put["scene_version"].dump());
+}
+
+TEST_F(Serve, EditsCoalesceAndTheLastOneIsShown) {
+  auto client = server_->client();
+  const std::uint64_t frames_before = body_json(client.Get("/api/stats"))["frames"];
+  json scene = default_scene();
+  constexpr int kEdits = 30;
+  for (int i = 0; i < kEdits; ++i) {
+    scene["lights"][0]["position"] = {-3.0 + 0.2 * i, 3.0, 2.0};
+    ASSERT_EQ(client.Put("/api/scene", scene.dump(), "application/json")->status, 200);
+  }
+  const Image shown = decode_exr(client.Get("/api/image?format=exr")->body);
+  const std::uint64_t frames_after = body_json(client.Get("/api/stats"))["frames"];
+  EXPECT_LT(frames_after - frames_before, static_cast<std::uint64_t>(kEdits)) << "every edit was shaded: no coalescing";
+  expect_matches_reference(shown, parse_scene(scene.dump(), kSceneFile), server_->session().gbuffer());
+}
+
+TEST_F(Serve, SettingsChangeThePrecisionAndRejectBadInput) {
+  auto client = server_->client();
+  const json put = body_json(client.Put("/api/settings", R"({"precision": "fast"})", "application/json"));
+  EXPECT_EQ(put["precision"], "fast");
+  client.Get("/api/image?format=jpeg");
+  const json stats = body_json(client.Get("/api/stats"));
+  EXPECT_EQ(stats["frame"]["precision"], "fast");
+  EXPECT_NE(stats["frame"]["kernel"].get<std::string>().find("fast"), std::string::npos) << stats.dump();
+  expect_error(client.Put("/api/settings", R"({"precision": "quad"})", "application/json"), 400, "precision");
+  expect_error(client.Put("/api/settings", R"({"lanes": 4})", "application/json"), 400, "unknown key 'lanes'");
+  expect_error(client.Put("/api/settings", R"({"specialise": 1})", "application/json"), 400, "true or false");
+  expect_error(client.Put("/api/settings", "{", "application/json"), 400, "invalid JSON");
+  EXPECT_EQ(body_json(client.Get("/api/settings"))["precision"], "fast");
+}
+
+TEST_F(Serve, StatsDescribeTheKernelAndTheFrameTimes) {
+  auto client = server_->client();
+  client.Get("/api/image?format=jpeg");
+  const json stats = body_json(client.Get("/api/stats"));
+  EXPECT_EQ(stats["width"], 640);
+  EXPECT_EQ(stats["height"], 480);
+  EXPECT_EQ(stats["device"], "test device");
+  EXPECT_GE(stats["frames"].get<int>(), 1);
+  EXPECT_NE(stats["frame"]["kernel"].get<std::string>().find("precise, specialised: 2 point"), std::string::npos);
+  const json timings = stats["frame"]["timings"];
+  EXPECT_GT(timings["kernel_ms"].get<double>(), 0.0);
+  EXPECT_GE(timings["shade_ms"].get<double>(), timings["kernel_ms"].get<double>()) << "the kernel is part of the frame";
+  EXPECT_GT(stats["encode_ms"]["jpeg"].get<double>(), 0.0);
+  expect_error(client.Get("/api/stats?verbose=1"), 400, "unknown parameter 'verbose'");
+}
+
+TEST_F(Serve, PickReadsTheGBufferUnderTheCursor) {
+  auto client = server_->client();
+  const GBuffer& gbuffer = server_->session().gbuffer();
+  const json pick = body_json(client.Get("/api/pick?x=320&y=240"));
+  ASSERT_TRUE(pick["shaded"].get<bool>());
+  const std::size_t i = 240 * 640 + 320;
+  EXPECT_DOUBLE_EQ(pick["position"][1].get<double>(), gbuffer.position[1][i]);
+  const glm::dvec3 normal{pick["normal"][0], pick["normal"][1], pick["normal"][2]};
+  EXPECT_NEAR(glm::length(normal), 1.0, 1e-12);
+  EXPECT_EQ(pick["material"].get<int>(), static_cast<int>(gbuffer.material[i]));
+  // Some pixel of the default scene is background; find one and pick it.
+  std::size_t background = 0;
+  while (background < gbuffer.pixel_count() && gbuffer.material[background] >= 0) ++background;
+  ASSERT_LT(background, gbuffer.pixel_count());
+  const json none = body_json(client.Get("/api/pick?x=" + std::to_string(background % 640) + "&y=" +
+                                         std::to_string(background / 640)));
+  EXPECT_FALSE(none["shaded"].get<bool>());
+  expect_error(client.Get("/api/pick?x=640&y=0"), 400, "'x' must be in [0, 639]");
+  expect_error(client.Get("/api/pick?x=1"), 400, "required");
+}
+
+TEST_F(Serve, SaveWithoutAPathIs409) {
+  auto client = server_->client();
+  expect_error(client.Post("/api/save", "", "application/json"), 409, "--save");
+}
+
+TEST(ServeSave, WritesTheHeldSceneAtomically) {
+  if (list_devices().empty()) GTEST_SKIP() << "no OpenCL device on this machine";
+  TempDir dir("serve_save");
+  RunningServer server(dir / "saved.json");
+  auto client = server.client();
+  json edited = default_scene();
+  edited["lights"][1]["color"] = {0.25, 0.5, 0.75};
+  ASSERT_EQ(client.Put("/api/scene", edited.dump(), "application/json")->status, 200);
+  const json saved = body_json(client.Post("/api/save", "", "application/json"));
+  EXPECT_EQ(saved["saved"], (dir / "saved.json").string());
+  EXPECT_EQ(json::parse(file_text(dir / "saved.json")), edited);
+  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir.path), {}), 1) << "no temporary file left";
+  EXPECT_NO_THROW(load_scene(dir / "saved.json")) << "the saved file is a valid scene";
+}
+
+TEST(ServeShutdown, StopEndsWaitingRequestsPromptly) {
+  if (list_devices().empty()) GTEST_SKIP() << "no OpenCL device on this machine";
+  auto server = std::make_unique<RunningServer>();
+  auto client = server->client();
+  const std::string version = client.Get("/api/image?format=jpeg")->get_header_value("X-Frame-Version");
+  auto poll = std::async(std::launch::async, [&] {
+    auto own = server->client();
+    return own.Get("/api/frame?timeout_ms=60000&after=" + version);
+  });
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  const auto start = std::chrono::steady_clock::now();
+  server.reset();
+  poll.wait();
+  EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(10)) << "the long poll held shutdown";
+}
+
+// The real binary, started with `arguments` and read until it prints its URL.
+class ServeProcess {
+ public:
+  explicit ServeProcess(const std::string& arguments) : dir_("serve_cli") {
+    const std::string command = "cd '" PHONGCL_SOURCE_DIR "' && exec '" PHONGCL_EXE "' serve " + arguments +
+                                " </dev/null >'" + (dir_ / "out.txt").string() + "' 2>&1";
+    pid_ = fork();
+    if (pid_ == 0) {
+      execl("/bin/sh", "sh", "-c", command.c_str(), static_cast<char*>(nullptr));
+      _exit(127);
+    }
+    for (int i = 0; i < 1200 && output().find("url ") == std::string::npos; ++i)
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  ~ServeProcess() {
+    if (pid_ > 0 && !stopped_) stop(SIGKILL);
+  }
+  std::string output() const { return file_text(dir_ / "out.txt"); }
+  int port() const {
+    const std::string text = output();
+    const std::size_t at = text.find("url        http://");
+    return at == std::string::npos ? -1 : std::stoi(text.substr(text.find(':', at + 18) + 1));
+  }
+  // Sends `signal` and returns the wait status.
+  int stop(int signal) {
+    kill(pid_, signal);
+    int status = 0;
+    waitpid(pid_, &status, 0);
+    stopped_ = true;
+    return status;
+  }
+
+ private:
+  TempDir dir_;
+  pid_t pid_ = -1;
+  bool stopped_ = false;
+};
+
+TEST(ServeCli, PrintsTheUrlAndStopsCleanlyOnSigtermAndSigint) {
+  if (!testing::have_opencl_device()) GTEST_SKIP() << "no OpenCL device on this machine";
+  for (int signal : {SIGTERM, SIGINT}) {
+    ServeProcess serve("--scene scenes/default/scene.json --port 0");
+    ASSERT_GT(serve.port(), 0) << serve.output();
+    EXPECT_NE(serve.output().find("url        http://127.0.0.1:"), std::string::npos) << serve.output();
+    EXPECT_EQ(serve.output().find("warning"), std::string::npos) << "no warning on loopback";
+    httplib::Client client("127.0.0.1", serve.port());
+    client.set_read_timeout(std::chrono::seconds(120));
+    const auto image = client.Get("/api/image?format=png");
+    ASSERT_TRUE(image);
+    EXPECT_EQ(image->status, 200);
+    const int status = serve.stop(signal);
+    ASSERT_TRUE(WIFEXITED(status)) << "killed by the signal, not a clean exit";
+    EXPECT_EQ(WEXITSTATUS(status), 0);
+    EXPECT_NE(serve.output().find(signal == SIGTERM ? "SIGTERM, stopping" : "SIGINT, stopping"), std::string::npos)
+        << serve.output();
+    EXPECT_NE(serve.output().find("phongcl serve: stopped"), std::string::npos);
+  }
+}
+
+TEST(ServeCli, WarnsWhenListeningBeyondLoopback) {
+  if (!testing::have_opencl_device()) GTEST_SKIP() << "no OpenCL device on this machine";
+  ServeProcess serve("--scene scenes/default/scene.json --host 0.0.0.0 --port 0");
+  EXPECT_NE(serve.output().find("warning    listening on 0.0.0.0: anyone"), std::string::npos) << serve.output();
+  EXPECT_GT(serve.port(), 0) << serve.output();
+  const int status = serve.stop(SIGTERM);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+}
+
+TEST(ServeCli, RefusesABusyPortAndBadOptions) {
+  if (!testing::have_opencl_device()) GTEST_SKIP() << "no OpenCL device on this machine";
+  // A plain listening socket (httplib's own would share the port through SO_REUSEPORT).
+  const int blocker = socket(AF_INET, SOCK_STREAM, 0);
+  sockaddr_in address{};
+  address.sin_family = AF_INET;
+  address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  ASSERT_EQ(::bind(blocker, reinterpret_cast<sockaddr*>(&address), sizeof address), 0);
+  ASSERT_EQ(listen(blocker, 1), 0);
+  socklen_t length = sizeof address;
+  getsockname(blocker, reinterpret_cast<sockaddr*>(&address), &length);
+  const int port = ntohs(address.sin_port);
+  const testing::CliRun busy = testing::run_phongcl("serve --scene scenes/default/scene.json --port " + std::to_string(port));
+  EXPECT_EQ(busy.exit_code, 1);
+  EXPECT_NE(busy.err.find("cannot listen on 127.0.0.1:" + std::to_string(port)), std::string::npos) << busy.err;
+  EXPECT_EQ(testing::run_phongcl("serve --scene scenes/default/scene.json --port 70000").exit_code, 2);
+  const testing::CliRun camera = testing::run_phongcl("serve --scene scenes/default/scene.json --space camera");
+  EXPECT_EQ(camera.exit_code, 1);
+  EXPECT_NE(camera.err.find("--space camera is not supported"), std::string::npos) << camera.err;
+  close(blocker);
+}
+
+}  // namespace
+}  // namespace phongcl

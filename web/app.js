@@ -1,0 +1,414 @@
+// phongcl serve's page: holds the scene JSON, sends whole scenes on edits (one request in flight,
+// the newest edit after it), and shows frames from a long poll of /api/frame. Plain JS, no build.
+'use strict';
+
+const $ = (id) => document.getElementById(id);
+
+const state = {
+  scene: null,          // the scene document, as the server holds it (plus lights disabled here)
+  disabled: new Set(),  // lights switched off: kept in the page, left out of what is sent
+  sceneVersion: 0,      // the server's version of the scene we hold
+  frameVersion: 0,      // the newest frame shown
+  selectedLight: 0,
+  selectedMaterial: -1,
+  sending: false, dirty: false,
+  imageSize: [0, 0],
+};
+
+// Input-event-to-image-displayed figures, read by scripts/checks/70-browser.sh.
+const metrics = { edits: [], latencies: [], displayed: [] };
+window.phongclMetrics = metrics;
+window.phongclState = state;
+
+function setStatus(text, isError) {
+  const status = $('status');
+  status.textContent = text;
+  status.className = isError ? 'error' : '';
+}
+
+async function errorOf(response) {
+  try { return (await response.json()).error || response.statusText; } catch { return response.statusText; }
+}
+
+// ---- Scene: what is sent, and when ----
+
+function sceneToSend() {
+  const scene = structuredClone(state.scene);
+  scene.lights = (scene.lights || []).filter((_, i) => !state.disabled.has(i));
+  return scene;
+}
+
+function edited() {
+  metrics.edits.push({ time: performance.now(), version: null });
+  state.dirty = true;
+  if (!state.sending) sendScene();
+}
+
+async function sendScene() {
+  state.sending = true;
+  while (state.dirty) {
+    state.dirty = false;
+    const waiting = metrics.edits.filter((e) => e.version === null);
+    const response = await fetch('api/scene', {
+      method: 'PUT', headers: { 'Content-Type': 'application/json' }, body: JSON.stringify(sceneToSend()),
+    });
+    if (response.ok) {
+      state.sceneVersion = (await response.json()).scene_version;
+      waiting.forEach((e) => { e.version = state.sceneVersion; });
+      setStatus('', false);
+    } else {
+      waiting.forEach((e) => { e.version = -1; });
+      setStatus(await errorOf(response), true);
+    }
+  }
+  state.sending = false;
+}
+
+async function loadScene() {
+  const response = await fetch('api/scene');
+  state.scene = await response.json();
+  state.sceneVersion = Number(response.headers.get('X-Scene-Version'));
+  state.disabled.clear();
+  renderLights();
+  renderMaterials();
+}
+
+// ---- Frames: long poll, newest only ----
+
+// With "stream at display size" the server scales the frame to the pixels the page shows it at:
+// at 1080p in a smaller window that is a fraction of the encoding and decoding.
+function streamWidth() {
+  const [width] = state.imageSize;
+  const shown = Math.ceil($('stage').clientWidth * window.devicePixelRatio);
+  return $('fit').checked && width > 0 ? `&width=${Math.max(1, Math.min(width, shown))}` : '';
+}
+
+function viewQuery() {
+  return `format=${$('format').value}&exposure=${$('exposure').value}&tonemap=${$('tonemap').value}` +
+         `&aov=${$('aov').value}${streamWidth()}`;
+}
+
+let pollAbort = null;
+let shownUrl = null;
+
+async function pollFrames() {
+  for (;;) {
+    pollAbort = new AbortController();
+    let response;
+    try {
+      response = await fetch(`api/frame?after=${state.frameVersion}&timeout_ms=20000&${viewQuery()}`,
+                             { signal: pollAbort.signal });
+    } catch (error) {
+      if (error.name !== 'AbortError') await new Promise((r) => setTimeout(r, 1000));
+      continue;
+    }
+    if (response.status === 204) continue;
+    if (!response.ok) {
+      setStatus(await errorOf(response), true);
+      state.frameVersion = Number(response.headers.get('X-Frame-Version')) || state.frameVersion;
+      continue;
+    }
+    await showFrame(response);
+  }
+}
+
+async function showFrame(response) {
+  const frameVersion = Number(response.headers.get('X-Frame-Version'));
+  const sceneVersion = Number(response.headers.get('X-Scene-Version'));
+  const url = URL.createObjectURL(await response.blob());
+  const view = $('view');
+  view.src = url;
+  try { await view.decode(); } catch { /* a newer src replaced it */ }
+  const now = performance.now();
+  if (shownUrl) URL.revokeObjectURL(shownUrl);
+  shownUrl = url;
+  state.frameVersion = frameVersion;
+  metrics.displayed.push({ time: now, frameVersion, sceneVersion });
+  for (const e of metrics.edits) {
+    if (e.version !== null && e.version > 0 && e.version <= sceneVersion && e.shown === undefined) {
+      e.shown = now;
+      metrics.latencies.push(now - e.time);
+    }
+  }
+  showTimings(response);
+  // Another tab changed the scene: take its version unless an edit of ours is on its way.
+  if (sceneVersion > state.sceneVersion && !state.sending && !state.dirty) loadScene();
+}
+
+// View changes re-encode the newest frame: ask for anything newer than the one before it.
+function viewChanged() {
+  state.frameVersion = Math.max(0, state.frameVersion - 1);
+  if (pollAbort) pollAbort.abort();
+}
+
+// ---- Timings and kernel ----
+
+const clientFrames = [];
+function showTimings(response) {
+  const now = performance.now();
+  clientFrames.push(now);
+  while (clientFrames.length && clientFrames[0] < now - 2000) clientFrames.shift();
+  const recent = metrics.latencies.slice(-20).sort((a, b) => a - b);
+  const rows = [
+    ['shade (server)', response.headers.get('X-Shade-Ms'), 'ms'],
+    ['kernel', response.headers.get('X-Kernel-Ms'), 'ms'],
+    ['encode', response.headers.get('X-Encode-Ms'), 'ms'],
+    ['frames shown', (clientFrames.length / 2).toFixed(1), 'fps'],
+    ['input to image (median of 20)', recent.length ? recent[recent.length >> 1].toFixed(0) : '-', 'ms'],
+  ];
+  $('timings').tBodies[0].innerHTML = rows
+    .map(([name, value, unit]) => `<tr><td>${name}</td><td>${value === null ? '-' : Number(value).toFixed(1).replace(/\.0$/, '')} ${unit}</td></tr>`)
+    .join('');
+}
+
+async function refreshKernel() {
+  const stats = await (await fetch('api/stats')).json();
+  if (stats.frame) {
+    $('kernel').textContent = `${stats.frame.kernel} · build ${stats.frame.build} · ${stats.width}×${stats.height} · ${stats.device}`;
+    if (stats.frame.error) setStatus(stats.frame.error, true);
+  }
+  state.imageSize = [stats.width, stats.height];  // the G-buffer's pixels, whatever size is streamed
+  $('precision').value = stats.settings.precision;
+  $('save-server').disabled = !stats.save_path;
+  $('save-server').title = stats.save_path ? `writes ${stats.save_path}` : 'start phongcl serve with --save FILE';
+}
+
+// ---- Widgets ----
+
+function el(tag, attributes = {}, children = []) {
+  const node = document.createElement(tag);
+  for (const [key, value] of Object.entries(attributes)) {
+    if (key.startsWith('on')) node.addEventListener(key.slice(2), value);
+    else if (key in node) node[key] = value;
+    else node.setAttribute(key, value);
+  }
+  for (const child of children) node.append(child);
+  return node;
+}
+
+const hex = (v) => Math.round(Math.min(1, Math.max(0, v)) * 255).toString(16).padStart(2, '0');
+
+// An RGB value of any non-negative size as a colour picker and an intensity (its largest component).
+function colorInput(rgb, onChange, label) {
+  const intensity = Math.max(rgb[0], rgb[1], rgb[2]);
+  const unit = intensity > 0 ? rgb.map((c) => c / intensity) : [1, 1, 1];
+  const picker = el('input', { type: 'color', value: `#${unit.map(hex).join('')}`, title: `${label} colour` });
+  const scale = el('input', { type: 'number', value: +intensity.toFixed(4), min: 0, step: 0.05, title: `${label} intensity` });
+  picker.dataset.role = `${label}-color`;
+  scale.dataset.role = `${label}-intensity`;
+  const update = () => {
+    const v = picker.value;
+    const c = [1, 3, 5].map((i) => parseInt(v.slice(i, i + 2), 16) / 255);
+    const s = Number(scale.value);
+    onChange(c.map((x) => x * s));
+  };
+  picker.addEventListener('input', update);
+  scale.addEventListener('input', update);
+  return el('span', {}, [label + ' ', picker, scale]);
+}
+
+function vectorInput(values, onChange, role) {
+  const inputs = values.map((v, i) => el('input', { type: 'number', value: +v.toFixed(4), step: 0.1, className: 'xyz' }));
+  inputs.forEach((input, i) => { input.dataset.role = `${role}-${'xyz'[i]}`; });
+  const update = () => onChange(inputs.map((i) => Number(i.value)));
+  inputs.forEach((input) => input.addEventListener('input', update));
+  return el('span', {}, [role + ' ', ...inputs]);
+}
+
+// Fields of the light model this page does not know yet get a plain editor, so new ones work.
+function genericField(object, key, onChange) {
+  const value = object[key];
+  if (Array.isArray(value) && value.length === 3 && value.every((v) => typeof v === 'number'))
+    return vectorInput(value, (v) => { object[key] = v; onChange(); }, key);
+  if (typeof value === 'number') {
+    const input = el('input', { type: 'number', value, step: 0.1 });
+    input.addEventListener('input', () => { object[key] = Number(input.value); onChange(); });
+    return el('label', {}, [key, input]);
+  }
+  if (typeof value === 'boolean') {
+    const input = el('input', { type: 'checkbox', checked: value });
+    input.addEventListener('change', () => { object[key] = input.checked; onChange(); });
+    return el('label', {}, [key, input]);
+  }
+  const input = el('input', { type: 'text', value: JSON.stringify(value) });
+  input.addEventListener('change', () => {
+    try { object[key] = JSON.parse(input.value); onChange(); } catch { setStatus(`${key}: not JSON`, true); }
+  });
+  return el('label', {}, [key, input]);
+}
+
+const lightKnownKeys = new Set(['type', 'position', 'direction', 'color']);
+
+function renderLights() {
+  const list = $('lights');
+  list.replaceChildren();
+  (state.scene.lights || []).forEach((light, index) => {
+    const enabled = el('input', { type: 'checkbox', checked: !state.disabled.has(index), title: 'on/off' });
+    enabled.addEventListener('change', () => {
+      if (enabled.checked) state.disabled.delete(index); else state.disabled.add(index);
+      edited();
+    });
+    const remove = el('button', { type: 'button', textContent: '✕', title: 'remove' });
+    remove.addEventListener('click', (event) => {
+      event.stopPropagation();
+      state.scene.lights.splice(index, 1);
+      state.disabled = new Set([...state.disabled].filter((i) => i !== index).map((i) => (i > index ? i - 1 : i)));
+      state.selectedLight = Math.min(state.selectedLight, state.scene.lights.length - 1);
+      renderLights();
+      edited();
+    });
+    const where = light.type === 'directional' ? 'direction' : 'position';
+    const item = el('li', { className: index === state.selectedLight ? 'selected' : '' }, [
+      el('div', { className: 'head' }, [enabled, el('span', { className: 'grow', textContent: `${index}: ${light.type}` }), remove]),
+      colorInput(light.color || [1, 1, 1], (c) => { light.color = c; edited(); }, 'light'),
+      el('div', {}, [vectorInput(light[where] || [0, 0, 0], (v) => { light[where] = v; edited(); }, where)]),
+      ...Object.keys(light).filter((k) => !lightKnownKeys.has(k)).map((k) => genericField(light, k, edited)),
+    ]);
+    item.dataset.light = index;
+    item.addEventListener('click', () => {
+      if (state.selectedLight === index) return;
+      state.selectedLight = index;
+      list.querySelectorAll('li').forEach((li) => li.classList.toggle('selected', Number(li.dataset.light) === index));
+    });
+    list.append(item);
+  });
+}
+
+function addLight(type) {
+  state.scene.lights = state.scene.lights || [];
+  state.scene.lights.push(type === 'point' ? { type, position: [0, 2, 2], color: [1, 1, 1] }
+                                           : { type, direction: [0, -1, -1], color: [0.5, 0.5, 0.5] });
+  state.selectedLight = state.scene.lights.length - 1;
+  renderLights();
+  edited();
+}
+
+function renderMaterials() {
+  const list = $('materials');
+  list.replaceChildren();
+  (state.scene.materials || []).forEach((material, index) => {
+    const shininess = el('input', { type: 'number', value: material.shininess ?? 1, min: 0, step: 1 });
+    shininess.addEventListener('input', () => { material.shininess = Number(shininess.value); edited(); });
+    const item = el('li', { className: index === state.selectedMaterial ? 'selected' : '' }, [
+      el('div', { className: 'head' }, [el('span', { className: 'grow', textContent: `${index}: ${material.name || ''}` })]),
+      ...['ka', 'kd', 'ks'].map((k) => el('div', {}, [colorInput(material[k] || [0, 0, 0], (c) => { material[k] = c; edited(); }, k)])),
+      el('label', {}, ['shininess', shininess]),
+    ]);
+    item.dataset.material = index;
+    list.append(item);
+  });
+}
+
+// ---- Dragging a light over the image ----
+
+function pixelUnder(event) {
+  const view = $('view');
+  const box = view.getBoundingClientRect();
+  const [width, height] = state.imageSize;
+  const x = Math.floor(((event.clientX - box.left) / box.width) * width);
+  const y = Math.floor(((event.clientY - box.top) / box.height) * height);
+  return x >= 0 && y >= 0 && x < width && y < height ? [x, y] : null;
+}
+
+let picking = false, pendingPick = null;
+
+async function pickAt(pixel, apply) {
+  pendingPick = { pixel, apply };
+  if (picking) return;
+  picking = true;
+  while (pendingPick) {
+    const { pixel: [x, y], apply: use } = pendingPick;
+    pendingPick = null;
+    const response = await fetch(`api/pick?x=${x}&y=${y}`);
+    if (response.ok) use(await response.json());
+  }
+  picking = false;
+}
+
+function placeSelectedLight(pick) {
+  const light = (state.scene.lights || [])[state.selectedLight];
+  if (!pick.shaded || !light) return;
+  const distance = Number($('distance').value);
+  if (light.type === 'directional') light.direction = pick.normal.map((n) => -n);
+  else light.position = pick.position.map((p, i) => p + distance * pick.normal[i]);
+  edited();
+  const item = $('lights').querySelector(`li[data-light="${state.selectedLight}"]`);
+  if (item) {
+    const where = light.type === 'directional' ? light.direction : light.position;
+    item.querySelectorAll('input.xyz').forEach((input, i) => { input.value = +where[i].toFixed(4); });
+  }
+}
+
+function selectMaterialAt(pick) {
+  state.selectedMaterial = pick.shaded ? pick.material : -1;
+  $('materials').querySelectorAll('li').forEach((li) => li.classList.toggle('selected', Number(li.dataset.material) === state.selectedMaterial));
+  const item = $('materials').querySelector(`li[data-material="${state.selectedMaterial}"]`);
+  if (item) item.scrollIntoView({ block: 'nearest' });
+}
+
+function mode() { return document.querySelector('input[name=mode]:checked').value; }
+
+function setUpImageInput() {
+  const view = $('view');
+  let dragging = false;
+  view.addEventListener('pointerdown', (event) => {
+    const pixel = pixelUnder(event);
+    if (!pixel) return;
+    if (mode() === 'material') return pickAt(pixel, selectMaterialAt);
+    dragging = true;
+    try { view.setPointerCapture(event.pointerId); } catch { /* a synthetic event's pointer is not active */ }
+    pickAt(pixel, placeSelectedLight);
+  });
+  view.addEventListener('pointermove', (event) => {
+    if (!dragging) return;
+    const pixel = pixelUnder(event);
+    if (pixel) pickAt(pixel, placeSelectedLight);
+  });
+  const end = () => { dragging = false; };
+  view.addEventListener('pointerup', end);
+  view.addEventListener('pointercancel', end);
+}
+
+// ---- Save ----
+
+async function downloadScene() {
+  const blob = new Blob([JSON.stringify(sceneToSend(), null, 2) + '\n'], { type: 'application/json' });
+  const link = el('a', { href: URL.createObjectURL(blob), download: 'scene.json' });
+  link.click();
+  setTimeout(() => URL.revokeObjectURL(link.href), 1000);
+}
+
+async function saveOnServer() {
+  const response = await fetch('api/save', { method: 'POST' });
+  if (response.ok) {
+    const saved = await response.json();
+    setStatus(`saved ${saved.saved} (${saved.bytes} bytes)`, false);
+  } else {
+    setStatus(await errorOf(response), true);
+  }
+}
+
+// ---- Start ----
+
+async function start() {
+  $('add-point').addEventListener('click', () => addLight('point'));
+  $('add-directional').addEventListener('click', () => addLight('directional'));
+  for (const id of ['tonemap', 'aov', 'format', 'fit']) $(id).addEventListener('change', viewChanged);
+  window.addEventListener('resize', viewChanged);
+  $('exposure').addEventListener('input', () => { $('exposure-value').textContent = $('exposure').value; viewChanged(); });
+  $('precision').addEventListener('change', async () => {
+    const response = await fetch('api/settings', {
+      method: 'PUT', headers: { 'Content-Type': 'application/json' }, body: JSON.stringify({ precision: $('precision').value }),
+    });
+    if (!response.ok) setStatus(await errorOf(response), true);
+  });
+  $('download-scene').addEventListener('click', downloadScene);
+  $('save-server').addEventListener('click', saveOnServer);
+  setUpImageInput();
+  await loadScene();
+  await refreshKernel();
+  pollFrames();
+  setInterval(refreshKernel, 2000);
+}
+
+start();
