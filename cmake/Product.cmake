@@ -8,6 +8,7 @@ phongcl_room(image    DEPS phongcl_common phongcl_exr PNG::PNG)
 phongcl_room(cl       DEPS phongcl_common phongcl_opencl phongcl_kernels)
 phongcl_room(shading  DEPS phongcl_cl phongcl_scene phongcl_gbuffer phongcl_image phongcl_kernels OpenMP::OpenMP_CXX)
 phongcl_room(raycast  DEPS phongcl_scene phongcl_gbuffer)
+phongcl_room(sequence DEPS phongcl_shading Threads::Threads)
 
 # One shared library of every product room's objects. Its public face is include/phongcl/ (and the
 # room headers those include, installed beside them); dependencies stay private but for GLM, whose
@@ -36,7 +37,8 @@ add_library(phongcl_cli_support STATIC host/cli/format.cpp host/cli/inputs.cpp h
 target_link_libraries(phongcl_cli_support PUBLIC phongcl_internal CLI11::CLI11)
 
 file(GLOB PHONGCL_CLI_COMMANDS CONFIGURE_DEPENDS host/cli/*_command.cpp)
-add_executable(phongcl host/cli/main.cpp host/cli/lab_handover.cpp ${PHONGCL_CLI_COMMANDS})
+add_executable(phongcl host/cli/main.cpp host/cli/lab_handover.cpp host/cli/shade_sequence.cpp
+               host/cli/sequence_progress.cpp ${PHONGCL_CLI_COMMANDS})
 target_link_libraries(phongcl PRIVATE phongcl_cli_support)
 # Installed, it finds libphongcl beside it in ../lib.
 set_target_properties(phongcl PROPERTIES INSTALL_RPATH "$ORIGIN/../${CMAKE_INSTALL_LIBDIR}")

@@ -145,6 +145,15 @@ inline floatv unscale(realv value, float a, float b) { return TO_FLOATV(ldexp(va
 inline floatv unscale(realv value, float a, float b) { return TO_FLOATV(value * a * b); }
 #endif
 
+/* The image planes are written once and not read again here: with Clang (PoCL) they are streamed
+ * past the caches, so no line is first read for ownership (16 of the 20 bytes a pixel costs at 0
+ * lights). Planes start at multiples of PHONGCL_LANES floats, so the floatv is aligned. */
+#if defined(__clang__) && PHONGCL_LANES > 1
+#define STORE_OUTPUT(v, i, p) __builtin_nontemporal_store((v), (__global floatv*)(p) + (i))
+#else
+#define STORE_OUTPUT(v, i, p) VSTORE_FLOAT(v, i, p)
+#endif
+
 inline void store3(vec3 value, float a, float b, size_t group, __global float* restrict out, uint plane_stride) {
   VSTORE_FLOAT(unscale(value.x, a, b), group, out);
   VSTORE_FLOAT(unscale(value.y, a, b), group, out + plane_stride);
@@ -246,10 +255,10 @@ __kernel void phong_shade(
   const floatv shaded_r = unscale(ambient.x + diffuse.x + specular.x, radiance_scale_a, radiance_scale_b);
   const floatv shaded_g = unscale(ambient.y + diffuse.y + specular.y, radiance_scale_a, radiance_scale_b);
   const floatv shaded_b = unscale(ambient.z + diffuse.z + specular.z, radiance_scale_a, radiance_scale_b);
-  VSTORE_FLOAT(background ? (floatv)frame.background[0] : shaded_r, group, out_rgba);
-  VSTORE_FLOAT(background ? (floatv)frame.background[1] : shaded_g, group, out_rgba + plane_stride);
-  VSTORE_FLOAT(background ? (floatv)frame.background[2] : shaded_b, group, out_rgba + 2 * (size_t)plane_stride);
-  VSTORE_FLOAT(background ? (floatv)0.0f : (floatv)1.0f, group, out_rgba + 3 * (size_t)plane_stride);
+  STORE_OUTPUT(background ? (floatv)frame.background[0] : shaded_r, group, out_rgba);
+  STORE_OUTPUT(background ? (floatv)frame.background[1] : shaded_g, group, out_rgba + plane_stride);
+  STORE_OUTPUT(background ? (floatv)frame.background[2] : shaded_b, group, out_rgba + 2 * (size_t)plane_stride);
+  STORE_OUTPUT(background ? (floatv)0.0f : (floatv)1.0f, group, out_rgba + 3 * (size_t)plane_stride);
 #ifdef WRITE_TERMS
   /* Background lanes: the host ignores terms where alpha is 0. */
   store3(ambient, radiance_scale_a, radiance_scale_b, group, out_terms, plane_stride);

@@ -1,6 +1,10 @@
-// G-buffers: read from EXR, or built from the caller's NumPy arrays; planes seen as arrays.
+// G-buffers: read from EXR, or built from the caller's NumPy arrays (read in place through a
+// GBufferView); planes seen as arrays.
+#include <phongcl/gbuffer_view.hpp>
+
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
@@ -18,7 +22,10 @@ std::string shape_of(const py::array& array) {
   return text + (array.ndim() == 1 ? ",)" : ")");
 }
 
-void require_shape(const FloatArray& array, const char* name, py::ssize_t height, py::ssize_t width, int channels) {
+// float32 in any memory layout, read in place through its strides; other dtypes are converted.
+using StridedFloats = py::array_t<float, py::array::forcecast>;
+
+void require_shape(const py::array& array, const char* name, py::ssize_t height, py::ssize_t width, int channels) {
   const bool ok = channels == 1 ? array.ndim() == 2 && array.shape(0) == height && array.shape(1) == width
                                 : array.ndim() == 3 && array.shape(0) == height && array.shape(1) == width &&
                                       array.shape(2) == channels;
@@ -28,17 +35,22 @@ void require_shape(const FloatArray& array, const char* name, py::ssize_t height
                           "), got " + shape_of(array));
 }
 
-// (H, W, 3) interleaved into three planes.
-Planes3 planes_from(const FloatArray& array) {
-  const std::size_t pixels = static_cast<std::size_t>(array.shape(0) * array.shape(1));
-  const float* data = array.data();
-  Planes3 planes;
-  for (int c = 0; c < 3; ++c) {
-    planes[c].resize(pixels);
-    for (std::size_t i = 0; i < pixels; ++i) planes[c][i] = data[3 * i + c];
-  }
-  return planes;
+// Strides in whole floats, none zero (ChannelView reads a zero row stride as "rows packed"); a
+// broadcast or byte-offset array is copied into a C-contiguous one first.
+StridedFloats readable(const StridedFloats& array) {
+  for (py::ssize_t d = 0; d < array.ndim(); ++d)
+    if (array.strides(d) == 0 || array.strides(d) % static_cast<py::ssize_t>(sizeof(float)) != 0)
+      return py::array_t<float, py::array::c_style | py::array::forcecast>::ensure(array);
+  return array;
 }
+
+// Channel c of an (H, W, C) array, or the (H, W) array itself for c < 0, in place.
+ChannelView channel(const StridedFloats& array, int c) {
+  const auto in_floats = [&](int d) { return static_cast<std::ptrdiff_t>(array.strides(d)) / std::ptrdiff_t{sizeof(float)}; };
+  return {array.data() + (c < 0 ? 0 : c * in_floats(2)), in_floats(1), in_floats(0)};
+}
+
+Vec3View channels3(const StridedFloats& array) { return {channel(array, 0), channel(array, 1), channel(array, 2)}; }
 
 py::array_t<float> interleaved(const GBuffer& g, const Planes3& planes) {
   py::array_t<float> out({g.height, g.width, 3});
@@ -55,38 +67,32 @@ py::array plane_view(const py::object& owner, const GBuffer& g, const Plane& pla
   return view;
 }
 
-GBuffer from_arrays(const FloatArray& P, const FloatArray& N, const FloatArray& material,
-                    const std::optional<FloatArray>& alpha, const std::optional<FloatArray>& ka,
-                    const std::optional<FloatArray>& kd, const std::optional<FloatArray>& ks,
-                    const std::optional<FloatArray>& shininess) {
-  if (P.ndim() != 3) throw py::value_error("P must have shape (H, W, 3), got " + shape_of(P));
-  const py::ssize_t height = P.shape(0), width = P.shape(1);
-  require_shape(P, "P", height, width, 3);
-  require_shape(N, "N", height, width, 3);
-  require_shape(material, "material", height, width, 1);
-  GBuffer g;
-  g.width = static_cast<int>(width);
-  g.height = static_cast<int>(height);
-  g.data_window = g.display_window = PixelWindow{0, 0, g.width - 1, g.height - 1};
-  g.position = planes_from(P);
-  g.normal = planes_from(N);
-  g.material.assign(material.data(), material.data() + g.pixel_count());
-  if (alpha) {
-    require_shape(*alpha, "alpha", height, width, 1);
-    for (std::size_t i = 0; i < g.pixel_count(); ++i)
-      if (alpha->data()[i] == 0.0f) g.material[i] = -1.0f;  // background, as renderers mark it
-  }
-  for (auto [array, name, planes] : {std::tuple{&ka, "ka", &g.ka}, {&kd, "kd", &g.kd}, {&ks, "ks", &g.ks}}) {
-    if (!*array) continue;
-    require_shape(**array, name, height, width, 3);
-    *planes = planes_from(**array);
-  }
-  if (shininess) {
-    require_shape(*shininess, "shininess", height, width, 1);
-    g.shininess.assign(shininess->data(), shininess->data() + g.pixel_count());
-  }
-  g.source = "<arrays>";
-  return g;
+GBuffer from_arrays(const StridedFloats& P_in, const StridedFloats& N_in, const StridedFloats& material_in,
+                    const std::optional<StridedFloats>& alpha, const std::optional<StridedFloats>& ka,
+                    const std::optional<StridedFloats>& kd, const std::optional<StridedFloats>& ks,
+                    const std::optional<StridedFloats>& shininess) {
+  if (P_in.ndim() != 3) throw py::value_error("P must have shape (H, W, 3), got " + shape_of(P_in));
+  const py::ssize_t height = P_in.shape(0), width = P_in.shape(1);
+  GBufferView view;
+  view.width = static_cast<int>(width);
+  view.height = static_cast<int>(height);
+  // Held here until make_gbuffer has read them (converted arrays are temporaries).
+  std::vector<StridedFloats> held;
+  const auto take = [&](const StridedFloats& array, const char* name, int channels) {
+    require_shape(array, name, height, width, channels);
+    return held.emplace_back(readable(array));
+  };
+  view.position = channels3(take(P_in, "P", 3));
+  view.normal = channels3(take(N_in, "N", 3));
+  view.material = channel(take(material_in, "material", 1), -1);
+  if (alpha) view.alpha = channel(take(*alpha, "alpha", 1), -1);
+  if (ka) view.ka = channels3(take(*ka, "ka", 3));
+  if (kd) view.kd = channels3(take(*kd, "kd", 3));
+  if (ks) view.ks = channels3(take(*ks, "ks", 3));
+  if (shininess) view.shininess = channel(take(*shininess, "shininess", 1), -1);
+  GBuffer gbuffer = make_gbuffer(view);
+  gbuffer.source = "<arrays>";
+  return gbuffer;
 }
 
 }  // namespace
@@ -94,8 +100,9 @@ GBuffer from_arrays(const FloatArray& P, const FloatArray& N, const FloatArray& 
 void bind_gbuffer(py::module_& module) {
   py::class_<GBuffer>(module, "GBuffer",
                       "A G-buffer: per-pixel position P, normal N and material index (negative: background), "
-                      "optionally per-pixel ka, kd, ks, shininess. Built from arrays, it copies them once "
-                      "into its planar layout (arrays of other dtypes or layouts are converted).")
+                      "optionally per-pixel ka, kd, ks, shininess. Built from arrays, it reads float32 arrays "
+                      "in place through their strides (any layout) and copies them once into its planar "
+                      "layout; arrays of other dtypes are converted first.")
       .def(py::init(&from_arrays), py::arg("P"), py::arg("N"), py::arg("material"), py::kw_only(),
            py::arg("alpha") = py::none(), py::arg("ka") = py::none(), py::arg("kd") = py::none(),
            py::arg("ks") = py::none(), py::arg("shininess") = py::none(),

@@ -67,7 +67,7 @@ std::string ImageOutputs::write(const Image& image, const TermLayers& terms) con
                      {"ambient", &terms.ambient, false},
                      {"diffuse", &terms.diffuse, false},
                      {"specular", &terms.specular, false}},
-                    aov_file, half ? ExrPixelType::half : ExrPixelType::float32);
+                    aov_file, half ? ExrPixelType::half : ExrPixelType::float32, compression);
   const std::string aov_written =
       aov_file + " (ambient, diffuse, specular + combined, " + (half ? "half" : "float32") + ")";
   const std::string written = exr_file.empty() && png_file.empty() ? aov_written : write_images(image) + ", " + aov_written;
@@ -83,7 +83,7 @@ std::string ImageOutputs::write_images(const Image& image) const {
     png_written = png_file + " (sRGB, " + tone_map + ")";
   }
   if (exr_file.empty()) return png_written;
-  write_exr(image, exr_file, half ? ExrPixelType::half : ExrPixelType::float32);
+  write_exr(image, exr_file, half ? ExrPixelType::half : ExrPixelType::float32, compression);
   return exr_file + pixel_type_name(half) + (png_written.empty() ? "" : ", " + png_written);
 }
 

@@ -21,6 +21,7 @@ struct ImageOutputs {
   bool half = false;
   double exposure = 0.0;
   std::string tone_map = "reinhard";
+  ExrCompression compression = ExrCompression::zip;  // of the EXRs; callers set it (shade: --compression or the input's)
 
   void add_options(CLI::App& command);
   void add_aov_option(CLI::App& command);  // only for commands that can produce the terms

@@ -1,4 +1,6 @@
 // phongcl shade: the OpenCL kernel on a G-buffer.
+#include <chrono>
+#include <future>
 #include <iostream>
 #include <memory>
 
@@ -7,6 +9,8 @@
 #include "cli/format.h"
 #include "cli/inputs.h"
 #include "cli/outputs.h"
+#include "cli/shade_sequence.h"
+#include "exr/exr_channels.h"
 #include "shading/phong_shader.h"
 
 namespace phongcl::cli {
@@ -21,6 +25,7 @@ struct ShadeArguments {
   bool no_specialise = false;
   int lanes = 0;
   bool explain = false;
+  SequenceOptions sequence;
 };
 
 void print_unshaded(const PixelCounts& counts) {
@@ -32,19 +37,42 @@ void print_unshaded(const PixelCounts& counts) {
   line(counts.nonfinite_material, "material values");
 }
 
-void run_shade(const ShadeArguments& args) {
-  args.outputs.check_destinations();
-  const Scene scene = args.inputs.load_scene();
-  const LoadedGBuffer loaded = args.inputs.load_described_gbuffer(scene);
-  const GBuffer& gbuffer = loaded.gbuffer;
+using Clock = std::chrono::steady_clock;
+double milliseconds_since(Clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+ShadeOptions shade_options(const ShadeArguments& args) {
   ShadeOptions options{parse_precision(args.precision), !args.no_specialise};
   options.lanes = args.lanes;
   options.write_terms = args.outputs.wants_terms();
+  return options;
+}
+
+void run_shade(const ShadeArguments& args) {
+  if (args.sequence.wanted(args.inputs, args.outputs)) {
+    run_shade_sequence(args.inputs, args.outputs, shade_options(args), args.device, args.sequence);
+    return;
+  }
+  const auto start = Clock::now();
+  args.outputs.check_destinations();
+  args.sequence.start_exr_threads();
+  // The OpenCL platform starts while the G-buffer is read: neither needs the other.
+  std::future<ComputeContext> compute =
+      std::async(std::launch::async, [&] { return make_compute_context(pick_device(args.device)); });
+  const Scene scene = args.inputs.load_scene();
+  const LoadedGBuffer loaded = args.inputs.load_described_gbuffer(scene);
+  const GBuffer& gbuffer = loaded.gbuffer;
+  const double read_ms = milliseconds_since(start);
   ProgramCache cache(ProgramCache::default_directory());
-  PhongShader shader(make_compute_context(pick_device(args.device)), cache);
-  const ShadeResult result = shader.shade(scene, gbuffer, options);
+  PhongShader shader(compute.get(), cache);
+  const ShadeResult result = shader.shade(scene, gbuffer, shade_options(args));
+  const auto write_start = Clock::now();
+  ImageOutputs outputs = args.outputs;
+  outputs.compression = args.sequence.output_compression(gbuffer.compression);
   const std::string written =
-      args.outputs.write(result.image, {result.terms.ambient, result.terms.diffuse, result.terms.specular});
+      outputs.write(result.image, {result.terms.ambient, result.terms.diffuse, result.terms.specular});
+  const double write_ms = milliseconds_since(write_start);
 
   const ShadeTimings& t = result.timings;
   std::cout << "phongcl shade: " << scene.source.string() << " + " << gbuffer.source.string() << "\n"
@@ -59,9 +87,11 @@ void run_shade(const ShadeArguments& args) {
             << "  kernel     " << result.recipe.summary() << "\n"
             << "  build      " << to_string(result.cache) << ", " << milliseconds(t.build_ms)
             << (cache.disk_directory().empty() ? " (no disk cache: no writable cache directory)" : "") << "\n"
-            << "  time       pack " << milliseconds(t.pack_ms) << ", upload " << milliseconds(t.upload_ms) << ", kernel "
-            << milliseconds(t.kernel_ms) << ", download " << milliseconds(t.download_ms) << ", total "
-            << milliseconds(t.total_ms) << " (" << mpixels_per_second(gbuffer.pixel_count(), t.total_ms) << "; kernel "
+            << "  time       read " << milliseconds(read_ms) << ", pack " << milliseconds(t.pack_ms) << ", upload "
+            << milliseconds(t.upload_ms) << ", kernel " << milliseconds(t.kernel_ms) << ", download "
+            << milliseconds(t.download_ms) << ", write " << milliseconds(write_ms) << ", total "
+            << milliseconds(milliseconds_since(start)) << " wall clock (shading "
+            << mpixels_per_second(gbuffer.pixel_count(), t.total_ms) << "; kernel "
             << mpixels_per_second(gbuffer.pixel_count(), t.kernel_ms) << ")\n";
   if (result.tiles > 1) std::cout << "  tiles      " << result.tiles << " (frame larger than one device allocation)\n";
   print_unshaded(result.counts);
@@ -73,7 +103,7 @@ void run_shade(const ShadeArguments& args) {
     for (const auto& reason : result.recipe.reasons) std::cout << "    " << reason << "\n";
     std::cout << "  build options: " << result.build_options << "\n";
   }
-  std::cout << "  wrote      " << written << "\n";
+  std::cout << "  wrote      " << written << " (" << exr::compression_name(outputs.compression) << ")\n";
 }
 
 }  // namespace
@@ -90,6 +120,7 @@ void add_shade_command(CLI::App& app) {
   command->add_flag("--no-specialise", args->no_specialise, "Use the general kernel with everything compiled in");
   command->add_option("--lanes", args->lanes, "Pixels per work-item: 1, 2, 4, 8 or 16 (default: the device's preferred float width on CPUs, 1 on GPUs)")
       ->check(CLI::IsMember({1, 2, 4, 8, 16}));
+  args->sequence.add_options(*command);
   command->add_flag("--explain", args->explain, "Print what was compiled in and out, and why, and the build options");
   command->callback([args] { run_shade(*args); });
 }

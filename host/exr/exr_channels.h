@@ -11,6 +11,7 @@
 #include <ImfOutputFile.h>
 #include <ImfPartType.h>
 #include <ImfTestFile.h>
+#include <ImfThreading.h>
 #include <half.h>
 #include <openexr.h>
 
@@ -20,6 +21,7 @@
 #include <exception>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -31,6 +33,41 @@
 #include "exr/pixel_window.h"
 
 namespace phongcl::exr {
+
+// OpenEXR's (de)compression runs on its global thread pool; every file opened afterwards uses
+// `threads` of them (0: on the calling thread only).
+inline void set_exr_threads(int threads) { Imf::setGlobalThreadCount(threads); }
+
+// Names as OpenEXR's tools spell them, in ExrCompression's order.
+inline constexpr const char* kCompressionNames[] = {"none", "rle", "zips", "zip", "piz", "pxr24", "b44", "b44a", "dwaa", "dwab"};
+inline const char* compression_name(ExrCompression compression) { return kCompressionNames[static_cast<int>(compression)]; }
+// Throws std::invalid_argument naming the choices.
+inline ExrCompression parse_compression(const std::string& name) {
+  for (int i = 0; i < static_cast<int>(std::size(kCompressionNames)); ++i)
+    if (name == kCompressionNames[i]) return static_cast<ExrCompression>(i);
+  throw std::invalid_argument("unknown EXR compression '" + name + "' (none, rle, zips, zip, piz, pxr24, b44, b44a, dwaa or dwab)");
+}
+inline Imf::Compression to_imf(ExrCompression compression) {
+  switch (compression) {
+    case ExrCompression::none: return Imf::NO_COMPRESSION;
+    case ExrCompression::rle: return Imf::RLE_COMPRESSION;
+    case ExrCompression::zips: return Imf::ZIPS_COMPRESSION;
+    case ExrCompression::zip: return Imf::ZIP_COMPRESSION;
+    case ExrCompression::piz: return Imf::PIZ_COMPRESSION;
+    case ExrCompression::pxr24: return Imf::PXR24_COMPRESSION;
+    case ExrCompression::b44: return Imf::B44_COMPRESSION;
+    case ExrCompression::b44a: return Imf::B44A_COMPRESSION;
+    case ExrCompression::dwaa: return Imf::DWAA_COMPRESSION;
+    case ExrCompression::dwab: return Imf::DWAB_COMPRESSION;
+  }
+  return Imf::ZIP_COMPRESSION;
+}
+// A method newer than this list (e.g. HTJ2K) reads fine; outputs then default to ZIP.
+inline ExrCompression from_imf(Imf::Compression compression) {
+  for (int i = 0; i < static_cast<int>(std::size(kCompressionNames)); ++i)
+    if (to_imf(static_cast<ExrCompression>(i)) == compression) return static_cast<ExrCompression>(i);
+  return ExrCompression::zip;
+}
 
 inline Imath::Box2i to_box(const PixelWindow& w) { return {{w.x_min, w.y_min}, {w.x_max, w.y_max}}; }
 inline PixelWindow to_window(const Imath::Box2i& b) { return {b.min.x, b.min.y, b.max.x, b.max.y}; }
@@ -124,6 +161,7 @@ class InputExr {
   // Of the first part; parts whose channels are read together must share it (see read()).
   PixelWindow data_window() const { return to_window(input_->header(0).dataWindow()); }
   PixelWindow display_window() const { return to_window(input_->header(0).displayWindow()); }
+  ExrCompression compression() const { return from_imf(input_->header(0).compression()); }
   int parts() const { return input_->parts(); }
 
   // In file order, part by part.
@@ -389,10 +427,10 @@ class InputExr {
   exr_context_t core_ = nullptr;  // the core library's last message
 };
 
-// Writes the slices as one scanline EXR with ZIP compression, atomically (temp file, then rename).
+// Writes the slices as one scanline EXR, atomically (temp file, then rename).
 inline void write_channels(const std::filesystem::path& file, const PixelWindow& data_window,
                            const PixelWindow& display_window, ExrPixelType type,
-                           const std::vector<WriteSlice>& slices) {
+                           const std::vector<WriteSlice>& slices, ExrCompression compression = ExrCompression::zip) {
   const Imf::PixelType pixel_type = type == ExrPixelType::half ? Imf::HALF : Imf::FLOAT;
   const Imath::Box2i window = to_box(data_window);
   const std::size_t pixel_count = static_cast<std::size_t>(data_window.width()) * data_window.height();
@@ -411,7 +449,7 @@ inline void write_channels(const std::filesystem::path& file, const PixelWindow&
   write_atomically(file, [&](const std::filesystem::path& temp) {
     translate_errors(file, "cannot write EXR", [&] {
       Imf::Header header(to_box(display_window), window);
-      header.compression() = Imf::ZIP_COMPRESSION;
+      header.compression() = to_imf(compression);
       for (const auto& slice : slices) header.channels().insert(slice.name, Imf::Channel(pixel_type));
       Imf::OutputFile output(temp.c_str(), header);
       output.setFrameBuffer(frame_buffer);

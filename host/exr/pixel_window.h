@@ -1,5 +1,6 @@
 #pragma once
-// What EXR files say about pixels that G-buffers and images share: windows and the stored type.
+// What EXR files say about pixels that G-buffers and images share: windows, the stored type and
+// the compression.
 
 namespace phongcl {
 
@@ -12,5 +13,8 @@ struct PixelWindow {
 
 // How channels are stored in a written EXR.
 enum class ExrPixelType { half, float32 };
+
+// OpenEXR's compression methods, in its own order (exr/exr_channels.h converts and names them).
+enum class ExrCompression { none, rle, zips, zip, piz, pxr24, b44, b44a, dwaa, dwab };
 
 }  // namespace phongcl

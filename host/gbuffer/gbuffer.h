@@ -28,6 +28,7 @@ struct GBuffer {
   // (premultiplied); empty means 1 everywhere.
   Plane coverage;
   std::filesystem::path source;        // for messages
+  ExrCompression compression = ExrCompression::zip;  // the file's (outputs default to the input's)
 
   std::size_t pixel_count() const { return static_cast<std::size_t>(width) * height; }
   bool has_per_pixel_ka() const { return !ka[0].empty(); }
@@ -63,6 +64,6 @@ GBuffer read_gbuffer(const std::filesystem::path& file);
 
 // Writes `gbuffer` in the phongcl layout, atomically (temp file, then rename).
 void write_gbuffer(const GBuffer& gbuffer, const std::filesystem::path& file,
-                   ExrPixelType type = ExrPixelType::float32);
+                   ExrPixelType type = ExrPixelType::float32, ExrCompression compression = ExrCompression::zip);
 
 }  // namespace phongcl

@@ -220,6 +220,7 @@ GBufferRead read_gbuffer(const std::filesystem::path& file, const ReadOptions& o
   g.source = file;
   g.data_window = input.data_window();
   g.display_window = input.display_window();
+  g.compression = input.compression();
   g.width = g.data_window.width();
   g.height = g.data_window.height();
 

@@ -9,7 +9,8 @@
 
 namespace phongcl {
 
-void write_gbuffer(const GBuffer& gbuffer, const std::filesystem::path& file, ExrPixelType type) {
+void write_gbuffer(const GBuffer& gbuffer, const std::filesystem::path& file, ExrPixelType type,
+                   ExrCompression compression) {
   const PixelWindow data_window = exr::data_window_for(gbuffer.data_window, gbuffer.width, gbuffer.height);
   std::vector<exr::WriteSlice> slices;
   for (const auto& group : gbuffer_layout(gbuffer)) {
@@ -23,7 +24,7 @@ void write_gbuffer(const GBuffer& gbuffer, const std::filesystem::path& file, Ex
     }
   }
   exr::write_channels(file, data_window, exr::display_window_for(gbuffer.display_window, data_window),
-                      type, slices);
+                      type, slices, compression);
 }
 
 }  // namespace phongcl

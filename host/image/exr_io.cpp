@@ -15,11 +15,12 @@ constexpr const char* kChannelNames[4] = {"R", "G", "B", "A"};
 
 }  // namespace
 
-void write_exr(const Image& image, const std::filesystem::path& file, ExrPixelType type) {
-  write_layered_exr({{"", &image, true}}, file, type);
+void write_exr(const Image& image, const std::filesystem::path& file, ExrPixelType type, ExrCompression compression) {
+  write_layered_exr({{"", &image, true}}, file, type, compression);
 }
 
-void write_layered_exr(const std::vector<ExrLayer>& layers, const std::filesystem::path& file, ExrPixelType type) {
+void write_layered_exr(const std::vector<ExrLayer>& layers, const std::filesystem::path& file, ExrPixelType type,
+                       ExrCompression compression) {
   if (layers.empty()) throw std::invalid_argument("write_layered_exr: no layers");
   const Image& first = *layers.front().image;
   const PixelWindow data_window = exr::data_window_for(first.data_window, first.width, first.height);
@@ -37,7 +38,8 @@ void write_layered_exr(const std::vector<ExrLayer>& layers, const std::filesyste
       slices.push_back({layer.name.empty() ? kChannelNames[c] : layer.name + "." + kChannelNames[c],
                         image.rgba.data() + c, 4});
   }
-  exr::write_channels(file, data_window, exr::display_window_for(first.display_window, data_window), type, slices);
+  exr::write_channels(file, data_window, exr::display_window_for(first.display_window, data_window), type, slices,
+                    compression);
 }
 
 Image read_exr(const std::filesystem::path& file) {

@@ -29,7 +29,8 @@ struct Image {
 Image image_like(const GBuffer& gbuffer);
 
 // Writes channels R G B A (float32 or half), same data/display window as the image; atomic.
-void write_exr(const Image& image, const std::filesystem::path& file, ExrPixelType type = ExrPixelType::float32);
+void write_exr(const Image& image, const std::filesystem::path& file, ExrPixelType type = ExrPixelType::float32,
+               ExrCompression compression = ExrCompression::zip);
 // The same with the file first, as the public API (include/phongcl/phongcl.hpp) writes it.
 inline void write_exr(const std::filesystem::path& file, const Image& image, ExrPixelType type = ExrPixelType::float32) {
   write_exr(image, file, type);
@@ -44,7 +45,7 @@ struct ExrLayer {
 // Writes every layer into one EXR (float32 or half), atomically. The images must share size and
 // windows (std::invalid_argument otherwise); the file takes the first one's windows.
 void write_layered_exr(const std::vector<ExrLayer>& layers, const std::filesystem::path& file,
-                       ExrPixelType type = ExrPixelType::float32);
+                       ExrPixelType type = ExrPixelType::float32, ExrCompression compression = ExrCompression::zip);
 // Reads R G B (and A if present, else 1) from an EXR. Throws InputError on a bad file.
 Image read_exr(const std::filesystem::path& file);
 

@@ -5,8 +5,11 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <thread>
+#include <vector>
 
 #include "common/error.h"
+#include "shading/host_threads.h"
 
 namespace phongcl {
 
@@ -150,20 +153,12 @@ PixelCounts pack_tile(const GBuffer& gbuffer, const glm::dvec3& eye, const Recip
   // Packing is part of every frame's end-to-end time: spread it over the cores in chunks large
   // enough that the threads stream whole cache lines.
   constexpr std::size_t kChunk = 1 << 15;
-  const auto chunks = static_cast<std::ptrdiff_t>((count + kChunk - 1) / kChunk);
+  std::vector<PixelCounts> part_counts(std::thread::hardware_concurrency() + 1);
+  for_each_core_range(count, kChunk, [&](std::size_t part, std::size_t begin, std::size_t end) {
+    part_counts[part] = pack_range(gbuffer, eye, recipe, first, begin, end, stride, planes, material_index);
+  });
   PixelCounts counts;
-#pragma omp parallel
-  {
-    PixelCounts local;
-#pragma omp for schedule(static)
-    for (std::ptrdiff_t chunk = 0; chunk < chunks; ++chunk) {
-      const std::size_t begin = static_cast<std::size_t>(chunk) * kChunk;
-      local += pack_range(gbuffer, eye, recipe, first, begin, std::min(count, begin + kChunk), stride, planes,
-                          material_index);
-    }
-#pragma omp critical
-    counts += local;
-  }
+  for (const PixelCounts& part : part_counts) counts += part;
   std::fill(material_index + count, material_index + padded_count, PHONGCL_BACKGROUND);
   for (int plane = 0; plane < recipe.plane_count(); ++plane) {
     std::fill(planes + plane * stride + count, planes + plane * stride + padded_count, 0.0f);

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <vector>
 
+#include "shading/host_threads.h"
+
 namespace phongcl {
 
 namespace {
@@ -42,20 +44,22 @@ DeviceUniforms upload_uniforms(const cl::Context& context, const UniformData& un
   return device;
 }
 
-cl::Event launch_phong(const cl::Program& program, cl::CommandQueue& queue, const TileBuffers& tile,
+cl::Kernel phong_kernel(const cl::Program& program) { return cl::Kernel(program, "phong_shade"); }
+
+cl::Event launch_phong(const cl::Kernel& phong_shade, cl::CommandQueue& queue, const TileBuffers& tile,
                        const DeviceUniforms& uniforms, std::size_t slots, int lanes) {
-  PhongKernel kernel(program, "phong_shade");
+  PhongKernel kernel(phong_shade);
   return kernel(cl::EnqueueArgs(queue, cl::NDRange(slots / static_cast<std::size_t>(lanes))), tile.planes,
                 tile.material_index, uniforms.materials, uniforms.point_lights, uniforms.directional_lights,
                 uniforms.scalars, tile.output, tile.terms);
 }
 
 void interleave(const float* planes, std::size_t stride, std::size_t count, int channels, float* rgba) {
-  const auto pixels = static_cast<std::ptrdiff_t>(count);
-#pragma omp parallel for schedule(static)
-  for (std::ptrdiff_t t = 0; t < pixels; ++t) {
-    for (int c = 0; c < channels; ++c) rgba[4 * t + c] = planes[c * stride + t];
-  }
+  for_each_core_range(count, 1 << 12, [&](std::size_t, std::size_t begin, std::size_t end) {
+    for (std::size_t t = begin; t < end; ++t) {
+      for (int c = 0; c < channels; ++c) rgba[4 * t + c] = planes[c * stride + t];
+    }
+  });
 }
 
 void premultiply_by_coverage(const Plane& coverage, std::size_t first, std::size_t count, float* rgba) {

@@ -35,8 +35,11 @@ struct TileBuffers {
   const cl::Buffer& terms;           // PHONGCL_TERM_PLANES planes with WRITE_TERMS, else unused
 };
 
-// Enqueues phong.cl's phong_shade over `slots` pixels (a multiple of the recipe's lanes).
-cl::Event launch_phong(const cl::Program& program, cl::CommandQueue& queue, const TileBuffers& tile,
+// phong.cl's phong_shade in `program`. Setting a kernel's arguments is not thread-safe: one kernel
+// object per thread that launches.
+cl::Kernel phong_kernel(const cl::Program& program);
+// Enqueues phong_shade over `slots` pixels (a multiple of the recipe's lanes).
+cl::Event launch_phong(const cl::Kernel& kernel, cl::CommandQueue& queue, const TileBuffers& tile,
                        const DeviceUniforms& uniforms, std::size_t slots, int lanes);
 
 // Interleaves the first `channels` of count pixels' planes (stride values each) into RGBA pixels,

@@ -47,6 +47,7 @@ ShadeResult PhongShader::shade(const Scene& scene, const GBuffer& gbuffer, const
   const BuiltProgram built = cache_.build(compute_, load_kernel_source("phong.cl"), result.build_options);
   result.cache = built.outcome;
   result.timings.build_ms = built.build_milliseconds;
+  const cl::Kernel kernel = phong_kernel(built.program);
 
   const auto start = Clock::now();
   const cl::Context& context = compute_.context;
@@ -98,7 +99,7 @@ ShadeResult PhongShader::shade(const Scene& scene, const GBuffer& gbuffer, const
     queue.enqueueUnmapMemObject(planes, mapped_planes, nullptr, &unmap_planes);
     queue.enqueueUnmapMemObject(material_index, mapped_index, nullptr, &unmap_index);
     const cl::Event launched =
-        launch_phong(built.program, queue, {planes, material_index, output, terms}, uniforms, padded, recipe.lanes);
+        launch_phong(kernel, queue, {planes, material_index, output, terms}, uniforms, padded, recipe.lanes);
 
     cl::Event map_output;
     const auto* shaded = static_cast<const float*>(

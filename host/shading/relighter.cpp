@@ -58,7 +58,7 @@ struct Relighter::State {
     Recipe next = make_recipe(scene, gbuffer, compute.device.info, shade_options);
     if (recipe && next.build_options() == recipe->build_options()) return;
     recipe = std::move(next);
-    program.reset();
+    kernel.reset();
   }
 
   void pack_gbuffer(RelightTimings& timings) {
@@ -96,9 +96,9 @@ struct Relighter::State {
   void shade_into(float* rgba) {
     const auto start = Clock::now();
     RelightTimings timings;
-    if (!program) {
+    if (!kernel) {
       const BuiltProgram built = cache.build(compute, load_kernel_source("phong.cl"), recipe->build_options());
-      program = built.program;
+      kernel = phong_kernel(built.program);
       timings.build_ms = built.build_milliseconds;
       timings.rebuilt = true;
     }
@@ -110,7 +110,7 @@ struct Relighter::State {
       timings.upload_ms += milliseconds(pack_start, Clock::now());
     }
     cl::CommandQueue& queue = compute.queue;
-    const cl::Event launched = launch_phong(*program, queue, {planes, material_index, output, unused_terms},
+    const cl::Event launched = launch_phong(*kernel, queue, {planes, material_index, output, unused_terms},
                                             *uniforms, stride, recipe->lanes);
     cl::Event map_output;
     const auto* shaded = static_cast<const float*>(queue.enqueueMapBuffer(
@@ -134,7 +134,7 @@ struct Relighter::State {
   ComputeContext compute;
   ProgramCache cache;
   std::optional<Recipe> recipe;
-  std::optional<cl::Program> program;         // empty: build before the next frame
+  std::optional<cl::Kernel> kernel;           // phong_shade; empty: build before the next frame
   std::optional<DeviceUniforms> uniforms;     // empty: upload before the next frame
   bool gbuffer_stale = true;                  // pack and upload before the next frame
   std::size_t stride = 0;

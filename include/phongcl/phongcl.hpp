@@ -16,6 +16,7 @@
 #include "common/error.h"
 #include "gbuffer/gbuffer.h"
 #include "image/image.h"
+#include "gbuffer_view.hpp"
 #include "relighter.hpp"
 #include "scene/scene.h"
 #include "shading/precision.h"

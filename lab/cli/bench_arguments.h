@@ -15,10 +15,15 @@ struct BenchArguments {
   bool throughput = false;
   std::string lights;       // --throughput: light counts to sweep, e.g. "0,1,4,16,64,256"
   std::string sizes;        // --throughput: image sizes to sweep, e.g. "256x256,1920x1080"
-  std::string json_file;    // --throughput: results as JSON
+  std::string json_file;    // --throughput, --sequence: results as JSON
+  bool sequence = false;
+  int sequence_frames = 8;   // --sequence: frames in the shot
+  int rounds = 3;            // --sequence: rounds of every mode; each mode's fastest is kept
+  std::string compressions = "zip,piz";  // --sequence: G-buffer and output compressions
 };
 
 void run_error_vs_time_bench(const BenchArguments& args);  // bench_error_vs_time.cpp
 void run_throughput_bench(const BenchArguments& args);     // bench_throughput.cpp
+void run_sequence_bench(const BenchArguments& args);       // bench_sequence.cpp
 
 }  // namespace phongcl::cli

@@ -17,8 +17,18 @@ void add_bench_command(CLI::App& app) {
   command->add_flag("--throughput", args->throughput, "Compare throughput with C++ peers and the machine's limits");
   command->add_option("--lights", args->lights, "--throughput: light counts to sweep (e.g. 0,1,4,16,64,256)");
   command->add_option("--sizes", args->sizes, "--throughput: image sizes to sweep (e.g. 256x256,1920x1080)");
-  command->add_option("--json", args->json_file, "--throughput: write the results as JSON");
-  command->callback([args] { args->throughput ? run_throughput_bench(*args) : run_error_vs_time_bench(*args); });
+  command->add_option("--json", args->json_file, "--throughput, --sequence: write the results as JSON");
+  command->add_flag("--sequence", args->sequence,
+                    "Shade a generated shot in sequence mode against single-frame processes, the EXR I/O floor and oiiotool");
+  command->add_option("--sequence-frames", args->sequence_frames, "--sequence: frames in the shot (default 8)")
+      ->check(CLI::Range(1, 10000));
+  command->add_option("--rounds", args->rounds, "--sequence: rounds of every mode, the fastest kept (default 3)")
+      ->check(CLI::Range(1, 100));
+  command->add_option("--compressions", args->compressions, "--sequence: EXR compressions to measure (default zip,piz)");
+  command->callback([args] {
+    if (args->sequence) return run_sequence_bench(*args);
+    args->throughput ? run_throughput_bench(*args) : run_error_vs_time_bench(*args);
+  });
 }
 
 }  // namespace phongcl::cli

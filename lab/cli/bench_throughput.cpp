@@ -1,5 +1,5 @@
 // phongcl bench --throughput: the OpenCL kernel in each precision variant against the C++ peers
-// (cpp-scalar, cpp-simd) on the same frames, with the machine's limits measured in the same run.
+// (cpp-scalar, cpp-simd, halide) on the same frames, with the machine's limits measured in the same run.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -7,6 +7,7 @@
 #include <fstream>
 #include <functional>
 #include <iostream>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
@@ -14,6 +15,7 @@
 #include "cli/bench_arguments.h"
 #include "cli/throughput_report.h"
 #include "common/atomic_file.h"
+#include "peers/halide_peer.h"
 #include "peers/light_sweep.h"
 #include "peers/peers.h"
 #include "peers/work_model.h"
@@ -119,8 +121,8 @@ struct SampledRows {
 
 class ThroughputBench {
  public:
-  ThroughputBench(int runs, MachineLimits machine, PhongShader& shader)
-      : runs_(runs), machine_(std::move(machine)), shader_(shader) {}
+  ThroughputBench(int runs, MachineLimits machine, PhongShader& shader, std::optional<std::filesystem::path> halide_peer)
+      : runs_(runs), machine_(std::move(machine)), shader_(shader), halide_peer_(std::move(halide_peer)) {}
 
   void run_case(const Scene& scene, const GBuffer& gbuffer, int lights) {
     int points = 0, directionals = 0;
@@ -144,8 +146,8 @@ class ThroughputBench {
       r.timed_row_step = rows.step;
       record_error(r, rows, rows.max_rel_err_of_rows(output));
     }
+    const PackedFrame frame = pack_frame(gbuffer, scene);
     {  // cpp-simd on the whole frame
-      const PackedFrame frame = pack_frame(gbuffer, scene);
       Image output = image_like(gbuffer);
       const RunStats time = measure(
           [&] {
@@ -156,6 +158,24 @@ class ThroughputBench {
           runs_);
       ThroughputResult& r = add("cpp-simd", "float", gbuffer, lights, time, bytes_per_pixel(false, points + directionals), flops, 1.0);
       record_error(r, rows, rows.max_rel_err_of_frame(output));
+    }
+    {  // halide on the whole frame, in its own process
+      const double bytes = bytes_per_pixel(false, points + directionals);
+      if (!halide_peer_) {
+        add_not_run("halide", gbuffer, lights, "SKIP: Halide not installed (no " + std::string(kHalidePeerExecutable) + " beside phongcl-lab)");
+      } else {
+        Image output = image_like(gbuffer);
+        try {
+          const HalidePeerRun run = run_halide_peer(*halide_peer_, frame, packed, runs_, kMeasurementBudgetMs, output.rgba.data());
+          ThroughputResult& r = add("halide", "float", gbuffer, lights, summarize(run.times_ms), bytes, flops, 1.0);
+          r.schedule = run.schedule;
+          r.compile_ms = run.compile_ms;
+          record_error(r, rows, rows.max_rel_err_of_frame(output));
+        } catch (const std::runtime_error& e) {  // the other rows still count; this one says why it has no figures
+          std::cerr << "\n  halide     " << e.what() << "\n";
+          add_not_run("halide", gbuffer, lights, std::string("FAILED: ") + e.what());
+        }
+      }
     }
     for (Precision precision : all_precisions()) {
       if (precision == Precision::double_precision && !shader_.compute().device.info.has_fp64) continue;
@@ -215,6 +235,17 @@ class ThroughputBench {
     return results_.back();
   }
 
+  void add_not_run(const std::string& impl, const GBuffer& gbuffer, int lights, const std::string& reason) {
+    ThroughputResult r;
+    r.impl = impl;
+    r.variant = "float";
+    r.lights = lights;
+    r.width = gbuffer.width;
+    r.height = gbuffer.height;
+    r.not_run = reason;
+    results_.push_back(r);
+  }
+
   static void record_error(ThroughputResult& r, const SampledRows& rows, double max_rel_err) {
     r.max_rel_err = max_rel_err;
     r.error_row_step = rows.step;
@@ -223,8 +254,17 @@ class ThroughputBench {
   int runs_;
   MachineLimits machine_;
   PhongShader& shader_;
+  std::optional<std::filesystem::path> halide_peer_;
   std::vector<ThroughputResult> results_;
 };
+
+// /proc/loadavg's three averages, "n/a" where there is none: every figure here depends on it.
+std::string load_average() {
+  std::ifstream in("/proc/loadavg");
+  std::string one, five, fifteen;
+  if (!(in >> one >> five >> fifteen)) return "n/a";
+  return one + " " + five + " " + fifteen;
+}
 
 void write_file(const std::filesystem::path& file, const std::string& text) {
   if (file.has_parent_path()) std::filesystem::create_directories(file.parent_path());
@@ -251,7 +291,12 @@ void run_throughput_bench(const BenchArguments& args) {
   std::cout << " " << machine.bandwidth_gbs << " GB/s, " << machine.fma_gflops << " GFLOP/s on " << machine.cores
             << " cores (" << machine.cpu << ")\n";
 
-  ThroughputBench bench(args.runs, machine, shader);
+  // The Halide peer is built beside phongcl-lab when Halide is installed.
+  const auto halide_peer = find_halide_peer(std::filesystem::read_symlink("/proc/self/exe").parent_path());
+  std::cout << "  halide     " << (halide_peer ? halide_peer->string() : "not installed: its rows say SKIP") << "\n";
+  const std::string load_at_start = load_average();
+  std::cout << "  load       " << load_at_start << " (1, 5, 15 min; the machine may be shared)\n";
+  ThroughputBench bench(args.runs, machine, shader, halide_peer);
   for (const Case& c : cases) {
     std::cout << "  case       " << c.width << "x" << c.height << ", " << c.lights << " lights" << std::flush;
     const auto start = Clock::now();
@@ -259,11 +304,12 @@ void run_throughput_bench(const BenchArguments& args) {
     bench.run_case(with_generated_lights(scene, c.lights), frame, c.lights);
     std::cout << " (" << static_cast<int>(elapsed_ms(start) / 1000) << " s)\n";
   }
-  std::cout << "\n" << markdown_table(bench.results());
-  if (!args.json_file.empty()) write_file(args.json_file, results_json(machine, bench.results()));
+  const std::string load = "load average " + load_at_start + " at the start, " + load_average() + " at the end";
+  std::cout << "\n" << markdown_table(bench.results()) << halide_note(bench.results()) << "  " << load << "\n";
+  if (!args.json_file.empty()) write_file(args.json_file, results_json(machine, bench.results(), load));
   if (!args.report_dir.empty()) {
     const std::string inputs = "`" + scene.source.string() + "` + `" + gbuffer.source.string() + "`";
-    write_throughput_report(args.report_dir, machine, device, inputs, bench.results());
+    write_throughput_report(args.report_dir, machine, device, inputs, load, bench.results());
     std::cout << "  wrote      " << args.report_dir << "/report.md, results.json, mpix_lights_vs_lights.svg\n";
   }
 }

@@ -72,6 +72,12 @@ std::string markdown_table(const std::vector<ThroughputResult>& results) {
                  ColumnAlign::right, ColumnAlign::right, ColumnAlign::right, ColumnAlign::right};
   const auto scalar = scalar_medians(results);
   for (const auto& r : results) {
+    if (!r.not_run.empty()) {
+      std::vector<std::string> row{size_of(r), std::to_string(r.lights), r.impl, r.variant, r.not_run};
+      row.resize(table.headers.size());
+      table.rows.push_back(row);
+      continue;
+    }
     const auto base = scalar.find(size_of(r) + "/" + std::to_string(r.lights));
     std::string runs = std::to_string(r.time.runs);
     if (r.timed_row_step > 1) runs += " (rows 1/" + std::to_string(r.timed_row_step) + ")";
@@ -87,14 +93,33 @@ std::string markdown_table(const std::vector<ThroughputResult>& results) {
   return table.render();
 }
 
-std::string results_json(const MachineLimits& machine, const std::vector<ThroughputResult>& results) {
+std::string halide_note(const std::vector<ThroughputResult>& results) {
+  std::string schedules, compile_times;
+  for (const auto& r : results) {
+    if (r.impl != "halide" || !r.compile_ms) continue;
+    if (schedules.find(r.schedule) == std::string::npos) schedules += (schedules.empty() ? "" : ", ") + r.schedule;
+    compile_times += (compile_times.empty() ? "" : ", ") + fixed(*r.compile_ms, 0) + " (" + size_of(r) + ", " +
+                     std::to_string(r.lights) + ")";
+  }
+  if (schedules.empty()) return "";
+  return "halide: schedule " + schedules + "; JIT compile ms, not in the times: " + compile_times + "\n";
+}
+
+std::string results_json(const MachineLimits& machine, const std::vector<ThroughputResult>& results, const std::string& load) {
   nlohmann::ordered_json json;
   json["machine"] = {{"bandwidth_gbs", machine.bandwidth_gbs},
                      {"fma_gflops", machine.fma_gflops},
                      {"cores", machine.cores},
-                     {"cpu", machine.cpu}};
+                     {"cpu", machine.cpu},
+                     {"load", load}};
   json["results"] = nlohmann::ordered_json::array();
   for (const auto& r : results) {
+    if (!r.not_run.empty()) {
+      json["results"].push_back({{"impl", r.impl}, {"variant", r.variant}, {"lights", r.lights}, {"width", r.width},
+                                 {"height", r.height}, {"not_run", r.not_run}, {"median_ms", nullptr}, {"min_ms", nullptr},
+                                 {"max_ms", nullptr}, {"max_rel_err", nullptr}});
+      continue;
+    }
     nlohmann::ordered_json entry = {{"impl", r.impl},
                                     {"variant", r.variant},
                                     {"lights", r.lights},
@@ -113,13 +138,15 @@ std::string results_json(const MachineLimits& machine, const std::vector<Through
     entry["error_row_step"] = r.error_row_step;
     entry["bytes_per_pixel"] = r.bytes_per_pixel;
     entry["flops_per_pixel"] = r.flops_per_pixel;
+    if (!r.schedule.empty()) entry["schedule"] = r.schedule;
+    if (r.compile_ms) entry["compile_ms"] = *r.compile_ms;
     json["results"].push_back(entry);
   }
   return json.dump(2) + "\n";
 }
 
 void write_throughput_report(const std::string& directory, const MachineLimits& machine, const std::string& device,
-                             const std::string& inputs, const std::vector<ThroughputResult>& results) {
+                             const std::string& inputs, const std::string& load, const std::vector<ThroughputResult>& results) {
   const std::filesystem::path dir(directory);
   std::filesystem::create_directories(dir);
 
@@ -131,7 +158,7 @@ void write_throughput_report(const std::string& directory, const MachineLimits& 
   std::map<std::string, std::size_t> series_of;
   const std::string sweep_size = results.empty() ? "" : size_of(results.front());
   for (const auto& r : results) {
-    if (r.lights < 1 || size_of(r) != sweep_size) continue;
+    if (r.lights < 1 || size_of(r) != sweep_size || !r.not_run.empty()) continue;
     const std::string name = r.impl + (r.impl == "opencl" ? " " + r.variant : "");
     auto [it, inserted] = series_of.emplace(name, chart.series.size());
     if (inserted) chart.series.push_back({name, {}, MarkerShape::circle, true, ""});
@@ -144,6 +171,7 @@ void write_throughput_report(const std::string& directory, const MachineLimits& 
   md += "Measured with `phongcl bench --throughput` on " + inputs + ".\n\n";
   md += "## Machine\n\n- CPU: " + machine.cpu + ", " + std::to_string(machine.cores) + " cores (OpenMP threads)\n";
   md += "- OpenCL device: " + device + "\n";
+  md += "- Load: " + load + " (1, 5 and 15 minute averages)\n";
   md += "- Memory bandwidth: " + fixed(machine.bandwidth_gbs, 1) +
         " GB/s (STREAM-style float triad a = b + s c, 3 x 256 MB, all cores, best of 5; 12 bytes per element)\n";
   md += "- FMA peak: " + fixed(machine.fma_gflops, 1) +
@@ -153,6 +181,8 @@ void write_throughput_report(const std::string& directory, const MachineLimits& 
         "- opencl: kernel time from profiling events; end-to-end is the wall clock of pack + upload + kernel +\n"
         "  download (PhongShader::shade, build excluded). Peers: wall clock of the shading loop on input packed\n"
         "  once beforehand (structure of arrays, positions relative to the eye); packing is not timed.\n"
+        "- halide: the same formula as a JIT-compiled Halide pipeline (bench/halide_peer), in its own process\n"
+        "  on the same packed input; wall clock of realize(); the JIT compile is reported below, not timed.\n"
         "- Runs: the requested count, fewer (at least 3) where that would exceed about 5 s per measurement.\n"
         "  cpp-scalar on large cases is timed on every n-th row (\"rows 1/n\"), its times scaled to the whole frame.\n"
         "- Lights: the scene's lights replaced by N generated ones (half point, half directional, deterministic).\n"
@@ -163,10 +193,10 @@ void write_throughput_report(const std::string& directory, const MachineLimits& 
         "  code (lab/peers/work_model.h), the same for every implementation; the double variant's peak is half.\n"
         "- max rel err: against the double-precision reference on shaded pixels (1e-6 absolute floor), over every\n"
         "  n-th row where the reference would be too slow on the whole frame (\"rows 1/n\").\n\n";
-  md += "## Results\n\n" + markdown_table(results) + "\n";
+  md += "## Results\n\n" + markdown_table(results) + "\n" + halide_note(results) + "\n";
   if (!chart.series.empty()) md += "![Mpixel-lights/s against lights](mpix_lights_vs_lights.svg)\n";
   write_text(dir / "report.md", md);
-  write_text(dir / "results.json", results_json(machine, results));
+  write_text(dir / "results.json", results_json(machine, results, load));
 }
 
 }  // namespace phongcl::cli

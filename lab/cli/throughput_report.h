@@ -17,7 +17,10 @@ struct RunStats {
 RunStats summarize(std::vector<double> milliseconds);
 
 struct ThroughputResult {
-  std::string impl, variant;  // "opencl" | "cpp-scalar" | "cpp-simd"; precision or "float"
+  std::string impl, variant;  // "opencl" | "cpp-scalar" | "cpp-simd" | "halide"; precision or "float"
+  std::string not_run;        // "SKIP: why" (e.g. Halide not installed) or "FAILED: message"; no figures then
+  std::string schedule;       // halide: the schedule that ran
+  std::optional<double> compile_ms;  // halide: JIT compile, reported, not in the times
   int lights = 0, width = 0, height = 0;
   RunStats time;                        // opencl: kernel time from profiling events; peers: wall clock
   std::optional<RunStats> end_to_end;   // opencl: pack + upload + kernel + download, wall clock
@@ -30,10 +33,14 @@ struct ThroughputResult {
 };
 
 std::string markdown_table(const std::vector<ThroughputResult>& results);
-// {"machine": {...}, "results": [...]}; end_to_end_median_ms for opencl only; max_rel_err null where not measured.
-std::string results_json(const MachineLimits& machine, const std::vector<ThroughputResult>& results);
+// One line naming the Halide schedule(s) and JIT compile times; empty without halide figures.
+std::string halide_note(const std::vector<ThroughputResult>& results);
+// {"machine": {..., "load": ...}, "results": [...]}; end_to_end_median_ms for opencl only; max_rel_err null where not
+// measured; a row that did not run has "not_run" (SKIP or FAILED and why) and null figures; halide rows add schedule and compile_ms.
+std::string results_json(const MachineLimits& machine, const std::vector<ThroughputResult>& results, const std::string& load);
 // report.md (machine, method, table), results.json and mpix_lights_vs_lights.svg in `directory`.
+// `load`: the load average during the run, in words.
 void write_throughput_report(const std::string& directory, const MachineLimits& machine, const std::string& device,
-                             const std::string& inputs, const std::vector<ThroughputResult>& results);
+                             const std::string& inputs, const std::string& load, const std::vector<ThroughputResult>& results);
 
 }  // namespace phongcl::cli

@@ -10,7 +10,7 @@ trap 'rm -rf "$work"' EXIT
 export POCL_CACHE_DIR="${POCL_CACHE_DIR:-$work/pocl-cache}"
 fail() { echo "10-install: FAILED: $*" >&2; exit 1; }
 
-cmake --build build --target phongcl phongcl_library >/dev/null
+cmake --build build >/dev/null
 cmake --install build --prefix "$work/prefix" >/dev/null
 prefix="$work/prefix"
 library=$(find "$prefix" -name 'libphongcl.so.*.*' | head -n1)
@@ -22,8 +22,10 @@ lab_files=$(find "$prefix" \( -name '*peer*' -o -name '*reference*' -o -name '*s
 lab_symbols=$(nm -DC "$library" | grep -E 'reference_image|run_catalogue|simd_peer|scalar_peer|markdown_table' || true)
 [ -z "$lab_symbols" ] || fail "lab symbols in $library: $lab_symbols"
 
+python_module=$(find "$prefix" -name 'phongcl.cpython-*.so' | head -n1)
+
 # AVX and later use VEX/EVEX encodings: v-prefixed mnemonics, ymm/zmm registers, mask registers.
-for binary in "$library" "$prefix/bin/phongcl"; do
+for binary in "$library" "$prefix/bin/phongcl" $python_module; do
   beyond=$(objdump -d --no-show-raw-insn "$binary" |
     grep -cE $'\t''v[a-z0-9]+ |%[yz]mm[0-9]|%k[0-7]' || true)
   [ "$beyond" -eq 0 ] || fail "$binary has $beyond instructions beyond baseline x86-64 (AVX or later)"
@@ -44,5 +46,15 @@ if "$prefix/bin/phongcl" bench --scene scenes/default/scene.json --report "$work
 fi
 grep -q "lab command" "$work/lab.log" || { cat "$work/lab.log"; fail "no clear message for a lab command"; }
 
+if [ -n "$python_module" ]; then
+  (cd "$work" && PYTHONPATH="$(dirname "$python_module")" /usr/bin/python3 -c "
+import phongcl, sys
+scene = phongcl.load_scene(sys.argv[1])
+image = phongcl.Relighter(scene, phongcl.read_gbuffer(sys.argv[2])).shade()
+assert image.shape == (480, 640, 4) and image[..., 3].max() == 1, image.shape
+" "$OLDPWD/scenes/default/scene.json" "$OLDPWD/scenes/default/gbuffer.exr") || fail "the installed Python module"
+fi
+
 echo "10-install: installed $(find "$prefix" -type f | wc -l) files; consumer built against find_package(phongcl)" \
-  "and ran; installed phongcl shades and refuses lab commands; libphongcl and phongcl are baseline x86-64"
+  "and ran; installed phongcl shades and refuses lab commands${python_module:+, the installed Python module shades};" \
+  "libphongcl, phongcl${python_module:+ and the module} are baseline x86-64"
