@@ -1,7 +1,7 @@
 """Writes phongcl's scene JSON from a .blend, and with --render the G-buffer EXR phongcl reads.
 
     blender -b file.blend --python scripts/blender/export_scene.py -- --out scene.json [--render gbuffer.exr]
-        [--samples N] [--falloff none|quadratic]
+        [--samples N] [--falloff quadratic|none]
 
 Conventions (README "Renderers' G-buffers", "From a .blend"):
 - Camera: eye, forward (-Z) and up (+Y) of the camera's world matrix; the vertical field of view
@@ -11,9 +11,12 @@ Conventions (README "Renderers' G-buffers", "From a .blend"):
 - Lights: Cycles lights a Lambertian surface of albedo rho with a point light of P watts as
   rho * cos * P / (4 pi^2 d^2) (radiant intensity P / 4pi, BSDF rho / pi), and with a sun of S W/m^2
   as rho * cos * S / pi, so phongcl's Li (kd * n.l * Li) is colour * P / (4 pi^2) (times 1/d^2) and
-  colour * S / pi. Spot lights become point lights (their cone is dropped, with a note); area
-  lights are skipped with a note. phongcl without --falloff quadratic has no distance falloff: a
-  point light's colour is then taken at its distance to the centre of the visible meshes.
+  colour * S / pi. Point and spot lights fall off with 1/d^2 in Blender, so they get phongcl's
+  "falloff": "quadratic" (--falloff none instead takes each light's colour at its distance to the
+  centre of the visible meshes). A spot's cone: Cycles lights where cos(angle to the axis) exceeds
+  cos(spot_size/2) and smoothsteps over the spot_blend fraction of 1 - cos(spot_size/2) above it,
+  in cosines, as phongcl's penumbra does, so cone_angle_deg is the angle whose cosine ends that
+  blend and penumbra_angle_deg the rest of spot_size/2. Area lights are skipped with a note.
 - Materials by pass index (Material.pass_index): Principled BSDF kd = base colour * (1 - metallic),
   ks = mix(0.08 * specular, base colour, metallic) (the BSDF's normal-incidence reflectance),
   shininess = (2 / alpha^2 - 2) / 4 with alpha = roughness^2 (Walter et al. 2007's Beckmann to
@@ -82,6 +85,21 @@ def meshes_centre(scene):
     return sum(corners, Vector((0.0, 0.0, 0.0))) / len(corners)
 
 
+# The smallest fully lit cone phongcl takes (0 < cone_angle_deg): a spot_blend of 1 has none.
+MIN_CONE_DEG = 1e-3
+
+
+def spot_cone(light):
+    outer_half = light.data.spot_size / 2.0
+    cos_outer = math.cos(outer_half)
+    cos_inner = cos_outer + (1.0 - cos_outer) * light.data.spot_blend
+    inner_half = max(math.acos(min(cos_inner, 1.0)), math.radians(MIN_CONE_DEG / 2.0))
+    axis = light.matrix_world.to_3x3() @ Vector((0.0, 0.0, -1.0))
+    return {"type": "spot", "direction": rounded(axis.normalized()),
+            "cone_angle_deg": round(math.degrees(2.0 * inner_half), 6),
+            "penumbra_angle_deg": round(max(math.degrees(outer_half - inner_half), 0.0), 6)}
+
+
 def lights_json(scene, falloff):
     lights = []
     centre = meshes_centre(scene)
@@ -96,10 +114,10 @@ def lights_json(scene, falloff):
         if data.type not in ("POINT", "SPOT"):
             note("light '%s' is an %s light, which phongcl has not: skipped" % (light.name, data.type.lower()))
             continue
-        if data.type == "SPOT":
-            note("spot light '%s' exported as a point light (its cone is dropped)" % light.name)
         position = light.matrix_world.translation
         entry = {"type": "point", "position": rounded(position)}
+        if data.type == "SPOT":
+            entry.update(spot_cone(light))
         intensity = colour * data.energy / (4.0 * math.pi ** 2)
         if falloff == "quadratic":
             entry["falloff"] = "quadratic"
@@ -221,8 +239,9 @@ def parse(argv):
     parser.add_argument("--out", required=True, help="scene JSON to write")
     parser.add_argument("--render", help="also render the G-buffer EXR here (Cycles, CPU)")
     parser.add_argument("--samples", type=int, help="Cycles samples for --render (default: the file's)")
-    parser.add_argument("--falloff", choices=("none", "quadratic"), default="none",
-                        help="quadratic: point lights fall off with 1/d^2 as in Blender (needs phongcl's light falloff)")
+    parser.add_argument("--falloff", choices=("none", "quadratic"), default="quadratic",
+                        help="quadratic (default): point and spot lights fall off with 1/d^2 as in Blender; none: "
+                             "each light's colour taken at its distance to the meshes' centre")
     return parser.parse_args(argv)
 
 
