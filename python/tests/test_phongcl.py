@@ -117,10 +117,10 @@ def test_wrong_shapes_are_clear_errors(gbuffer):
 def test_bad_files_and_values_raise_the_command_lines_messages(tmp_path, scene):
     with pytest.raises(phongcl.InputError, match="no-such.exr: no such file"):
         phongcl.read_gbuffer(str(tmp_path / "no-such.exr"))
-    with pytest.raises(phongcl.InputError, match="missing key 'camera'"):
-        phongcl.Scene.from_dict({"lights": []})
-    with pytest.raises(phongcl.InputError, match=r"unknown light type 'spot' in lights\[0\]"):
-        phongcl.Scene.from_dict({"camera": {"eye": [0, 0, 5]}, "lights": [{"type": "spot"}]})
+    with pytest.raises(phongcl.InputError, match="unknown key 'colour' in the top level"):
+        phongcl.Scene.from_dict({"lights": [], "colour": 1})
+    with pytest.raises(phongcl.InputError, match=r"unknown light type 'area' in lights\[0\]"):
+        phongcl.Scene.from_dict({"camera": {"eye": [0, 0, 5]}, "lights": [{"type": "area"}]})
 
 
 @needs_device
