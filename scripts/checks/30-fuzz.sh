@@ -22,7 +22,7 @@ for target in scene gbuffer; do
   if ! (cd "$work" && "$OLDPWD/$sanitizer_dir/tests/fuzz/fuzz_$target" -max_total_time="$seconds" -timeout=10 \
           -malloc_limit_mb=1024 -rss_limit_mb=2048 -max_len=65536 -print_final_stats=1 \
           "$target" "$OLDPWD/tests/fuzz/corpus/$target") > "$log" 2>&1; then
-    grep -E "ERROR|SUMMARY|runtime error|out-of-memory|malloc\(|#[0-9]+ 0x" "$log" | head -30
+    grep -E -m 30 "ERROR|SUMMARY|runtime error|out-of-memory|malloc\(|#[0-9]+ 0x" "$log" || true
     mkdir -p "$sanitizer_dir/fuzz-findings"
     cp "$work"/crash-* "$work"/leak-* "$work"/oom-* "$work"/timeout-* "$sanitizer_dir/fuzz-findings/" 2> /dev/null || true
     echo "fuzz_$target: FAILED (reproducer in $sanitizer_dir/fuzz-findings/, log above)"
