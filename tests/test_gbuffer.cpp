@@ -373,7 +373,8 @@ TEST(GBufferHostile, HugeDeclaredWindowFailsBeforeAllocating) {
 // whose header declares an attribute of gigabytes, which OpenEXR 3.1's C++ reader allocated before
 // finding the file too short (the fuzz check's 1 GB allocation limit caught it).
 TEST(GBufferHostile, AttributeLargerThanTheFileIsRefusedBeforeOpenExrAllocatesIt) {
-  for (const char* name : {"regression_attribute_size_past_the_file.exr", "regression_attribute_after_the_channel_list.exr"}) {
+  for (const char* name : {"regression_attribute_size_past_the_file.exr", "regression_attribute_after_the_channel_list.exr",
+                           "regression_fixed_size_attribute_declaring_more.exr"}) {
     const fs::path file = fs::path(PHONGCL_SOURCE_DIR) / "tests/fuzz/corpus/gbuffer" / name;
     const std::string message = read_error(file);
     EXPECT_NE(message.find(file.string() + ": truncated or corrupt EXR header (attribute '"), std::string::npos) << message;

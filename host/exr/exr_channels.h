@@ -16,12 +16,14 @@
 #include <openexr.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cstddef>
 #include <cstdint>
 #include <exception>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <map>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -225,6 +227,18 @@ class InputExr {
   // file of a few hundred bytes): every declared size is checked against the bytes that follow it
   // first. Layout: magic and version (8 bytes), then per part attributes "name\0type\0" + int32
   // size + value, each part ending with an empty name (multi-part files end with one more).
+  // The bytes OpenEXR 3.1's reader takes for a value of a fixed-size type, whatever size the
+  // attribute declares (0: a type it reads by the declared size or by content).
+  static std::int64_t fixed_value_size(const std::string& type) {
+    static const std::map<std::string, std::int64_t> sizes{
+        {"box2i", 16}, {"box2f", 16}, {"compression", 1}, {"lineOrder", 1}, {"envmap", 1}, {"deepImageState", 1},
+        {"float", 4}, {"double", 8}, {"int", 4}, {"v2i", 8}, {"v2f", 8}, {"v2d", 16}, {"v3i", 12}, {"v3f", 12},
+        {"v3d", 24}, {"m33f", 36}, {"m33d", 72}, {"m44f", 64}, {"m44d", 128}, {"chromaticities", 32},
+        {"keycode", 28}, {"timecode", 8}, {"rational", 8}, {"tiledesc", 9}};
+    const auto found = sizes.find(type);
+    return found == sizes.end() ? 0 : found->second;
+  }
+
   void check_attribute_sizes() const {
     std::ifstream in(file_, std::ios::binary);
     std::error_code ec;
@@ -235,7 +249,7 @@ class InputExr {
     const auto read_name = [&] {
       std::string name;
       for (char c; in.get(c) && c != '\0';)
-        if (name.size() < 256) name += c;
+        if (name.size() < 256) name += std::isprint(static_cast<unsigned char>(c)) ? c : '?';  // printable in messages
       if (!in) throw InputError(file_, "truncated or corrupt EXR header");
       return name;
     };
@@ -258,7 +272,10 @@ class InputExr {
       if (!in.read(reinterpret_cast<char*>(&size), sizeof size)) throw InputError(file_, "truncated or corrupt EXR header");
       check_size(size);
       // Where the C++ reader goes by content rather than by size, follow it the same way.
-      if (type == "chlist") {  // channels up to an empty name, 16 bytes after each
+      if (const std::int64_t fixed = fixed_value_size(type); fixed > 0) {  // read by type, whatever the size says
+        check_size(fixed);
+        in.seekg(fixed, std::ios::cur);
+      } else if (type == "chlist") {  // channels up to an empty name, 16 bytes after each
         while (!read_name().empty()) in.seekg(16, std::ios::cur);
       } else if (type == "preview") {  // width, height, then 4 bytes per pixel
         std::uint32_t extent[2] = {0, 0};
