@@ -62,15 +62,26 @@ void run_shade(const ShadeArguments& args) {
   const auto start = Clock::now();
   args.outputs.check_destinations();
   args.sequence.start_exr_threads();
-  // The OpenCL platform starts while the G-buffer is read: neither needs the other.
-  std::future<ComputeContext> compute =
-      std::async(std::launch::async, [&] { return make_compute_context(pick_device(args.device)); });
-  const Scene scene = args.inputs.load_scene();
-  const LoadedGBuffer loaded = args.inputs.load_described_gbuffer(scene);
+  // The G-buffer is read while the OpenCL platform starts: neither needs the other. OpenCL stays on
+  // this thread: Oclgrind's memory checks keep per-thread state and crash on calls from another.
+  struct Inputs {
+    Scene scene;
+    LoadedGBuffer loaded;
+    double read_ms = 0.0;
+  };
+  std::future<Inputs> reading = std::async(std::launch::async, [&] {
+    Scene scene = args.inputs.load_scene();
+    LoadedGBuffer loaded = args.inputs.load_described_gbuffer(scene);
+    return Inputs{std::move(scene), std::move(loaded), milliseconds_since(start)};
+  });
+  ComputeContext compute = make_compute_context(pick_device(args.device));
+  const Inputs inputs = reading.get();
+  const Scene& scene = inputs.scene;
+  const LoadedGBuffer& loaded = inputs.loaded;
   const GBuffer& gbuffer = loaded.gbuffer;
-  const double read_ms = milliseconds_since(start);
+  const double read_ms = inputs.read_ms;
   ProgramCache cache(ProgramCache::default_directory());
-  PhongShader shader(compute.get(), cache);
+  PhongShader shader(std::move(compute), cache);
   const ShadeResult result = shader.shade(scene, gbuffer, shade_options(args));
   const auto write_start = Clock::now();
   ImageOutputs outputs = args.outputs;
