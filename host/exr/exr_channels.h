@@ -280,8 +280,10 @@ class InputExr {
       } else if (type == "preview") {  // width, height, then 4 bytes per pixel
         std::uint32_t extent[2] = {0, 0};
         if (!in.read(reinterpret_cast<char*>(extent), sizeof extent)) throw InputError(file_, "truncated or corrupt EXR header");
-        check_size(std::int64_t{4} * extent[0] * extent[1]);
-        in.seekg(std::int64_t{4} * extent[0] * extent[1], std::ios::cur);
+        const std::uint64_t pixels = std::uint64_t{extent[0]} * extent[1];  // exact: two 32-bit factors
+        const std::int64_t declared = pixels > std::uint64_t{INT64_MAX} / 4 ? -1 : static_cast<std::int64_t>(4 * pixels);
+        check_size(declared);
+        in.seekg(declared, std::ios::cur);
       } else {
         in.seekg(size, std::ios::cur);
       }
