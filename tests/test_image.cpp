@@ -236,12 +236,13 @@ TEST(PngImage, ToneMapsAndSrgbEncodingAtKnownPoints) {
   }
 }
 
-// display_rgba8 reads bytes from a table; the formula written out here is the oracle. Values on
+// display_rgba8 reads bytes from tables; the formula written out here is the oracle. Values on
 // a geometric sweep over 2^-20..2^20, 1e-4 apart, so that every byte boundary of every curve is
-// crossed with values on both sides close to it.
+// crossed with values on both sides close to it, at exposures that move the boundaries off the
+// sweep's points; and each float next to a boundary the sweep found.
 TEST(PngImage, DisplayTableEqualsTheFormulaEverywhere) {
-  auto formula = [](float value, ToneMap map) -> int {
-    const double x = value;
+  auto formula = [](float value, ToneMap map, double exposure) -> int {
+    const double x = value * std::exp2(exposure);
     if (std::isnan(x) || x <= 0.0) return 0;
     if (std::isinf(x)) return 255;
     double t = map == ToneMap::clamp ? std::min(x, 1.0) : map == ToneMap::reinhard ? x / (1.0 + x)
@@ -249,19 +250,26 @@ TEST(PngImage, DisplayTableEqualsTheFormulaEverywhere) {
     const double s = t <= 0.0031308 ? 12.92 * t : 1.055 * std::pow(t, 1.0 / 2.4) - 0.055;
     return static_cast<int>(std::lround(std::clamp(s, 0.0, 1.0) * 255.0));
   };
-  std::vector<float> values;
-  for (double x = std::exp2(-20.0); x < std::exp2(20.0); x *= 1.0001) values.push_back(static_cast<float>(x));
-  Image image(static_cast<int>(values.size()), 1);
-  for (std::size_t i = 0; i < values.size(); ++i)
-    for (int c = 0; c < 4; ++c) image.pixel(i)[c] = values[i];
-  for (ToneMap map : {ToneMap::clamp, ToneMap::reinhard, ToneMap::aces}) {
-    const std::vector<std::uint8_t> bytes = display_rgba8(image, {0.0, map});
-    int mismatches = 0;
-    for (std::size_t i = 0; i < values.size(); ++i)
-      if (bytes[4 * i] != formula(values[i], map) && mismatches++ < 5)
-        ADD_FAILURE() << "value " << values[i] << " curve " << static_cast<int>(map) << ": table "
-                      << int(bytes[4 * i]) << ", formula " << formula(values[i], map);
-    EXPECT_EQ(mismatches, 0);
+  std::vector<float> sweep;
+  for (double x = std::exp2(-20.0); x < std::exp2(20.0); x *= 1.0001) sweep.push_back(static_cast<float>(x));
+  for (const double exposure : {0.0, -3.7, 2.3, -40.0, 40.0}) {  // and the API's limits
+    for (ToneMap map : {ToneMap::clamp, ToneMap::reinhard, ToneMap::aces}) {
+      std::vector<float> values = sweep;
+      for (std::size_t i = 1; i < sweep.size(); ++i)
+        if (formula(sweep[i], map, exposure) != formula(sweep[i - 1], map, exposure))
+          for (float v = sweep[i - 1]; v <= sweep[i] && values.size() < 2 * sweep.size(); v = std::nextafter(v, 2 * v))
+            values.push_back(v);
+      Image image(static_cast<int>(values.size()), 1);
+      for (std::size_t i = 0; i < values.size(); ++i)
+        for (int c = 0; c < 4; ++c) image.pixel(i)[c] = values[i];
+      const std::vector<std::uint8_t> bytes = display_rgba8(image, {exposure, map});
+      int mismatches = 0;
+      for (std::size_t i = 0; i < values.size(); ++i)
+        if (bytes[4 * i] != formula(values[i], map, exposure) && mismatches++ < 5)
+          ADD_FAILURE() << "value " << values[i] << " curve " << static_cast<int>(map) << " exposure " << exposure
+                        << ": table " << int(bytes[4 * i]) << ", formula " << formula(values[i], map, exposure);
+      EXPECT_EQ(mismatches, 0);
+    }
   }
 }
 

@@ -12,6 +12,7 @@ const state = {
   selectedLight: 0,
   selectedMaterial: -1,
   sending: false, dirty: false,
+  picking: false,       // a /api/pick under the cursor in flight (its edit follows)
   imageSize: [0, 0],
 };
 
@@ -310,19 +311,19 @@ function pixelUnder(event) {
   return x >= 0 && y >= 0 && x < width && y < height ? [x, y] : null;
 }
 
-let picking = false, pendingPick = null;
+let pendingPick = null;
 
 async function pickAt(pixel, apply) {
   pendingPick = { pixel, apply };
-  if (picking) return;
-  picking = true;
+  if (state.picking) return;
+  state.picking = true;
   while (pendingPick) {
     const { pixel: [x, y], apply: use } = pendingPick;
     pendingPick = null;
     const response = await fetch(`api/pick?x=${x}&y=${y}`);
     if (response.ok) use(await response.json());
   }
-  picking = false;
+  state.picking = false;
 }
 
 function placeSelectedLight(pick) {

@@ -1,14 +1,18 @@
-// HDR to 8-bit display values: exposure, tone map, sRGB. A table over the tone-mapped value makes
-// it a few nanoseconds a channel (the server encodes every frame of a drag) and exact: each table
-// cell holds the byte at its start and the first value where the byte steps up, found by bisection
-// on the exact formula, so every output equals lround(255 * srgb(tone_map(x))).
+// HDR to 8-bit display values: exposure, tone map, sRGB, every output equal to
+// lround(255 * srgb(tone_map(x))). A table over the tone-mapped value makes the exact function
+// cheap (each cell holds the byte at its start and the first value where the byte steps up, found by
+// bisection on the formula); DisplayEncoder bisects that function once more, over the input floats,
+// so that a frame's channels (the server encodes every frame of a drag) need no arithmetic at all.
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <stdexcept>
 #include <vector>
 
+#include "image/display_encoder.h"
 #include "image/image.h"
 
 namespace phongcl {
@@ -70,26 +74,70 @@ std::uint8_t display_color(const SrgbTable& table, float value, double scale, To
   return table.byte(std::clamp(tone_map(x, map), 0.0, 1.0));
 }
 
-std::uint8_t display_alpha(float alpha) { return std::isnan(alpha) ? 0 : to_byte(alpha); }
+// lround(255 * clamp(alpha)): the product of a float and 255 is exact in a double, so adding a
+// half and truncating rounds exactly as lround does.
+std::uint8_t display_alpha(float alpha) {
+  return std::isnan(alpha) ? 0 : static_cast<std::uint8_t>(std::clamp(double(alpha), 0.0, 1.0) * 255.0 + 0.5);
+}
+
+const SrgbTable& srgb_table() {
+  static const SrgbTable table;
+  return table;
+}
+
+constexpr std::uint32_t kInfinityBits = 0x7f800000u;  // above it: NaN; sign bit set: negative
+constexpr int kCoarseShift = 16;
 
 }  // namespace
 
-void display_rgba8(const Image& image, const DisplaySettings& display, std::size_t first_row, std::size_t rows,
-                   std::uint8_t* out) {
-  static const SrgbTable table;
+DisplayEncoder::DisplayEncoder(const DisplaySettings& display) : coarse_((kInfinityBits >> kCoarseShift) + 1) {
+  const SrgbTable& table = srgb_table();
   const double scale = std::exp2(display.exposure_stops);
+  const auto exact = [&](std::uint32_t bits) {
+    return display_color(table, std::bit_cast<float>(bits), scale, display.tone_map);
+  };
+  for (int k = 0; k < 255; ++k) {  // exact(0) == 0 <= k < 255 == exact(+Inf)
+    std::uint32_t below = 0, above = kInfinityBits;
+    while (above - below > 1) {
+      const std::uint32_t middle = below + (above - below) / 2;
+      (exact(middle) > k ? above : below) = middle;
+    }
+    steps_[k] = above;
+  }
+  steps_[255] = std::numeric_limits<std::uint32_t>::max();  // no byte above 255
+  // A bucket spans a factor of at most 1 + 2^-7 (ln: 0.0078) and the steepest curve (clamp, near
+  // 1) climbs 112 bytes per unit of ln x, so steps are at least 0.0089 apart: one per bucket at most.
+  for (int k = 0; k + 1 < 255; ++k)
+    if (steps_[k] >> kCoarseShift == steps_[k + 1] >> kCoarseShift)
+      throw std::logic_error("DisplayEncoder: two byte steps in one table bucket");
+  int byte = 0;
+  for (std::size_t bucket = 0; bucket < coarse_.size(); ++bucket) {
+    while (byte < 255 && steps_[byte] <= (bucket << kCoarseShift)) ++byte;
+    coarse_[bucket] = static_cast<std::uint8_t>(byte);
+  }
+}
+
+void DisplayEncoder::encode_rows(const Image& image, std::size_t first_row, std::size_t rows, std::uint8_t* out) const {
+  const std::uint8_t* coarse = coarse_.data();
+  const std::uint32_t* steps = steps_.data();
+  const auto color_byte = [&](float value) {  // branch-free: values are not predictable
+    std::uint32_t bits = std::bit_cast<std::uint32_t>(value);
+    bits = bits > kInfinityBits ? 0 : bits;  // NaN or negative: as 0
+    const int byte = coarse[bits >> kCoarseShift];
+    return static_cast<std::uint8_t>(byte + (bits >= steps[byte] ? 1 : 0));
+  };
   const std::size_t first = first_row * image.width, count = rows * image.width;
   for (std::size_t i = first; i < first + count; ++i) {
     const float* in = image.pixel(i);
     std::uint8_t* bytes = out + 4 * i;
-    for (int c = 0; c < 3; ++c) bytes[c] = display_color(table, in[c], scale, display.tone_map);
+    for (int c = 0; c < 3; ++c) bytes[c] = color_byte(in[c]);
     bytes[3] = display_alpha(in[3]);
   }
 }
 
 std::vector<std::uint8_t> display_rgba8(const Image& image, const DisplaySettings& display) {
   std::vector<std::uint8_t> bytes(4 * image.pixel_count());
-  display_rgba8(image, display, 0, image.height, bytes.data());
+  DisplayEncoder(display).encode_rows(image, 0, image.height, bytes.data());
   return bytes;
 }
 

@@ -56,10 +56,8 @@ struct DisplaySettings {
   double exposure_stops = 0.0;
   ToneMap tone_map = ToneMap::reinhard;
 };
-// 8-bit sRGB RGBA of rows [first_row, first_row + rows) into out (4 bytes a pixel, indexed from
-// the image's first pixel), and of the whole image. NaN displays as 0, +Inf as white.
-void display_rgba8(const Image& image, const DisplaySettings& display, std::size_t first_row, std::size_t rows,
-                   std::uint8_t* out);
+// 8-bit sRGB RGBA of the whole image (image/display_encoder.h: of rows, for many frames). NaN
+// displays as 0, +Inf as white.
 std::vector<std::uint8_t> display_rgba8(const Image& image, const DisplaySettings& display);
 // A PNG (tagged sRGB, fast zlib settings) of display_rgba8's bytes, in memory. Throws
 // std::runtime_error with libpng's message when it refuses (e.g. an empty image).

@@ -24,9 +24,9 @@ std::string encode_png(const std::vector<std::uint8_t>& rgba, int width, int hei
   png.height = static_cast<png_uint_32>(height);
   png.format = PNG_FORMAT_RGBA;
   png.flags = PNG_IMAGE_FLAG_FAST;
-  png_alloc_size_t size = 0;
-  if (!png_image_write_to_memory(&png, nullptr, &size, 0, rgba.data(), 0, nullptr))
-    throw std::runtime_error(png.message);
+  // Into a buffer of the largest size the image can take: asking for the size first would
+  // compress twice.
+  png_alloc_size_t size = PNG_IMAGE_PNG_SIZE_MAX(png);
   std::string bytes(size, '\0');
   if (!png_image_write_to_memory(&png, bytes.data(), &size, 0, rgba.data(), 0, nullptr))
     throw std::runtime_error(png.message);

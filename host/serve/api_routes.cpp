@@ -187,7 +187,8 @@ void ApiRoutes::send_frame(const Query& query, const RenderedFrame& frame, httpl
   const Image& full = term_image(frame.frame, term);
   const int width = static_cast<int>(query.integer("width", 1, full.width, full.width));
   const Clock::time_point start = Clock::now();
-  const std::string bytes = encode_image(scale_to_width(full, width), format, display);
+  const std::string bytes =
+      width == full.width ? encode_image(full, format, display) : encode_image(scale_to_width(full, width), format, display);
   const double encode_ms = elapsed_ms(start);
   {
     std::lock_guard lock(encode_mutex_);

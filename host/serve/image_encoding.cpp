@@ -14,19 +14,22 @@
 #include <stdexcept>
 #include <vector>
 
+#include "image/display_encoder.h"
+
 namespace phongcl {
 
 namespace {
 
-// Display bytes in row blocks on every core: at 1080p this is the largest part of encoding.
+// Display bytes in row blocks on every core.
 std::vector<std::uint8_t> parallel_display_bytes(const Image& image, const DisplaySettings& display) {
+  const DisplayEncoder encoder(display);
   std::vector<std::uint8_t> bytes(4 * image.pixel_count());
   constexpr int kRowsPerBlock = 32;
   const int blocks = (image.height + kRowsPerBlock - 1) / kRowsPerBlock;
 #pragma omp parallel for schedule(dynamic)
   for (int block = 0; block < blocks; ++block) {
     const int first = block * kRowsPerBlock;
-    display_rgba8(image, display, first, std::min(kRowsPerBlock, image.height - first), bytes.data());
+    encoder.encode_rows(image, first, std::min(kRowsPerBlock, image.height - first), bytes.data());
   }
   return bytes;
 }

@@ -129,7 +129,7 @@ def settle(driver, url):
         _, _, headers = http("GET", url + "api/scene")
         version = int(headers["X-Scene-Version"])
         if driver.run("const s = window.phongclState, d = window.phongclMetrics.displayed;"
-                      "return !s.sending && !s.dirty && d.length > 0 && d[d.length - 1].sceneVersion >= arguments[0];",
+                      "return !s.picking && !s.sending && !s.dirty && d.length > 0 && d[d.length - 1].sceneVersion >= arguments[0];",
                       version):
             return version
         time.sleep(0.05)
