@@ -389,6 +389,49 @@ TEST(Layouts, AovStyleWithMaterialAlbedoAndAlpha) {
   expect_same_gbuffer(read.gbuffer, with_table_colors(scene, g));
 }
 
+// An aov file's beauty: the first complete source of RGBA.*, beauty.*, R G B; a partial one is no
+// beauty (and no error: it is never required); the phongcl layout has none.
+TEST(Layouts, AovBeautyIsTheFirstCompleteSourceAndNeverRequired) {
+  TempDir dir;
+  const auto [scene, g] = default_scene();
+  ReadOptions with_beauty;
+  with_beauty.beauty = true;
+  Planes3 red, green;
+  for (int c = 0; c < 3; ++c) {
+    red[c].assign(g.pixel_count(), c == 0 ? 0.75f : 0.0f);
+    green[c].assign(g.pixel_count(), c == 1 ? 0.25f : 0.0f);
+  }
+  Channels channels;
+  add3(channels, "P", "XYZ", g.position);
+  add3(channels, "N", "XYZ", g.normal);
+  add3(channels, "beauty", "RGB", red);
+  for (int c = 0; c < 3; ++c) channels.push_back({std::string(1, "RGB"[c]), green[c]});
+  channels.push_back({"RGBA.R", red[0]});  // RGBA without G and B: incomplete, skipped
+  write_file(dir / "a.exr", g, channels);
+  const GBufferRead read = read_gbuffer(dir / "a.exr", with_beauty);
+  EXPECT_EQ(read.beauty, "beauty");
+  EXPECT_EQ(read.gbuffer.beauty, red);
+  EXPECT_EQ(read.description, "aov (P, N; no material pass: material 0)");
+
+  channels.erase(std::remove_if(channels.begin(), channels.end(),
+                                [](const auto& channel) { return channel.name.starts_with("beauty."); }),
+                 channels.end());
+  write_file(dir / "b.exr", g, channels);
+  const GBufferRead rgb = read_gbuffer(dir / "b.exr", with_beauty);
+  EXPECT_EQ(rgb.beauty, "RGB");
+  EXPECT_EQ(rgb.gbuffer.beauty, green);
+
+  channels.erase(std::remove_if(channels.begin(), channels.end(), [](const auto& channel) { return channel.name == "B"; }),
+                 channels.end());
+  write_file(dir / "c.exr", g, channels);
+  const GBufferRead partial = read_gbuffer(dir / "c.exr", with_beauty);
+  EXPECT_FALSE(partial.gbuffer.has_beauty());
+  EXPECT_EQ(partial.beauty, "");
+
+  write_gbuffer(g, dir / "native.exr");
+  EXPECT_FALSE(read_gbuffer(dir / "native.exr", with_beauty).gbuffer.has_beauty());
+}
+
 TEST(Layouts, UserChannelMappingForAnythingElse) {
   TempDir dir;
   const auto [scene, g] = default_scene();

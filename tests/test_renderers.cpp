@@ -203,6 +203,40 @@ TEST(BlenderLayouts, FileOutputNodeIsBlenderWithoutALayer) {
   }
 }
 
+// The renderer's own image rides along only when asked for: the view layer's Combined (the
+// multilayer Cycles file also holds the compositor's Composite.Combined, here a copy of it), a File
+// Output node's Image; every fixture has one, and the shading passes are the same either way.
+TEST(BlenderBeauty, CombinedIsReadOnlyWhenAskedAndIsTheLayersOwn) {
+  ReadOptions with_beauty;
+  with_beauty.beauty = true;
+  const struct {
+    const char* file;
+    const char* label;
+    std::string channel;  // prefix of the R, G, B channels
+  } cases[] = {{"cycles.exr", "Combined", "ViewLayer.Combined."}, {"eevee.exr", "Combined", "ViewLayer.Combined."},
+               {"transparent.exr", "Combined", "ViewLayer.Combined."}, {"file_output.exr", "Image", "Image."}};
+  for (const auto& c : cases) {
+    const GBufferRead plain = read_gbuffer(kFixtures / c.file, {});
+    EXPECT_FALSE(plain.gbuffer.has_beauty()) << c.file;
+    EXPECT_EQ(plain.beauty, "") << c.file;
+    const GBufferRead read = read_gbuffer(kFixtures / c.file, with_beauty);
+    ASSERT_TRUE(read.gbuffer.has_beauty()) << c.file;
+    EXPECT_EQ(read.beauty, c.label) << c.file;
+    EXPECT_EQ(read.description, plain.description) << c.file;
+    EXPECT_EQ(read.gbuffer.material, plain.gbuffer.material) << c.file;
+    const Passes p = read_passes(kFixtures / c.file, {c.channel + "R", c.channel + "G", c.channel + "B"});
+    double lit = 0.0;
+    for (int y = 0; y < p.height; ++y)
+      for (int x = 0; x < p.width; ++x)
+        for (int ch = 0; ch < 3; ++ch) {
+          const float expected = p.at(c.channel + "RGB"[ch], x, y);
+          ASSERT_EQ(read.gbuffer.beauty[ch][std::size_t(y) * p.width + x], expected) << c.file << " at " << x << ", " << y;
+          lit += expected;
+        }
+    EXPECT_GT(lit, 0.0) << c.file << ": the render is not black";
+  }
+}
+
 TEST(BlenderLayouts, SkySamplesAreBackgroundWhateverTheNormalSays) {
   const Passes p = read_passes(kFixtures / "cycles.exr", kCyclesChannels);
   const GBuffer g = read_gbuffer(kFixtures / "cycles.exr", {}).gbuffer;

@@ -20,6 +20,7 @@
 
 #include "cl/device.h"
 #include "cli_runner.h"
+#include "gbuffer/layouts.h"
 #include "reference/reference.h"
 #include "serve/relight_server.h"
 #include "temp_dir.h"
@@ -38,8 +39,10 @@ std::string file_text(const std::filesystem::path& file) { return testing::read_
 class RunningServer {
  public:
   explicit RunningServer(const std::filesystem::path& save_path = {})
-      : session_(read_gbuffer(PHONGCL_SOURCE_DIR "/scenes/default/gbuffer.exr"), ""),
-        live_(session_, file_text(kSceneFile), kSceneFile, RenderSettings{}),
+      : RunningServer(read_gbuffer(PHONGCL_SOURCE_DIR "/scenes/default/gbuffer.exr"), kSceneFile, save_path) {}
+  RunningServer(GBuffer gbuffer, const std::filesystem::path& scene_file, const std::filesystem::path& save_path = {})
+      : session_(std::move(gbuffer), ""),
+        live_(session_, file_text(scene_file), scene_file, RenderSettings{}),
         server_(live_, {"127.0.0.1", 0, save_path, "test device"}) {
     port_ = server_.bind();
     thread_ = std::thread([this] { server_.run(); });
@@ -349,6 +352,48 @@ TEST_F(Serve, PickReadsTheGBufferUnderTheCursor) {
   EXPECT_FALSE(none["shaded"].get<bool>());
   expect_error(client.Get("/api/pick?x=640&y=0"), 400, "'x' must be in [0, 639]");
   expect_error(client.Get("/api/pick?x=1"), 400, "required");
+}
+
+TEST_F(Serve, BeautyIs404WithoutOne) {
+  auto client = server_->client();
+  expect_error(client.Get("/api/beauty?format=png"), 404, "no beauty pass");
+  EXPECT_EQ(body_json(client.Get("/api/stats"))["beauty"], false);
+}
+
+// A Blender render's Combined, as the G-buffer read it, in every format, at a width, and its
+// parameters checked like the frame's.
+TEST(ServeBeauty, ServesTheRenderersOwnImage) {
+  if (!testing::have_opencl_device()) GTEST_SKIP() << "no OpenCL device on this machine";
+  const std::filesystem::path fixtures = PHONGCL_SOURCE_DIR "/tests/fixtures/blender";
+  ReadOptions options;
+  options.beauty = true;
+  GBuffer gbuffer = read_gbuffer(fixtures / "cycles.exr", options).gbuffer;
+  ASSERT_TRUE(gbuffer.has_beauty());
+  const Planes3 beauty = gbuffer.beauty;
+  RunningServer server(std::move(gbuffer), fixtures / "scene.json");
+  auto client = server.client();
+  EXPECT_EQ(body_json(client.Get("/api/stats"))["beauty"], true);
+
+  const auto exr = client.Get("/api/beauty?format=exr");
+  ASSERT_EQ(exr->status, 200) << exr->body;
+  const Image image = decode_exr(exr->body);
+  ASSERT_EQ(image.pixel_count(), beauty[0].size());
+  for (std::size_t i = 0; i < image.pixel_count(); ++i) {
+    for (int c = 0; c < 3; ++c) ASSERT_EQ(image.pixel(i)[c], beauty[c][i]) << "pixel " << i << " channel " << c;
+    ASSERT_EQ(image.pixel(i)[3], 1.0f) << "pixel " << i;
+  }
+  int width = 0, height = 0;
+  const auto png = client.Get("/api/beauty?format=png&exposure=1&tonemap=clamp");
+  ASSERT_EQ(png->status, 200);
+  EXPECT_EQ(decode_png(png->body, width, height), display_rgba8(image, {1.0, ToneMap::clamp}));
+  const auto small = client.Get("/api/beauty?format=png&width=32");
+  ASSERT_EQ(small->status, 200);
+  decode_png(small->body, width, height);
+  EXPECT_EQ(width, 32);
+  EXPECT_EQ(height, 24);
+  expect_error(client.Get("/api/beauty?aov=diffuse"), 400, "unknown parameter 'aov'");
+  expect_error(client.Get("/api/beauty?format=gif"), 400, "unknown image format 'gif'");
+  expect_error(client.Get("/api/beauty?width=65"), 400, "'width' must be in [1, 64]");
 }
 
 TEST_F(Serve, SaveWithoutAPathIs409) {

@@ -9,6 +9,10 @@ const state = {
   disabled: new Set(),  // lights switched off: kept in the page, left out of what is sent
   sceneVersion: 0,      // the server's version of the scene we hold
   frameVersion: 0,      // the newest frame shown
+  receivedVersion: 0,   // the newest frame received (the next poll asks for a newer one)
+  receivedCount: 0, shownSequence: 0,  // frames in order of arrival: a slow decode never overwrites a newer one
+  shown: null,          // the ImageBitmap on screen
+  hasBeauty: false, beauty: null, beautyQuery: '',  // the renderer's own image, for the split
   selectedLight: 0,
   selectedMaterial: -1,
   sending: false, dirty: false,
@@ -90,41 +94,47 @@ function viewQuery() {
 }
 
 let pollAbort = null;
-let shownUrl = null;
 
+// The poll for the next frame goes out as soon as a frame's bytes are in, so the server shades and
+// encodes the next one while this one decodes (off the main thread: createImageBitmap) and draws.
 async function pollFrames() {
   for (;;) {
     pollAbort = new AbortController();
-    let response;
+    const asked = performance.now();
+    let response, blob;
     try {
-      response = await fetch(`api/frame?after=${state.frameVersion}&timeout_ms=20000&${viewQuery()}`,
+      response = await fetch(`api/frame?after=${state.receivedVersion}&timeout_ms=20000&${viewQuery()}`,
                              { signal: pollAbort.signal });
+      if (response.status === 204) continue;
+      if (!response.ok) {
+        setStatus(await errorOf(response), true);
+        state.receivedVersion = Number(response.headers.get('X-Frame-Version')) || state.receivedVersion;
+        continue;
+      }
+      const headed = performance.now();
+      blob = await response.blob();
+      state.receivedVersion = Number(response.headers.get('X-Frame-Version'));
+      showFrame(blob, response, ++state.receivedCount, { asked, headed, received: performance.now() });
     } catch (error) {
       if (error.name !== 'AbortError') await new Promise((r) => setTimeout(r, 1000));
-      continue;
     }
-    if (response.status === 204) continue;
-    if (!response.ok) {
-      setStatus(await errorOf(response), true);
-      state.frameVersion = Number(response.headers.get('X-Frame-Version')) || state.frameVersion;
-      continue;
-    }
-    await showFrame(response);
   }
 }
 
-async function showFrame(response) {
+async function showFrame(blob, response, sequence, times) {
+  let bitmap;
+  try { bitmap = await createImageBitmap(blob); } catch { return; /* not an image: a newer frame follows */ }
+  if (sequence <= state.shownSequence) { bitmap.close(); return; }  // a later frame decoded first
+  state.shownSequence = sequence;
+  if (state.shown) state.shown.close();
+  state.shown = bitmap;
+  drawView();
+  const now = performance.now();
   const frameVersion = Number(response.headers.get('X-Frame-Version'));
   const sceneVersion = Number(response.headers.get('X-Scene-Version'));
-  const url = URL.createObjectURL(await response.blob());
-  const view = $('view');
-  view.src = url;
-  try { await view.decode(); } catch { /* a newer src replaced it */ }
-  const now = performance.now();
-  if (shownUrl) URL.revokeObjectURL(shownUrl);
-  shownUrl = url;
   state.frameVersion = frameVersion;
-  metrics.displayed.push({ time: now, frameVersion, sceneVersion });
+  metrics.displayed.push({ time: now, frameVersion, sceneVersion, wait_ms: times.headed - times.asked,
+                           transfer_ms: times.received - times.headed, decode_ms: now - times.received });
   for (const e of metrics.edits) {
     if (e.version !== null && e.version > 0 && e.version <= sceneVersion && e.shown === undefined) {
       e.shown = now;
@@ -136,10 +146,47 @@ async function showFrame(response) {
   if (sceneVersion > state.sceneVersion && !state.sending && !state.dirty) loadScene();
 }
 
+// The relit frame, and right of the split the renderer's own image at the same size.
+function drawView() {
+  const view = $('view'), frame = state.shown;
+  if (!frame) return;
+  if (view.width !== frame.width || view.height !== frame.height) {
+    view.width = frame.width;
+    view.height = frame.height;
+  }
+  const context = view.getContext('2d');
+  context.drawImage(frame, 0, 0);
+  const split = Number($('split').value) / 100;
+  if (state.beauty && split < 1) {
+    const x = Math.round(split * view.width);
+    context.drawImage(state.beauty, (x / view.width) * state.beauty.width, 0,
+                      ((view.width - x) / view.width) * state.beauty.width, state.beauty.height,
+                      x, 0, view.width - x, view.height);
+    context.fillStyle = '#e8a33d';
+    context.fillRect(x, 0, 1, view.height);
+  }
+}
+
+// The beauty pass with the view's display settings, fetched again when they change.
+async function loadBeauty() {
+  if (!state.hasBeauty) return;
+  const query = `format=png&exposure=${$('exposure').value}&tonemap=${$('tonemap').value}${streamWidth()}`;
+  if (query === state.beautyQuery) return;
+  state.beautyQuery = query;
+  const response = await fetch(`api/beauty?${query}`);
+  if (!response.ok) return setStatus(await errorOf(response), true);
+  const bitmap = await createImageBitmap(await response.blob());
+  if (query !== state.beautyQuery) { bitmap.close(); return; }
+  if (state.beauty) state.beauty.close();
+  state.beauty = bitmap;
+  drawView();
+}
+
 // View changes re-encode the newest frame: ask for anything newer than the one before it.
 function viewChanged() {
-  state.frameVersion = Math.max(0, state.frameVersion - 1);
+  state.receivedVersion = Math.max(0, state.frameVersion - 1);
   if (pollAbort) pollAbort.abort();
+  loadBeauty();
 }
 
 // ---- Timings and kernel ----
@@ -154,6 +201,8 @@ function showTimings(response) {
     ['shade (server)', response.headers.get('X-Shade-Ms'), 'ms'],
     ['kernel', response.headers.get('X-Kernel-Ms'), 'ms'],
     ['encode', response.headers.get('X-Encode-Ms'), 'ms'],
+    ['transfer (page)', metrics.displayed.at(-1).transfer_ms, 'ms'],
+    ['decode and draw (page)', metrics.displayed.at(-1).decode_ms, 'ms'],
     ['frames shown', (clientFrames.length / 2).toFixed(1), 'fps'],
     ['input to image (median of 20)', recent.length ? recent[recent.length >> 1].toFixed(0) : '-', 'ms'],
   ];
@@ -169,6 +218,11 @@ async function refreshKernel() {
     if (stats.frame.error) setStatus(stats.frame.error, true);
   }
   state.imageSize = [stats.width, stats.height];  // the G-buffer's pixels, whatever size is streamed
+  if (stats.beauty !== state.hasBeauty) {
+    state.hasBeauty = stats.beauty;
+    $('split-row').hidden = !stats.beauty;
+    loadBeauty();
+  }
   $('precision').value = stats.settings.precision;
   $('save-server').disabled = !stats.save_path;
   $('save-server').title = stats.save_path ? `writes ${stats.save_path}` : 'start phongcl serve with --save FILE';
@@ -238,13 +292,100 @@ function genericField(object, key, onChange) {
   return el('label', {}, [key, input]);
 }
 
-const lightKnownKeys = new Set(['type', 'position', 'direction', 'color']);
+// The light model's fields (scene/scene.h) with their own controls; any other gets genericField.
+const lightKnownKeys = new Set(['type', 'position', 'direction', 'color', 'falloff', 'range', 'cone_angle_deg',
+                                'penumbra_angle_deg', 'materials']);
+const falloffs = ['none', 'linear', 'quadratic', 'cubic'];
+const defaultRange = 10;
+
+// A slider with its value beside it; `bounds()` gives [min, max] as the other fields allow now.
+function slider(label, role, value, bounds, step, onChange) {
+  const input = el('input', { type: 'range', step, value });
+  const shown = el('output', { textContent: `${value}°` });
+  input.dataset.role = role;
+  const limit = () => { [input.min, input.max] = bounds(); };
+  limit();
+  input.value = value;
+  input.addEventListener('input', () => { shown.textContent = `${input.value}°`; onChange(Number(input.value)); });
+  return { node: el('label', {}, [label, input, shown]), input, limit, shown };
+}
+
+// Falloff and range: point and spot lights only (the scene file refuses them on directional ones).
+function attenuationControls(light) {
+  const falloff = el('select', {}, falloffs.map((f) => el('option', { value: f, textContent: f })));
+  falloff.value = light.falloff || 'none';
+  falloff.dataset.role = 'falloff';
+  falloff.addEventListener('change', () => {
+    if (falloff.value === 'none') delete light.falloff; else light.falloff = falloff.value;
+    edited();
+  });
+  const range = el('input', { type: 'number', min: 0.001, step: 0.5, value: light.range ?? defaultRange, disabled: light.range === undefined });
+  range.dataset.role = 'range';
+  const unlimited = el('input', { type: 'checkbox', checked: light.range === undefined, title: 'no range: the light reaches everywhere' });
+  unlimited.dataset.role = 'no-range';
+  const setRange = () => {
+    range.disabled = unlimited.checked;
+    if (unlimited.checked) delete light.range;
+    else if (Number(range.value) > 0) light.range = Number(range.value);
+    else return setStatus('range must be > 0', true);
+    edited();
+  };
+  range.addEventListener('input', setRange);
+  unlimited.addEventListener('change', setRange);
+  return el('div', {}, [el('label', {}, ['falloff', falloff]), el('label', {}, ['range', range]),
+                        el('label', {}, [unlimited, 'no range'])]);
+}
+
+// The spot's full cone angle A and soft edge P within the scene file's bounds: 0 < A < 180,
+// P >= 0, A/2 + P <= 90 (a wider cone leaves less room for the edge, which is clamped to fit).
+function coneControls(light) {
+  let penumbra;
+  const cone = slider('cone', 'cone', light.cone_angle_deg, () => [0.5, 179.5], 0.5, (a) => {
+    light.cone_angle_deg = a;
+    penumbra.limit();
+    if ((light.penumbra_angle_deg ?? 0) > 90 - a / 2) {
+      light.penumbra_angle_deg = 90 - a / 2;
+      penumbra.input.value = light.penumbra_angle_deg;
+      penumbra.shown.textContent = `${light.penumbra_angle_deg}°`;
+    }
+    edited();
+  });
+  penumbra = slider('penumbra', 'penumbra', light.penumbra_angle_deg ?? 0, () => [0, 90 - light.cone_angle_deg / 2], 0.25,
+                    (p) => { light.penumbra_angle_deg = p; edited(); });
+  return el('div', {}, [cone.node, penumbra.node]);
+}
+
+// Light linking: the materials a light reaches ("all" = no list in the scene file).
+function linkControls(light) {
+  const materials = state.scene.materials || [];
+  const all = el('input', { type: 'checkbox', checked: light.materials === undefined });
+  all.dataset.role = 'materials-all';
+  const boxes = materials.map((m, i) => {
+    const box = el('input', { type: 'checkbox', checked: light.materials === undefined || light.materials.includes(i),
+                              disabled: light.materials === undefined });
+    box.dataset.role = `material-${i}`;
+    return box;
+  });
+  const update = () => {
+    boxes.forEach((box) => { box.disabled = all.checked; if (all.checked) box.checked = true; });
+    if (all.checked) delete light.materials;
+    else light.materials = boxes.flatMap((box, i) => (box.checked ? [i] : []));
+    edited();
+  };
+  all.addEventListener('change', update);
+  boxes.forEach((box) => box.addEventListener('change', update));
+  return el('div', { className: 'links' }, [
+    'lights', el('label', {}, [all, 'all']),
+    ...boxes.map((box, i) => el('label', { title: materials[i].name || '' }, [box, String(i)])),
+  ]);
+}
 
 function renderLights() {
   const list = $('lights');
   list.replaceChildren();
   (state.scene.lights || []).forEach((light, index) => {
-    const enabled = el('input', { type: 'checkbox', checked: !state.disabled.has(index), title: 'on/off' });
+    const enabled = el('input', { type: 'checkbox', checked: !state.disabled.has(index),
+                                  title: 'on/off (a light switched off is left out of what is saved)' });
     enabled.addEventListener('change', () => {
       if (enabled.checked) state.disabled.delete(index); else state.disabled.add(index);
       edited();
@@ -258,11 +399,14 @@ function renderLights() {
       renderLights();
       edited();
     });
-    const where = light.type === 'directional' ? 'direction' : 'position';
+    const vectors = light.type === 'directional' ? ['direction'] : light.type === 'spot' ? ['position', 'direction'] : ['position'];
     const item = el('li', { className: index === state.selectedLight ? 'selected' : '' }, [
       el('div', { className: 'head' }, [enabled, el('span', { className: 'grow', textContent: `${index}: ${light.type}` }), remove]),
       colorInput(light.color || [1, 1, 1], (c) => { light.color = c; edited(); }, 'light'),
-      el('div', {}, [vectorInput(light[where] || [0, 0, 0], (v) => { light[where] = v; edited(); }, where)]),
+      ...vectors.map((key) => el('div', {}, [vectorInput(light[key] || [0, 0, 0], (v) => { light[key] = v; edited(); }, key)])),
+      ...(light.type === 'directional' ? [] : [attenuationControls(light)]),
+      ...(light.type === 'spot' ? [coneControls(light)] : []),
+      linkControls(light),
       ...Object.keys(light).filter((k) => !lightKnownKeys.has(k)).map((k) => genericField(light, k, edited)),
     ]);
     item.dataset.light = index;
@@ -275,10 +419,16 @@ function renderLights() {
   });
 }
 
+const newLights = {
+  point: () => ({ type: 'point', position: [0, 2, 2], color: [1, 1, 1] }),
+  directional: () => ({ type: 'directional', direction: [0, -1, -1], color: [0.5, 0.5, 0.5] }),
+  spot: () => ({ type: 'spot', position: [0, 2, 2], direction: [0, -1, -1], color: [1, 1, 1], cone_angle_deg: 40,
+                 penumbra_angle_deg: 5 }),
+};
+
 function addLight(type) {
   state.scene.lights = state.scene.lights || [];
-  state.scene.lights.push(type === 'point' ? { type, position: [0, 2, 2], color: [1, 1, 1] }
-                                           : { type, direction: [0, -1, -1], color: [0.5, 0.5, 0.5] });
+  state.scene.lights.push(newLights[type]());
   state.selectedLight = state.scene.lights.length - 1;
   renderLights();
   edited();
@@ -326,18 +476,22 @@ async function pickAt(pixel, apply) {
   state.picking = false;
 }
 
+// A point or spot light goes `distance` along the normal (a spot aims back at the point); a
+// directional light shines along -normal.
 function placeSelectedLight(pick) {
   const light = (state.scene.lights || [])[state.selectedLight];
   if (!pick.shaded || !light) return;
   const distance = Number($('distance').value);
-  if (light.type === 'directional') light.direction = pick.normal.map((n) => -n);
-  else light.position = pick.position.map((p, i) => p + distance * pick.normal[i]);
+  if (light.type !== 'point') light.direction = pick.normal.map((n) => -n);
+  if (light.type !== 'directional') light.position = pick.position.map((p, i) => p + distance * pick.normal[i]);
   edited();
   const item = $('lights').querySelector(`li[data-light="${state.selectedLight}"]`);
-  if (item) {
-    const where = light.type === 'directional' ? light.direction : light.position;
-    item.querySelectorAll('input.xyz').forEach((input, i) => { input.value = +where[i].toFixed(4); });
-  }
+  for (const key of ['position', 'direction'])
+    if (item && light[key])
+      light[key].forEach((v, i) => {
+        const input = item.querySelector(`input[data-role="${key}-${'xyz'[i]}"]`);
+        if (input) input.value = +v.toFixed(4);
+      });
 }
 
 function selectMaterialAt(pick) {
@@ -394,9 +548,11 @@ async function saveOnServer() {
 async function start() {
   $('add-point').addEventListener('click', () => addLight('point'));
   $('add-directional').addEventListener('click', () => addLight('directional'));
+  $('add-spot').addEventListener('click', () => addLight('spot'));
   for (const id of ['tonemap', 'aov', 'format', 'fit']) $(id).addEventListener('change', viewChanged);
   window.addEventListener('resize', viewChanged);
   $('exposure').addEventListener('input', () => { $('exposure-value').textContent = $('exposure').value; viewChanged(); });
+  $('split').addEventListener('input', () => { $('split-value').textContent = `${$('split').value}%`; drawView(); });
   $('precision').addEventListener('change', async () => {
     const response = await fetch('api/settings', {
       method: 'PUT', headers: { 'Content-Type': 'application/json' }, body: JSON.stringify({ precision: $('precision').value }),

@@ -105,8 +105,9 @@ Scene SceneInputs::load_scene() const {
   return camera_space() ? to_camera_space(scene) : scene;
 }
 
-LoadedGBuffer SceneInputs::load_described_gbuffer(const Scene& scene) const {
+LoadedGBuffer SceneInputs::load_described_gbuffer(const Scene& scene, bool with_beauty) const {
   ReadOptions options;
+  options.beauty = with_beauty;
   options.layout = parse_layout(layout);
   options.view_layer = view_layer;
   options.max_pixels = max_pixels;

@@ -42,7 +42,8 @@ struct SceneInputs {
   // Reads the G-buffer in the chosen layout and, where it has depth but no position, rebuilds
   // positions from depth and scene.camera (so call it with the scene load_scene() returned).
   // Throws InputError when neither --gbuffer nor the scene's "gbuffer" entry names a file.
-  LoadedGBuffer load_described_gbuffer(const Scene& scene) const;
+  // `with_beauty`: also the renderer's own image (GBuffer::beauty), where the file has one.
+  LoadedGBuffer load_described_gbuffer(const Scene& scene, bool with_beauty = false) const;
   GBuffer load_gbuffer(const Scene& scene) const { return load_described_gbuffer(scene).gbuffer; }
 };
 

@@ -54,7 +54,7 @@ void run_serve(const ServeArguments& args) {
   if (args.inputs.camera_space())
     throw std::invalid_argument("serve: --space camera is not supported (lights are edited in the scene's world space)");
   const Scene scene = args.inputs.load_scene();
-  const LoadedGBuffer loaded = args.inputs.load_described_gbuffer(scene);
+  const LoadedGBuffer loaded = args.inputs.load_described_gbuffer(scene, /*with_beauty=*/true);
   const std::string scene_text = read_text(args.inputs.scene_file);
   RelightSession session(loaded.gbuffer, args.device);
   const std::string device = session.device_description();
@@ -68,6 +68,7 @@ void run_serve(const ServeArguments& args) {
             << "  layout     " << loaded.layout << "\n"
             << "  image      " << session.width() << " x " << session.height() << "\n"
             << "  device     " << device << "\n"
+            << (session.beauty() ? "  beauty     the file's own image (GET /api/beauty, the page's before/after split)\n" : "")
             << (args.save.empty() ? "" : "  save       " + args.save + " (POST /api/save, the page's Save button)\n");
   if (!is_loopback(args.host))
     std::cout << "  warning    listening on " << args.host

@@ -27,6 +27,9 @@ struct GBuffer {
   // renderers' files). Shaded pixels then output colour * coverage with alpha = coverage
   // (premultiplied); empty means 1 everywhere.
   Plane coverage;
+  // Optional: the renderer's own image of the frame (linear RGB as the file stores it, e.g.
+  // Blender's Combined), to compare the relit image with. Shading never reads it; empty if absent.
+  Planes3 beauty;
   std::filesystem::path source;        // for messages
   ExrCompression compression = ExrCompression::zip;  // the file's (outputs default to the input's)
 
@@ -36,6 +39,7 @@ struct GBuffer {
   bool has_per_pixel_ks() const { return !ks[0].empty(); }
   bool has_per_pixel_shininess() const { return !shininess.empty(); }
   bool has_coverage() const { return !coverage.empty(); }
+  bool has_beauty() const { return !beauty[0].empty(); }
 };
 
 // Why a pixel is or is not shaded. The kernel's packing and the reference both use this, so the

@@ -235,6 +235,16 @@ GBufferRead read_gbuffer(const std::filesystem::path& file, const ReadOptions& o
       slices.push_back({channels[c], nullptr});
     }
   }
+  // The renderer's own image rides along when present: no pass depends on it.
+  const auto beauty = std::find_if(spec.beauty.begin(), spec.beauty.end(),
+                                   [&](const PassSource& source) { return complete(&source, input); });
+  if (options.beauty && beauty != spec.beauty.end()) {
+    read.beauty = beauty->label;
+    for (std::size_t c = 0; c < 3; ++c) {
+      planes.push_back(&g.beauty[c]);
+      slices.push_back({beauty->channels[c], nullptr});
+    }
+  }
   const bool material_read = r.channels.count(Pass::material) > 0;
   if (!material_read) planes.push_back(&g.material);  // zeros: material 0
   allocate_planes(planes, g, file);

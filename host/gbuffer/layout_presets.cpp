@@ -61,6 +61,8 @@ LayoutSpec blender_spec(const std::string& layer, bool file_output) {
   const std::string scalar = file_output ? ".V" : ".X";
   std::vector<PassSource> alpha = {{"Combined.A", {p + "Combined.A"}}, {"A", {"A"}}};
   if (file_output) alpha = {{"Alpha", {"Alpha.V"}}, {"Image.A", {"Image.A"}}};
+  std::vector<PassSource> beauty = {{"Combined", rgb(p + "Combined")}};
+  if (file_output) beauty = {{"Image", rgb("Image")}};
   return {Layout::blender,
           layer,
           {{Pass::position, true, {{"Position", xyz(p + "Position")}}},
@@ -74,7 +76,8 @@ LayoutSpec blender_spec(const std::string& layer, bool file_output) {
           file_output,
           DepthConvention::view_z,
           "Blender's Depth pass is view-space z",
-          65504.0f};
+          65504.0f,
+          beauty};
 }
 
 // The File Output node's unprefixed pass names.
@@ -99,7 +102,8 @@ LayoutSpec aov_spec() {
           false,
           DepthConvention::distance,
           "the aov layout's Z is taken as distance along the ray (Arnold's Z; RenderMan's z is viewz)",
-          kNoNoHitDepth};
+          kNoNoHitDepth,
+          {{"RGBA", rgb("RGBA")}, {"beauty", rgb("beauty")}, {"RGB", {"R", "G", "B"}}}};
 }
 
 // The passes phongcl requires, mapped by the user alone.

@@ -12,7 +12,9 @@
 //          without the layer, its one-channel passes as .V: Depth.V, IndexMA.V, Alpha.V or Image.A.
 // aov      position P or Pworld, normal N or Nworld, each .X/.Y/.Z or .R/.G/.B; depth Z;
 //          material; kd diffuse_albedo.R/G/B or albedo.R/G/B; ks specular_albedo.R/G/B; alpha A.
-// In blender and aov (and custom) files a zero normal also marks background.
+// In blender and aov (and custom) files a zero normal also marks background. The renderer's own
+// image, where present: blender <layer>.Combined.R/G/B (File Output: Image.R/G/B); aov
+// RGBA.R/G/B, beauty.R/G/B or R G B.
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -47,6 +49,9 @@ struct LayoutSpec {
   // A depth at or beyond this (or not finite) is a centre sample that hit nothing: Cycles writes
   // 1e10, EEVEE 65504. Infinity where the layout has no such value.
   float no_hit_depth;
+  // Where the renderer's own image (GBuffer::beauty) may be, in order; never required, and read
+  // only when every channel of a source is present.
+  std::vector<PassSource> beauty{};
 };
 
 // The spec of a preset. For blender an empty view_layer is found from the channels (InputError

@@ -44,6 +44,7 @@ struct ReadOptions {
   std::uint64_t max_pixels = std::uint64_t{16384} * 16384;
   std::optional<DepthConvention> depth_convention;  // empty: the layout's
   ColourSource kd = ColourSource::layout_default, ks = ColourSource::layout_default;
+  bool beauty = false;  // also read the renderer's own image into gbuffer.beauty, where the file has one
 };
 
 struct GBufferRead {
@@ -57,6 +58,7 @@ struct GBufferRead {
   DepthConvention depth_convention = DepthConvention::distance;  // the user's, else the layout's
   std::string depth_convention_reason;                           // "Blender's Depth pass is view-space z"
   std::vector<std::string> warnings;                             // for the user: "every pixel has material 0 ..."
+  std::string beauty;  // the source of gbuffer.beauty ("Combined"), empty when the file has none
 
   bool needs_positions_from_depth() const { return gbuffer.position[0].empty(); }
 };

@@ -58,6 +58,7 @@ const Image& term_image(const Frame& frame, Term term) {
   return frame.image;
 }
 
+const std::vector<std::string_view> kBeautyParameters{"format", "width", "exposure", "tonemap"};
 const std::vector<std::string_view> kImageParameters{"format", "width", "exposure", "tonemap", "aov"};
 const std::vector<std::string_view> kPollParameters{"format", "width", "exposure", "tonemap", "aov", "after", "timeout_ms"};
 
@@ -122,6 +123,7 @@ void ApiRoutes::add_to(httplib::Server& server) {
   server.Get("/api/stats", route(&ApiRoutes::get_stats));
   server.Get("/api/pick", route(&ApiRoutes::get_pick));
   server.Post("/api/save", route(&ApiRoutes::post_save));
+  server.Get("/api/beauty", route(&ApiRoutes::get_beauty));
 }
 
 void ApiRoutes::get_scene(const httplib::Request& request, httplib::Response& response) {
@@ -168,7 +170,26 @@ void ApiRoutes::get_frame(const httplib::Request& request, httplib::Response& re
   send_frame(query, *frame, response);
 }
 
+void ApiRoutes::get_beauty(const httplib::Request& request, httplib::Response& response) {
+  const Query query(request, kBeautyParameters);
+  const Image* beauty = live_.session().beauty();
+  if (!beauty)
+    return send_json(response, {{"error", "the G-buffer file has no beauty pass (the renderer's own image, e.g. Blender's Combined)"}}, 404);
+  send_image(query, *beauty, response);
+}
+
 void ApiRoutes::send_frame(const Query& query, const RenderedFrame& frame, httplib::Response& response) {
+  const Term term = requested_term(query);
+  response.set_header("X-Frame-Version", std::to_string(frame.version));
+  response.set_header("X-Scene-Version", std::to_string(frame.scene_version));
+  if (!frame.error.empty()) return send_json(response, {{"error", frame.error}}, 422);
+  response.set_header("X-Shade-Ms", format_number(frame.frame.timings.shade_ms));
+  response.set_header("X-Kernel-Ms", format_number(frame.frame.timings.kernel_ms));
+  send_image(query, term_image(frame.frame, term), response);
+}
+
+// The image in the query's format, display settings and width.
+void ApiRoutes::send_image(const Query& query, const Image& image, httplib::Response& response) {
   const std::string format_name = query.text("format").value_or("png");
   ImageFormat format;
   try {
@@ -179,23 +200,15 @@ void ApiRoutes::send_frame(const Query& query, const RenderedFrame& frame, httpl
   DisplaySettings display;
   display.exposure_stops = query.number("exposure", -40.0, 40.0, 0.0);
   display.tone_map = parse_tone_map(query.text("tonemap").value_or("reinhard"));
-  const Term term = requested_term(query);
-  response.set_header("X-Frame-Version", std::to_string(frame.version));
-  response.set_header("X-Scene-Version", std::to_string(frame.scene_version));
-  if (!frame.error.empty()) return send_json(response, {{"error", frame.error}}, 422);
-
-  const Image& full = term_image(frame.frame, term);
-  const int width = static_cast<int>(query.integer("width", 1, full.width, full.width));
+  const int width = static_cast<int>(query.integer("width", 1, image.width, image.width));
   const Clock::time_point start = Clock::now();
-  const std::string bytes =
-      width == full.width ? encode_image(full, format, display) : encode_image(scale_to_width(full, width), format, display);
+  const std::string bytes = width == image.width ? encode_image(image, format, display)
+                                                 : encode_image(scale_to_width(image, width), format, display);
   const double encode_ms = elapsed_ms(start);
   {
     std::lock_guard lock(encode_mutex_);
     last_encode_ms_[format_name] = encode_ms;
   }
-  response.set_header("X-Shade-Ms", format_number(frame.frame.timings.shade_ms));
-  response.set_header("X-Kernel-Ms", format_number(frame.frame.timings.kernel_ms));
   response.set_header("X-Encode-Ms", format_number(encode_ms));
   response.set_header("Cache-Control", "no-store");
   response.set_content(bytes, content_type(format));
@@ -212,7 +225,8 @@ void ApiRoutes::get_stats(const httplib::Request& request, httplib::Response& re
              {"scene_version", live_.scene().scene_version},
              {"frames", counters.frames},
              {"shade_fps", counters.frames_per_second},
-             {"save_path", options_.save_path.string()}};
+             {"save_path", options_.save_path.string()},
+             {"beauty", live_.session().beauty() != nullptr}};
   if (frame) {
     stats["frame"] = {{"version", frame->version},
                       {"scene_version", frame->scene_version},

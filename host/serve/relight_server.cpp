@@ -43,6 +43,9 @@ RelightServer::RelightServer(LiveRelighter& live, ServeOptions options)
   http_->new_task_queue = [] { return new httplib::ThreadPool(kServerThreads); };
   http_->set_payload_max_length(kMaxRequestBytes);
   http_->set_keep_alive_timeout(2);
+  // httplib writes a response's headers and body separately: with Nagle's algorithm the body waits
+  // for the client's delayed ACK of the headers, tens of milliseconds a frame.
+  http_->set_tcp_nodelay(true);
   api_->add_to(*http_);
   for (const auto& [name, text] : embedded_web_files()) {
     const std::string path = name == "index.html" ? "/" : "/" + name;

@@ -8,8 +8,23 @@
 
 namespace phongcl {
 
+namespace {
+
+std::optional<Image> beauty_image(const GBuffer& gbuffer) {
+  if (!gbuffer.has_beauty()) return std::nullopt;
+  Image image = image_like(gbuffer);
+  for (std::size_t i = 0; i < image.pixel_count(); ++i) {
+    float* pixel = image.pixel(i);
+    for (int c = 0; c < 3; ++c) pixel[c] = gbuffer.beauty[c][i];
+    pixel[3] = 1.0f;
+  }
+  return image;
+}
+
+}  // namespace
+
 RelightSession::RelightSession(GBuffer gbuffer, std::string device)
-    : gbuffer_(std::move(gbuffer)), device_(std::move(device)) {}
+    : gbuffer_(std::move(gbuffer)), beauty_(beauty_image(gbuffer_)), device_(std::move(device)) {}
 
 RelightSession::~RelightSession() = default;
 

@@ -61,6 +61,8 @@ class RelightSession {
   int width() const { return gbuffer_.width; }
   int height() const { return gbuffer_.height; }
   const GBuffer& gbuffer() const { return gbuffer_; }
+  // The renderer's own image from the G-buffer file (alpha 1), or nullptr when it has none.
+  const Image* beauty() const { return beauty_ ? &*beauty_ : nullptr; }
   std::string device_description() const;
 
  private:
@@ -68,6 +70,7 @@ class RelightSession {
   Frame shade_with_terms(const Scene& scene, const RenderSettings& settings);
 
   GBuffer gbuffer_;
+  std::optional<Image> beauty_;
   std::string device_;
   std::optional<Relighter> relighter_;
   RenderSettings relighter_settings_;

@@ -2,7 +2,8 @@
 """The browser check of `phongcl serve` (run by 70-browser.sh): headless Chromium over WebDriver
 (chromedriver, Python's standard library only). Edits a light through the page, checks the served and
 the displayed image against the scalar reference of the edited scene, saves the scene, takes a
-screenshot, and measures input-event-to-image-displayed rates at 640x480 and 1920x1080."""
+screenshot, and measures input-event-to-image-displayed rates at 640x480 and 1920x1080. On a Blender
+render it adds a spot through its controls and checks the before/after split against the beauty pass."""
 import argparse, base64, json, os, re, socket, statistics, struct, subprocess, sys, time, urllib.request, zlib
 
 ELEMENT = "element-6066-11e4-a52e-4f735466cecf"
@@ -156,8 +157,11 @@ const timer = setInterval(() => {
     const end = performance.now();
     setTimeout(() => {
       const frames = m.displayed.filter((d) => d.time >= start && d.time <= end).length;
+      const shown = m.displayed.filter((d) => d.time >= start && d.time <= end);
+      const mean = (key) => shown.reduce((sum, d) => sum + d[key], 0) / Math.max(1, shown.length);
       done({ fps: frames / ((end - start) / 1000), latencies: m.latencies.slice(), events: m.edits.length,
-             width: view.naturalWidth, height: view.naturalHeight });
+             width: view.width, height: view.height, wait_ms: mean('wait_ms'), transfer_ms: mean('transfer_ms'),
+             decode_ms: mean('decode_ms') });
     }, 1500);
     return;
   }
@@ -175,6 +179,125 @@ def measure(driver, seconds):
     result["median_ms"] = statistics.median(latencies)
     result["p90_ms"] = latencies[int(0.9 * (len(latencies) - 1))]
     return result
+
+def wait_for_png_frame(driver):
+    """Streams PNG at the G-buffer's size and waits for a frame of it on the canvas."""
+    before = driver.run("return window.phongclMetrics.displayed.length;")
+    driver.run("const f = document.getElementById('format'); f.value = 'png'; f.dispatchEvent(new Event('change'));"
+               "const fit = document.getElementById('fit'); fit.checked = false; fit.dispatchEvent(new Event('change'));")
+    driver.wait(f"return window.phongclMetrics.displayed.length > {before} && "
+                "document.getElementById('view').width === window.phongclState.imageSize[0];", "the PNG frame")
+
+
+def canvas_pixels(driver):
+    return base64.b64decode(driver.run(
+        "const v = document.getElementById('view'), d = v.getContext('2d').getImageData(0, 0, v.width, v.height).data;"
+        "let s = ''; for (let i = 0; i < d.length; i += 8192) s += String.fromCharCode.apply(null, d.subarray(i, i + 8192));"
+        "return btoa(s);"))
+
+
+def worst_difference(pixels, expected, width, where):
+    """Largest RGB byte difference over the fully opaque expected pixels whose column passes
+    `where` (the canvas premultiplies alpha), and how many were compared."""
+    worst, compared = 0, 0
+    for i in range(0, len(expected), 4):
+        if expected[i + 3] == 255 and where((i // 4) % width):
+            compared += 1
+            worst = max(worst, *(abs(pixels[i + c] - expected[i + c]) for c in range(3)))
+    return worst, compared
+
+
+def set_control(driver, css, value):
+    """Sets an input or select as a user would, firing the event the page listens to."""
+    element = driver.find(css)
+    driver.run("const e = arguments[0], v = arguments[1];"
+               "if (e.type === 'checkbox') e.checked = v; else e.value = v;"
+               "e.dispatchEvent(new Event(e.type === 'checkbox' || e.tagName === 'SELECT' ? 'change' : 'input'));",
+               {ELEMENT: element}, value)
+
+
+def held_scene(url):
+    return json.loads(http("GET", url + "api/scene")[1])
+
+
+def check_against_reference(args, work, url, scene, gbuffer, name):
+    """The served EXR against the scalar reference of the held scene on `gbuffer`."""
+    edited = os.path.join(work, f"{name}.json")
+    json.dump(scene, open(edited, "w"))
+    _, exr, _ = http("GET", url + "api/image?format=exr")
+    open(os.path.join(work, f"{name}-served.exr"), "wb").write(exr)
+    ref = subprocess.run([args.phongcl, "reference", "--scene", edited, "--gbuffer", gbuffer,
+                          "--out", os.path.join(work, f"{name}-ref.exr"), "--png", os.path.join(work, f"{name}-ref.png")],
+                         capture_output=True, text=True)
+    if ref.returncode != 0:
+        fail(f"phongcl reference: {ref.stderr}")
+    compare = subprocess.run([args.phongcl, "compare", os.path.join(work, f"{name}-served.exr"),
+                              os.path.join(work, f"{name}-ref.exr"), "--tolerance", "5e-4"], capture_output=True, text=True)
+    if compare.returncode != 0:
+        fail(f"{name}: served image against the reference: {compare.stdout}{compare.stderr}")
+    return os.path.join(work, f"{name}-ref.png")
+
+
+SPOT = {"cone": "60", "penumbra": "12.5", "falloff": "quadratic", "range": "9"}
+
+
+def spot_and_split(driver, url, args, work):
+    """On a Blender render (which has a beauty pass): a spot added and set through its controls,
+    its cone bounds, light linking and a light switched off, the result against the reference;
+    then the before/after split: relit left of the line, the renderer's image right of it."""
+    driver.call("POST", "/url", {"url": url})
+    driver.wait("return window.phongclState.imageSize[0] === 64 && window.phongclMetrics.displayed.length > 0 && "
+                "!document.getElementById('split-row').hidden", "the Blender render's first frame and the split")
+    lights = len(held_scene(url)["lights"])
+    driver.call("POST", f"/element/{driver.find('#add-spot')}/click", {})
+    spot = f'li[data-light="{lights}"] '
+    set_control(driver, spot + 'input[data-role="cone"]', SPOT["cone"])
+    set_control(driver, spot + 'input[data-role="penumbra"]', SPOT["penumbra"])
+    set_control(driver, spot + 'select[data-role="falloff"]', SPOT["falloff"])
+    set_control(driver, spot + 'input[data-role="no-range"]', False)
+    set_control(driver, spot + 'input[data-role="range"]', SPOT["range"])
+    set_control(driver, spot + 'input[data-role="materials-all"]', False)
+    set_control(driver, spot + 'input[data-role="material-1"]', False)
+    set_control(driver, 'li[data-light="0"] input[title^="on/off"]', False)
+    view = {ELEMENT: driver.find("#view")}
+    driver.call("POST", "/actions", {"actions": [{"type": "pointer", "id": "mouse", "parameters": {"pointerType": "mouse"},
+        "actions": [{"type": "pointerMove", "origin": view, "x": 10, "y": 10, "duration": 0}, {"type": "pointerDown", "button": 0},
+                    {"type": "pointerMove", "origin": view, "x": 0, "y": 5, "duration": 100}, {"type": "pointerUp", "button": 0}]}]})
+    settle(driver, url)
+    driver.call("DELETE", "/actions")
+    scene = held_scene(url)
+    if len(scene["lights"]) != lights:
+        fail(f"light 0 switched off should be left out of the held scene: {scene['lights']}")
+    held = scene["lights"][-1]
+    expected = {"type": "spot", "cone_angle_deg": 60, "penumbra_angle_deg": 12.5, "falloff": "quadratic", "range": 9,
+                "materials": [0, 2]}
+    if any(held.get(k) != v for k, v in expected.items()):
+        fail(f"the spot as held {held}, expected {expected}")
+    if held["position"] == [0, 2, 2] or abs(sum(d * d for d in held["direction"]) - 1) > 1e-9:
+        fail(f"the drag did not place the spot and aim it along -normal: {held}")
+    # A wider cone leaves less room for the soft edge: A/2 + P <= 90 holds whatever the slider said.
+    set_control(driver, spot + 'input[data-role="cone"]', "170")
+    settle(driver, url)
+    held = held_scene(url)["lights"][-1]
+    if held["cone_angle_deg"] != 170 or held["penumbra_angle_deg"] > 5:
+        fail(f"cone 170 should clamp the penumbra to 5 degrees: {held}")
+    status = driver.run("const s = document.getElementById('status'); return [s.className, s.textContent];")
+    if status[0] == "error":
+        fail(f"the page shows an error: {status[1]}")
+    gbuffer = "tests/fixtures/blender/cycles.exr"
+    reference_png = check_against_reference(args, work, url, held_scene(url), gbuffer, "spot")
+
+    wait_for_png_frame(driver)
+    set_control(driver, "#split", "50")
+    pixels = canvas_pixels(driver)
+    width, _, relit = decode_png(open(reference_png, "rb").read())
+    _, _, beauty = decode_png(http("GET", url + f"api/beauty?format=png&width={width}")[1])
+    left, left_count = worst_difference(pixels, relit, width, lambda x: x < width // 2)
+    right, right_count = worst_difference(pixels, beauty, width, lambda x: x > width // 2)
+    if left_count == 0 or right_count == 0 or left > 1 or right > 1:
+        fail(f"split at 50%: left differs from the relit reference by {left} ({left_count} pixels), right from "
+             f"the beauty pass by {right} ({right_count} pixels)")
+    return left_count, right_count
 
 
 def main():
@@ -243,37 +366,12 @@ def main():
 
         # 3. The served EXR against the scalar reference of the edited scene, and the displayed
         #    (PNG-streamed) image against the reference's display encoding.
-        edited = os.path.join(work, "edited.json")
-        json.dump(scene, open(edited, "w"))
-        status, exr, _ = http("GET", url + "api/image?format=exr")
-        open(os.path.join(work, "served.exr"), "wb").write(exr)
-        ref = subprocess.run([args.phongcl, "reference", "--scene", edited, "--gbuffer", "scenes/default/gbuffer.exr",
-                              "--out", os.path.join(work, "ref.exr"), "--png", os.path.join(work, "ref.png")],
-                             capture_output=True, text=True)
-        if ref.returncode != 0:
-            fail(f"phongcl reference: {ref.stderr}")
-        compare = subprocess.run([args.phongcl, "compare", os.path.join(work, "served.exr"), os.path.join(work, "ref.exr"),
-                                  "--tolerance", "5e-4"], capture_output=True, text=True)
-        if compare.returncode != 0:
-            fail(f"served image against the reference: {compare.stdout}{compare.stderr}")
-        driver.run("const f = document.getElementById('format'); f.value = 'png'; f.dispatchEvent(new Event('change'));"
-                   "const fit = document.getElementById('fit'); fit.checked = false; fit.dispatchEvent(new Event('change'));")
-        before = driver.run("return window.phongclMetrics.displayed.length;")
-        driver.wait(f"return window.phongclMetrics.displayed.length > {before} && "
-                    "document.getElementById('view').complete;", "the PNG frame")
-        pixels = base64.b64decode(driver.run(
-            "const v = document.getElementById('view'), c = document.createElement('canvas');"
-            "c.width = v.naturalWidth; c.height = v.naturalHeight; const g = c.getContext('2d');"
-            "g.drawImage(v, 0, 0); const d = g.getImageData(0, 0, c.width, c.height).data;"
-            "let s = ''; for (let i = 0; i < d.length; i += 8192) s += String.fromCharCode.apply(null, d.subarray(i, i + 8192));"
-            "return btoa(s);"))
-        width, height, reference = decode_png(open(os.path.join(work, "ref.png"), "rb").read())
-        worst, compared = 0, 0
-        for i in range(0, len(reference), 4):
-            if reference[i + 3] == 255:  # shaded pixels; the canvas premultiplies alpha 0 away
-                compared += 1
-                worst = max(worst, *(abs(pixels[i + c] - reference[i + c]) for c in range(3)))
+        reference_png = check_against_reference(args, work, url, scene, "scenes/default/gbuffer.exr", "edited")
+        wait_for_png_frame(driver)
+        pixels = canvas_pixels(driver)
+        width, height, reference = decode_png(open(reference_png, "rb").read())
         # The kernel is within 5e-4 relative of the reference, so a byte may round the other way.
+        worst, compared = worst_difference(pixels, reference, width, lambda x: True)
         if compared == 0 or worst > 1:
             fail(f"displayed image differs from the reference display encoding by {worst} (of {compared} pixels)")
 
@@ -297,6 +395,15 @@ def main():
         small = measure(driver, args.seconds)
         server.terminate()
         server.wait(timeout=30)
+
+        # 7. Spot controls, light linking, a light off, and the split on a Blender render.
+        blender_log = open(os.path.join(work, "serve-blender.log"), "w")
+        server, url = start_server(args.phongcl, ["--scene", "tests/fixtures/blender/scene.json",
+                                                  "--gbuffer", "tests/fixtures/blender/cycles.exr"], blender_log)
+        processes.append(server)
+        split_left, split_right = spot_and_split(driver, url, args, work)
+        server.terminate()
+        server.wait(timeout=30)
         large_log = open(os.path.join(work, "serve-large.log"), "w")
         server, url = start_server(args.phongcl, ["--scene", "scenes/large/scene.json", "--gbuffer", args.large_gbuffer], large_log)
         processes.append(server)
@@ -312,9 +419,14 @@ def main():
         for name, r, target in (("640x480", small, 25), ("1920x1080", large, 10), ("1920x1080 streamed at full size", large_full, 10)):
             print(f"70-browser: {name}: {r['fps']:.1f} frames/s displayed while dragging (target >= {target}), "
                   f"displayed at {r['width']}x{r['height']}, "
-                  f"input to image median {r['median_ms']:.0f} ms, p90 {r['p90_ms']:.0f} ms, {r['events']} input events")
+                  f"input to image median {r['median_ms']:.0f} ms, p90 {r['p90_ms']:.0f} ms, {r['events']} input events; "
+                  f"per frame in the page: waiting {r['wait_ms']:.1f} ms, transfer {r['transfer_ms']:.1f} ms, "
+                  f"decode and draw {r['decode_ms']:.1f} ms")
         print(f"70-browser: edited light through the page; served EXR within 5e-4 of the reference, displayed PNG within "
               f"1/255 on {compared} pixels; scene saved and shades; screenshot {args.screenshot}")
+        print(f"70-browser: spot added and set through its controls (cone, penumbra clamped to A/2 + P <= 90, falloff, "
+              f"range, light linking), a light switched off, served EXR within 5e-4 of the reference; split within "
+              f"1/255 of the relit reference on {split_left} pixels and of the beauty pass on {split_right}")
     finally:
         for process in processes:
             if process.poll() is None:
