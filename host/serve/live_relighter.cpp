@@ -85,7 +85,15 @@ std::shared_ptr<const RenderedFrame> LiveRelighter::wait_locked(std::unique_lock
   auto ready = [&] {
     return stopping_ || (latest_ && latest_->version >= min_version && (!need_terms || latest_->settings.terms));
   };
-  if (!frame_ready_.wait_for(lock, timeout, ready) || stopping_) return nullptr;
+  ++waiting_;
+  state_changed_.notify_all();
+  const bool got = frame_ready_.wait_for(lock, timeout, ready);
+  --waiting_;
+  if (!got || stopping_) return nullptr;
+  if (!latest_taken_) {
+    latest_taken_ = true;
+    state_changed_.notify_all();
+  }
   return latest_;
 }
 
@@ -114,7 +122,7 @@ void LiveRelighter::render_loop() {
     Scene scene;
     {
       std::unique_lock lock(mutex_);
-      state_changed_.wait(lock, [&] { return stopping_ || version_ > rendered; });
+      state_changed_.wait(lock, [&] { return stopping_ || (version_ > rendered && (latest_taken_ || waiting_ > 0)); });
       if (stopping_) return;
       scene = scene_;
       frame->version = version_;
@@ -131,6 +139,7 @@ void LiveRelighter::render_loop() {
     rendered = frame->version;
     std::lock_guard lock(mutex_);
     latest_ = std::move(frame);
+    latest_taken_ = false;
     ++frames_;
     recent_finishes_.push_back(latest_->finished);
     const auto since = latest_->finished - kFpsWindow;

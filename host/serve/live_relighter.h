@@ -1,7 +1,9 @@
 #pragma once
 // The state the server holds and the thread that shades it. Edits replace the scene whole and
 // only when valid; the render thread always shades the newest state, so edits that arrive while a
-// frame is being shaded coalesce into the next one. Every request thread may call every method.
+// frame is being shaded coalesce into the next one. It shades ahead by one frame at most: a newer
+// state waits until the last frame was taken or a request waits for one, so that on a busy machine
+// no core goes to frames nobody shows. Every request thread may call every method.
 #include <chrono>
 #include <condition_variable>
 #include <cstdint>
@@ -82,6 +84,8 @@ class LiveRelighter {
   bool terms_wanted_ = false;  // sticky once a page asks for a term: the terms cost little more
   bool stopping_ = false;
   std::shared_ptr<const RenderedFrame> latest_;
+  bool latest_taken_ = true;  // a request has had latest_ (or there is none yet)
+  int waiting_ = 0;           // requests waiting for a frame newer than latest_
   std::uint64_t frames_ = 0;
   std::vector<std::chrono::steady_clock::time_point> recent_finishes_;
   std::thread render_thread_;  // last: starts after everything above exists
