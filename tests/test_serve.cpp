@@ -302,6 +302,24 @@ TEST_F(Serve, EditsCoalesceAndTheLastOneIsShown) {
   expect_matches_reference(shown, parse_scene(scene.dump(), kSceneFile), server_->session().gbuffer());
 }
 
+// Edits nobody fetches a frame of are not all shaded: one frame ahead at most, then the newest
+// state when a request asks.
+TEST_F(Serve, ShadesOneFrameAheadOfWhatIsFetched) {
+  auto client = server_->client();
+  ASSERT_EQ(client.Get("/api/image?format=exr")->status, 200);
+  const std::uint64_t frames_before = body_json(client.Get("/api/stats"))["frames"];
+  json scene = default_scene();
+  for (int i = 0; i < 4; ++i) {
+    scene["lights"][0]["position"] = {-2.0 + 0.5 * i, 3.0, 2.0};
+    ASSERT_EQ(client.Put("/api/scene", scene.dump(), "application/json")->status, 200);
+    std::this_thread::sleep_for(std::chrono::milliseconds(250));  // time to shade each, were it shaded
+  }
+  const std::uint64_t frames_between = body_json(client.Get("/api/stats"))["frames"];
+  EXPECT_LE(frames_between - frames_before, 1u) << "edits were shaded with no request for their frames";
+  const Image shown = decode_exr(client.Get("/api/image?format=exr")->body);
+  expect_matches_reference(shown, parse_scene(scene.dump(), kSceneFile), server_->session().gbuffer());
+}
+
 TEST_F(Serve, SettingsChangeThePrecisionAndRejectBadInput) {
   auto client = server_->client();
   const json put = body_json(client.Put("/api/settings", R"({"precision": "fast"})", "application/json"));

@@ -375,7 +375,7 @@ function linkControls(light) {
   all.addEventListener('change', update);
   boxes.forEach((box) => box.addEventListener('change', update));
   return el('div', { className: 'links' }, [
-    'lights', el('label', {}, [all, 'all']),
+    'lights materials', el('label', {}, [all, 'all']),
     ...boxes.map((box, i) => el('label', { title: materials[i].name || '' }, [box, String(i)])),
   ]);
 }
