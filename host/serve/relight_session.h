@@ -2,6 +2,8 @@
 // The server's only contact with the shading library: the G-buffer resident on the device
 // (phongcl::Relighter), shaded for whatever scene the page holds now, and read back under the
 // cursor. The AOV terms, which the Relighter does not produce, come from the one-shot shader.
+#include <atomic>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -70,6 +72,7 @@ class RelightSession {
   Frame shade_with_terms(const Scene& scene, const RenderSettings& settings);
 
   GBuffer gbuffer_;
+  mutable std::atomic<std::size_t> smallest_passing_count_{std::numeric_limits<std::size_t>::max()};  // of check()
   std::optional<Image> beauty_;
   std::string device_;
   std::optional<Relighter> relighter_;
