@@ -509,6 +509,19 @@ TEST(ServeCli, PrintsTheUrlAndStopsCleanlyOnSigtermAndSigint) {
   }
 }
 
+// The beauty pass is named in the summary when the file has one, and absent otherwise.
+TEST(ServeCli, NamesTheBeautyPassItServes) {
+  if (!testing::have_opencl_device()) GTEST_SKIP() << "no OpenCL device on this machine";
+  ServeProcess blender("--scene tests/fixtures/blender/scene.json --gbuffer tests/fixtures/blender/cycles.exr --port 0");
+  ASSERT_GT(blender.port(), 0) << blender.output();
+  EXPECT_NE(blender.output().find("  beauty     Combined (GET /api/beauty"), std::string::npos) << blender.output();
+  EXPECT_EQ(blender.stop(SIGTERM), 0);
+  ServeProcess plain("--scene scenes/default/scene.json --port 0");
+  ASSERT_GT(plain.port(), 0) << plain.output();
+  EXPECT_EQ(plain.output().find("beauty"), std::string::npos) << plain.output();
+  EXPECT_EQ(plain.stop(SIGTERM), 0);
+}
+
 TEST(ServeCli, WarnsWhenListeningBeyondLoopback) {
   if (!testing::have_opencl_device()) GTEST_SKIP() << "no OpenCL device on this machine";
   ServeProcess serve("--scene scenes/default/scene.json --host 0.0.0.0 --port 0");

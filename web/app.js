@@ -101,7 +101,7 @@ async function pollFrames() {
   for (;;) {
     pollAbort = new AbortController();
     const asked = performance.now();
-    let response, blob;
+    let response;
     try {
       response = await fetch(`api/frame?after=${state.receivedVersion}&timeout_ms=20000&${viewQuery()}`,
                              { signal: pollAbort.signal });
@@ -112,7 +112,7 @@ async function pollFrames() {
         continue;
       }
       const headed = performance.now();
-      blob = await response.blob();
+      const blob = await response.blob();
       state.receivedVersion = Number(response.headers.get('X-Frame-Version'));
       showFrame(blob, response, ++state.receivedCount, { asked, headed, received: performance.now() });
     } catch (error) {

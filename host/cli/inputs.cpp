@@ -138,7 +138,7 @@ LoadedGBuffer SceneInputs::load_described_gbuffer(const Scene& scene, bool with_
                    (read.depth_convention == DepthConvention::distance ? "distance along the ray" : "view-space z") +
                    " (" + read.depth_convention_reason + "; --depth-convention overrides)";
   }
-  return {std::move(read.gbuffer), description, std::move(read.warnings)};
+  return {std::move(read.gbuffer), description, std::move(read.warnings), read.beauty};
 }
 
 }  // namespace phongcl::cli

@@ -19,6 +19,7 @@ struct LoadedGBuffer {
   GBuffer gbuffer;
   std::string layout;  // what was read, for the summary: "blender (view layer 'ViewLayer': ...)"
   std::vector<std::string> warnings;
+  std::string beauty;  // the source of gbuffer.beauty ("Combined"), empty without one
 };
 
 struct SceneInputs {

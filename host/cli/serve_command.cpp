@@ -68,7 +68,7 @@ void run_serve(const ServeArguments& args) {
             << "  layout     " << loaded.layout << "\n"
             << "  image      " << session.width() << " x " << session.height() << "\n"
             << "  device     " << device << "\n"
-            << (session.beauty() ? "  beauty     the file's own image (GET /api/beauty, the page's before/after split)\n" : "")
+            << (loaded.beauty.empty() ? "" : "  beauty     " + loaded.beauty + " (GET /api/beauty, the page's before/after split)\n")
             << (args.save.empty() ? "" : "  save       " + args.save + " (POST /api/save, the page's Save button)\n");
   if (!is_loopback(args.host))
     std::cout << "  warning    listening on " << args.host
