@@ -1,7 +1,7 @@
 #pragma once
 // Tiled light culling on the device (kernels/cull.cl): per screen tile, the box of its shaded
-// positions, then (coarse tiles of 8 x 8 first) the list of point and spot lights whose bounds reach it; phong_shade's
-// TILED_CULLING variant loops over its tile's list only.
+// positions, then (boxes of 8 x 8 and 2 x 2 tiles first) the list of point and spot lights whose
+// bounds reach it; phong_shade's TILED_CULLING variant loops over its tile's list only.
 #include <cstddef>
 #include <vector>
 
