@@ -39,7 +39,7 @@ py::array_t<float> shade(Relighter& relighter, const std::optional<py::array>& o
 }
 
 py::dict timings(const Relighter& relighter) {
-  const RelightTimings t = relighter.last_timings();
+  const ShadeTimings t = relighter.last_timings();
   py::dict d;
   d["build_ms"] = t.build_ms;
   d["pack_ms"] = t.pack_ms;

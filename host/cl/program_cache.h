@@ -6,11 +6,9 @@
 #include <string>
 
 #include "cl/compute_context.h"
+#include "shading/shade_report.h"  // CacheOutcome
 
 namespace phongcl {
-
-enum class CacheOutcome { memory_hit, disk_hit, compiled };
-const char* to_string(CacheOutcome outcome);
 
 struct BuiltProgram {
   cl::Program program;
