@@ -21,10 +21,9 @@ py::array_t<float> shade(Relighter& relighter, const std::optional<py::array>& o
   py::array_t<float> image;
   if (out) {
     const auto& array = *out;
-    if (!py::isinstance<py::array_t<float>>(array) || !(array.flags() & py::array::c_style) || !array.writeable() ||
-        array.ndim() != 3 || array.shape(0) != height || array.shape(1) != width || array.shape(2) != 4)
-      throw py::value_error("out must be a writeable C-contiguous float32 array of shape (" + std::to_string(height) +
-                            ", " + std::to_string(width) + ", 4)");
+    require_shape(array, "out", height, width, 4);
+    if (!py::isinstance<py::array_t<float>>(array) || !(array.flags() & py::array::c_style) || !array.writeable())
+      throw py::value_error("out must be a writeable C-contiguous float32 array");
     image = py::reinterpret_borrow<py::array_t<float>>(array);
   } else {
     image = py::array_t<float>({height, width, py::ssize_t{4}});

@@ -79,6 +79,9 @@ def test_shade_writes_into_a_callers_array(scene, gbuffer):
         relighter.shade(out=np.zeros((gbuffer.height, gbuffer.width, 4), dtype=np.float64))
     with pytest.raises(ValueError, match="C-contiguous float32"):
         relighter.shade(out=np.zeros((gbuffer.height, gbuffer.width, 4), dtype=np.float32)[:, ::-1])
+    with pytest.raises(ValueError, match=r"out must have shape \(%d, %d, 4\), got \(%d, %d, 3\)" % (
+            gbuffer.height, gbuffer.width, gbuffer.height, gbuffer.width)):
+        relighter.shade(out=np.zeros((gbuffer.height, gbuffer.width, 3), dtype=np.float32))
 
 
 @needs_device
