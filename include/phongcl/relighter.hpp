@@ -3,7 +3,9 @@
 // each change of lights, materials or eye. A re-shade uploads only what changed (the light and
 // material tables are a few hundred bytes; the G-buffer only after an eye move) and costs the kernel
 // and the download; the kernel is rebuilt only when the recipe changes (say, the number of lights),
-// and built programs are cached in memory and on disk.
+// and built programs are cached in memory and on disk. A frame larger than the device's largest
+// allocation is shaded in tiles, re-packed each time. `phongcl shade` is a user of this class and
+// prints what last_report() says.
 //
 // The room headers included here are installed beside this one (include/phongcl/<room>/).
 #include <cstddef>
