@@ -5,8 +5,8 @@
 #include <map>
 #include <string>
 
+#include "cl/cache_outcome.h"
 #include "cl/compute_context.h"
-#include "shading/shade_report.h"  // CacheOutcome
 
 namespace phongcl {
 

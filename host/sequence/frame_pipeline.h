@@ -11,7 +11,7 @@
 #include "gbuffer/gbuffer.h"
 #include "image/image.h"
 #include "scene/scene.h"
-#include "shading/shade_report.h"
+#include "shading/shade_stats.h"
 
 namespace phongcl {
 

@@ -9,7 +9,7 @@
 #include "scene/scene.h"
 #include "shading/device_layout.h"
 #include "shading/recipe.h"
-#include "shading/shade_report.h"  // PixelCounts
+#include "shading/shade_stats.h"  // PixelCounts
 
 namespace phongcl {
 

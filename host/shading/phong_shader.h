@@ -13,7 +13,7 @@
 #include "shading/phong_launch.h"
 #include "shading/pack.h"
 #include "shading/recipe.h"
-#include "shading/shade_report.h"
+#include "shading/shade_stats.h"
 #include "shading/tile_culling.h"
 
 namespace phongcl {

@@ -8,7 +8,7 @@
 #include "cl/program_cache.h"
 #include "cl/reusable_buffer.h"
 #include "shading/device_layout.h"
-#include "shading/shade_report.h"  // CullingStats
+#include "shading/shade_stats.h"  // CullingStats
 
 namespace phongcl {
 

@@ -18,7 +18,7 @@
 #include "image/image.h"
 #include "scene/scene.h"
 #include "shading/precision.h"
-#include "shading/shade_report.h"
+#include "shading/shade_stats.h"
 
 namespace phongcl {
 

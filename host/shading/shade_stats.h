@@ -6,14 +6,11 @@
 #include <vector>
 
 // Relative: this header is installed with the public API (include/phongcl/), beside its rooms.
+#include "../cl/cache_outcome.h"
 #include "../gbuffer/gbuffer.h"  // PixelClass
 #include "../image/image.h"
 
 namespace phongcl {
-
-// Where the kernel came from: built programs are kept in memory and on disk (cl/program_cache.h).
-enum class CacheOutcome { memory_hit, disk_hit, compiled };
-const char* to_string(CacheOutcome outcome);  // "cache hit (memory)", "cache hit (disk)", "compiled"
 
 // Milliseconds. build: compiling or loading the kernel (0 when the previous frame's is reused);
 // pack: packing the G-buffer on the host (0 when it is still resident); upload: handing it and the
