@@ -51,6 +51,33 @@ py::dict timings(const Relighter& relighter) {
   return d;
 }
 
+py::dict report(const Relighter& relighter) {
+  const ShadeReport r = relighter.last_report();
+  py::dict counts;
+  counts["shaded"] = r.counts.shaded;
+  counts["background"] = r.counts.background;
+  counts["nonfinite_position"] = r.counts.nonfinite_position;
+  counts["nonfinite_normal"] = r.counts.nonfinite_normal;
+  counts["nonfinite_material"] = r.counts.nonfinite_material;
+  py::dict d;
+  d["counts"] = counts;
+  d["tiles"] = r.tiles;
+  d["culled"] = r.culled;
+  if (r.culled) {
+    py::dict culling;
+    culling["tile_size"] = r.culling.tile_size;
+    culling["shaded_tiles"] = r.culling.shaded_tiles;
+    culling["mean_lights_per_tile"] = r.culling.mean_lights_per_tile();
+    culling["max_lights_per_tile"] = r.culling.max_lights_per_tile;
+    d["culling"] = culling;
+  }
+  d["kernel_summary"] = r.kernel_summary;
+  d["recipe_reasons"] = r.recipe_reasons;
+  d["build_options"] = r.build_options;
+  d["warnings"] = r.warnings;
+  return d;
+}
+
 }  // namespace
 
 void bind_relighter(py::module_& module) {
@@ -92,7 +119,11 @@ void bind_relighter(py::module_& module) {
       .def_property_readonly("build_options", &Relighter::build_options)
       .def_property_readonly("last_timings", &timings,
                              "What the last shade() cost, in ms: build, pack, upload, kernel, download, total; "
-                             "and whether the kernel was rebuilt and the G-buffer uploaded.");
+                             "and whether the kernel was rebuilt and the G-buffer uploaded.")
+      .def_property_readonly("last_report", &report,
+                             "What the last shade() found, as phongcl shade prints it: pixel counts (shaded, "
+                             "background, non-finite), launches (tiles), tiled culling, the kernel's recipe "
+                             "with the reason for each decision, and warnings.");
 
   module.def(
       "devices",
