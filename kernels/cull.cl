@@ -3,9 +3,10 @@
  *   count_tile_lights  one work-item per tile: how many of its candidate lights can reach its box
  *   fill_tile_lights   the same test again, writing the light indices at the tile's offset
  * The host turns the counts into offsets (a prefix sum over a few thousand tiles) between the last
- * two, and runs both twice: for coarse tiles (8 x 8 tiles, every light a candidate), then for the
- * tiles, whose candidates are their coarse tile's list (10,000 lights: 1/40 of the tests). A light reaches a box when its bounding sphere (LightBounds, widened on the host against
- * rounding) meets it, or when it has no range. The tile of a work-item is the tile of its first
+ * two, and runs both once per level: boxes of 8 x 8 tiles with every light a candidate, then boxes of
+ * 2 x 2 tiles and then the tiles, each with its parent box's list (shading/tile_culling.cpp). A
+ * light reaches a box when its bounding sphere (LightBounds, widened on the host against rounding)
+ * meets it, or when it has no range. The tile of a work-item is the tile of its first
  * pixel (tiles.h), so a tile's box covers every pixel its work-items shade.
  * Options: PHONGCL_LANES (as phong_shade's), HALF_STORAGE. */
 #include "layout.h"

@@ -41,6 +41,14 @@ inline realv linked(UNIFORM_SPACE const LinkWord* mask, intv index) {
 #define LINK_GATE(light) ((realv)1)
 #endif
 
+#ifdef SPOT_LIGHTS
+/* c = dot(-l, axis), the cosine of the angle between a spot's axis and the way to the pixel. */
+inline realv cone_cosine(UNIFORM_SPACE const LightShape* shape, vec3 toward, realv inverse) {
+  const vec3 axis = make_vec3(shape->axis[0], shape->axis[1], shape->axis[2]);
+  return -inverse * dot3(toward, axis);
+}
+#endif
+
 #ifdef POINT_SHAPES
 /* F for one point or spot light; `gate` (0 or 1) is its linking. toward * inverse is l. */
 inline realv shape_weight(UNIFORM_SPACE const LightShape* shape, vec3 toward, realv inverse, realv distance,
@@ -52,8 +60,7 @@ inline realv shape_weight(UNIFORM_SPACE const LightShape* shape, vec3 toward, re
   bounded *= t * t;
 #endif
 #ifdef SPOT_LIGHTS
-  const vec3 axis = make_vec3(shape->axis[0], shape->axis[1], shape->axis[2]);
-  const realv c = -inverse * dot3(toward, axis); /* dot(-l, axis) */
+  const realv c = cone_cosine(shape, toward, inverse);
   const realv s = SELECT(c >= shape->cos_inner, 1,
                          clamp((c - shape->cos_outer) * shape->inverse_cone_width, (real)0, (real)1));
   bounded *= s * s * (3 - 2 * s);
@@ -80,6 +87,14 @@ inline realv shape_weight(UNIFORM_SPACE const LightShape* shape, vec3 toward, re
 inline bool beyond_range_in_every_lane(UNIFORM_SPACE const LightShape* shape, vec3 toward) {
   const real inverse_range_sq = shape->inverse_range * shape->inverse_range;
   return all_lanes(LANE_MASK(dot3(toward, toward) * inverse_range_sq > (real)1.01));
+}
+#endif
+
+#if defined(TILED_CULLING) && defined(SPOT_LIGHTS)
+/* Whether every lane is outside a spot's cone, c < cos_outer: there the cone factor, and so the
+ * weight, is exactly 0 (as beyond the range above). A point light (cos_outer -2) never is. */
+inline bool outside_cone_in_every_lane(UNIFORM_SPACE const LightShape* shape, vec3 toward, realv inverse) {
+  return all_lanes(LANE_MASK(cone_cosine(shape, toward, inverse) < shape->cos_outer));
 }
 #endif
 

@@ -1,6 +1,7 @@
 #pragma once
 // The phongcl Python module, one binder per part of the API (python/*.cpp).
 #include <array>
+#include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -15,6 +16,13 @@ namespace py = pybind11;
 
 // A C-contiguous float32 array, converted from other dtypes and layouts (one copy) where needed.
 using FloatArray = py::array_t<float, py::array::c_style | py::array::forcecast>;
+
+// "(480, 640, 3)": an array's shape as NumPy prints it.
+std::string shape_of(const py::array& array);
+// ValueError "<name> must have shape (H, W[, C]), got ..." unless the array is (height, width),
+// for channels 1, or (height, width, channels).
+void require_shape(const py::array& array, const std::string& name, py::ssize_t height, py::ssize_t width,
+                   int channels);
 
 inline std::array<double, 3> to_array(const glm::dvec3& v) { return {v.x, v.y, v.z}; }
 inline glm::dvec3 to_vec3(const std::array<double, 3>& a) { return {a[0], a[1], a[2]}; }

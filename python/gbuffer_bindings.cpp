@@ -16,24 +16,8 @@ namespace phongcl::python {
 
 namespace {
 
-std::string shape_of(const py::array& array) {
-  std::string text = "(";
-  for (py::ssize_t d = 0; d < array.ndim(); ++d) text += (d ? ", " : "") + std::to_string(array.shape(d));
-  return text + (array.ndim() == 1 ? ",)" : ")");
-}
-
 // float32 in any memory layout, read in place through its strides; other dtypes are converted.
 using StridedFloats = py::array_t<float, py::array::forcecast>;
-
-void require_shape(const py::array& array, const char* name, py::ssize_t height, py::ssize_t width, int channels) {
-  const bool ok = channels == 1 ? array.ndim() == 2 && array.shape(0) == height && array.shape(1) == width
-                                : array.ndim() == 3 && array.shape(0) == height && array.shape(1) == width &&
-                                      array.shape(2) == channels;
-  if (!ok)
-    throw py::value_error(std::string(name) + " must have shape (" + std::to_string(height) + ", " +
-                          std::to_string(width) + (channels == 1 ? "" : ", " + std::to_string(channels)) +
-                          "), got " + shape_of(array));
-}
 
 // Strides in whole floats, none zero (ChannelView reads a zero row stride as "rows packed"); a
 // broadcast or byte-offset array is copied into a C-contiguous one first.

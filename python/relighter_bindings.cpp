@@ -21,10 +21,9 @@ py::array_t<float> shade(Relighter& relighter, const std::optional<py::array>& o
   py::array_t<float> image;
   if (out) {
     const auto& array = *out;
-    if (!py::isinstance<py::array_t<float>>(array) || !(array.flags() & py::array::c_style) || !array.writeable() ||
-        array.ndim() != 3 || array.shape(0) != height || array.shape(1) != width || array.shape(2) != 4)
-      throw py::value_error("out must be a writeable C-contiguous float32 array of shape (" + std::to_string(height) +
-                            ", " + std::to_string(width) + ", 4)");
+    require_shape(array, "out", height, width, 4);
+    if (!py::isinstance<py::array_t<float>>(array) || !(array.flags() & py::array::c_style) || !array.writeable())
+      throw py::value_error("out must be a writeable C-contiguous float32 array");
     image = py::reinterpret_borrow<py::array_t<float>>(array);
   } else {
     image = py::array_t<float>({height, width, py::ssize_t{4}});
@@ -39,7 +38,7 @@ py::array_t<float> shade(Relighter& relighter, const std::optional<py::array>& o
 }
 
 py::dict timings(const Relighter& relighter) {
-  const RelightTimings t = relighter.last_timings();
+  const ShadeTimings t = relighter.last_timings();
   py::dict d;
   d["build_ms"] = t.build_ms;
   d["pack_ms"] = t.pack_ms;
@@ -49,6 +48,33 @@ py::dict timings(const Relighter& relighter) {
   d["total_ms"] = t.total_ms;
   d["rebuilt"] = t.rebuilt;
   d["gbuffer_uploaded"] = t.gbuffer_uploaded;
+  return d;
+}
+
+py::dict report(const Relighter& relighter) {
+  const ShadeReport r = relighter.last_report();
+  py::dict counts;
+  counts["shaded"] = r.counts.shaded;
+  counts["background"] = r.counts.background;
+  counts["nonfinite_position"] = r.counts.nonfinite_position;
+  counts["nonfinite_normal"] = r.counts.nonfinite_normal;
+  counts["nonfinite_material"] = r.counts.nonfinite_material;
+  py::dict d;
+  d["counts"] = counts;
+  d["tiles"] = r.tiles;
+  d["culled"] = r.culled;
+  if (r.culled) {
+    py::dict culling;
+    culling["tile_size"] = r.culling.tile_size;
+    culling["shaded_tiles"] = r.culling.shaded_tiles;
+    culling["mean_lights_per_tile"] = r.culling.mean_lights_per_tile();
+    culling["max_lights_per_tile"] = r.culling.max_lights_per_tile;
+    d["culling"] = culling;
+  }
+  d["kernel_summary"] = r.kernel_summary;
+  d["recipe_reasons"] = r.recipe_reasons;
+  d["build_options"] = r.build_options;
+  d["warnings"] = r.warnings;
   return d;
 }
 
@@ -93,7 +119,11 @@ void bind_relighter(py::module_& module) {
       .def_property_readonly("build_options", &Relighter::build_options)
       .def_property_readonly("last_timings", &timings,
                              "What the last shade() cost, in ms: build, pack, upload, kernel, download, total; "
-                             "and whether the kernel was rebuilt and the G-buffer uploaded.");
+                             "and whether the kernel was rebuilt and the G-buffer uploaded.")
+      .def_property_readonly("last_report", &report,
+                             "What the last shade() found, as phongcl shade prints it: pixel counts (shaded, "
+                             "background, non-finite), launches (tiles), tiled culling, the kernel's recipe "
+                             "with the reason for each decision, and warnings.");
 
   module.def(
       "devices",

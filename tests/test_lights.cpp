@@ -10,17 +10,17 @@ namespace {
 
 using testing::add_shaped_lights;
 using testing::describe_worst;
+using testing::kAbsoluteFloor;
+using testing::kRelativeBound;
 using testing::random_scene;
 using testing::RandomSceneSpec;
 using testing::ShapedLightSpec;
 
-// The product's bound (test_shading.cpp says why float meets it). The new factors add a few ulp:
-// 1/d^k (k roundings of a correctly rounded rsqrt), the window (1 - x^4 loses digits only where the
-// window, and so the light's share, is near 0) and the smoothstep (s's error is about 3e-7 over a
-// penumbra of at least 5 degrees, cos difference >= 0.01: 3e-5 of s, but only where cone ~ s^2 is
-// small beside the pixel's other terms).
-constexpr double kRelativeBound = 5e-4;
-constexpr double kAbsoluteFloor = 1e-6;
+// The product's bound (shading_support.h says why float meets it) holds for the light shapes too.
+// The new factors add a few ulp: 1/d^k (k roundings of a correctly rounded rsqrt), the window
+// (1 - x^4 loses digits only where the window, and so the light's share, is near 0) and the
+// smoothstep (s's error is about 3e-7 over a penumbra of at least 5 degrees, cos difference >=
+// 0.01: 3e-5 of s, but only where cone ~ s^2 is small beside the pixel's other terms).
 
 struct Case {
   const char* name;

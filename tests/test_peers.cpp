@@ -15,12 +15,10 @@
 namespace phongcl {
 namespace {
 
+using testing::kAbsoluteFloor;
+using testing::kRelativeBound;
 using testing::random_scene;
 using testing::RandomSceneSpec;
-
-// README's bar for every implementation of the formula: 5e-4 relative, 1e-6 absolute near zero.
-constexpr double kRelTolerance = 5e-4;
-constexpr double kAbsFloor = 1e-6;
 
 using PeerFunction = void (*)(const PackedFrame&, const PackedScene&, float*);
 struct Peer {
@@ -39,8 +37,8 @@ void expect_matches_reference(const Scene& scene, const GBuffer& gbuffer, const 
   const Image reference = reference_image(scene, gbuffer);
   for (const Peer& peer : kPeers) {
     const Image image = shade_with(peer, scene, gbuffer);
-    const ErrorStats stats = compare_images(image, reference, kAbsFloor, testing::shaded_mask(gbuffer));
-    EXPECT_LE(stats.max_rel, kRelTolerance) << peer.name << " on " << what << ": " << testing::describe_worst(stats);
+    const ErrorStats stats = compare_images(image, reference, kAbsoluteFloor, testing::shaded_mask(gbuffer));
+    EXPECT_LE(stats.max_rel, kRelativeBound) << peer.name << " on " << what << ": " << testing::describe_worst(stats);
     EXPECT_EQ(stats.nonfinite_mismatches, 0u) << peer.name << " on " << what;
     testing::expect_background_exact(image, scene, gbuffer);
   }

@@ -1,22 +1,22 @@
 // phongcl::Relighter: a resident G-buffer re-shaded after light, material and eye changes must give
 // the image the double reference gives for the changed scene, upload only what changed, and rebuild
-// the kernel only when the recipe changes.
+// the kernel only when the recipe changes; tiles, terms, culling and the report are what
+// `phongcl shade` prints and writes.
 #include <gtest/gtest.h>
 
 #include <phongcl/phongcl.hpp>
 
 #include "shading_support.h"
+#include "shaped_lights.h"
 
 namespace phongcl {
 namespace {
 
 using testing::describe_worst;
+using testing::kAbsoluteFloor;
+using testing::kRelativeBound;
 using testing::random_scene;
 using testing::RandomSceneSpec;
-
-// The product's bound, as in test_shading.cpp (where it is derived).
-constexpr double kRelativeBound = 5e-4;
-constexpr double kAbsoluteFloor = 1e-6;
 
 void expect_matches_reference(const Image& image, const Scene& scene, const GBuffer& gbuffer, const char* step) {
   testing::expect_background_exact(image, scene, gbuffer);
@@ -93,6 +93,109 @@ TEST(Relighter, BadChangesAreRefusedAndTheStateKept) {
   EXPECT_THROW(relighter.set_materials(two), InputError);
   EXPECT_THROW(relighter.set_camera_eye({0, INFINITY, 0}), std::invalid_argument);
   expect_matches_reference(relighter.shade(), scene, gbuffer, "after refused changes");
+}
+
+TEST(Relighter, TilesBeyondOneLaunchGiveTheWholeFrame) {
+  PHONGCL_REQUIRE_ANY_DEVICE();
+  auto [scene, gbuffer] = random_scene({}, 1205);
+  const Image whole = Relighter(scene, gbuffer).shade();
+  RelighterOptions options;
+  options.max_tile_pixels = 200;  // 851 pixels: 5 launches, the last one partial
+  Relighter tiled(scene, gbuffer, options);
+  const Image pieces = tiled.shade();
+  EXPECT_EQ(tiled.last_report().tiles, 5u);
+  EXPECT_EQ(pieces.rgba, whole.rgba);  // the same kernel on the same pixels: bit for bit
+  // Tiles overwrite each other's packed G-buffer: every frame packs again.
+  scene.lights[0].color = {0.5, 2, 1};
+  tiled.set_lights(scene.lights);
+  expect_matches_reference(tiled.shade(), scene, gbuffer, "tiled, moved light");
+  EXPECT_TRUE(tiled.last_timings().gbuffer_uploaded);
+}
+
+TEST(Relighter, TermsSumToTheImage) {
+  PHONGCL_REQUIRE_ANY_DEVICE();
+  const auto [scene, gbuffer] = random_scene({}, 1206);
+  TermImages terms;
+  EXPECT_THROW(Relighter(scene, gbuffer).shade(terms), std::logic_error);
+  RelighterOptions options;
+  options.terms = true;
+  Relighter relighter(scene, gbuffer, options);
+  const Image image = relighter.shade(terms);
+  expect_matches_reference(image, scene, gbuffer, "with terms");
+  const std::vector<bool> shaded = testing::shaded_mask(gbuffer);
+  for (std::size_t i = 0; i < gbuffer.pixel_count(); ++i) {
+    if (!shaded[i]) continue;
+    for (int c = 0; c < 3; ++c) {
+      const double sum = double(terms.ambient.pixel(i)[c]) + terms.diffuse.pixel(i)[c] + terms.specular.pixel(i)[c];
+      // Three float terms rounded once more when the kernel adds them.
+      ASSERT_NEAR(sum, image.pixel(i)[c], kAbsoluteFloor + 1e-6 * std::abs(sum)) << "pixel " << i << ", channel " << c;
+    }
+    ASSERT_EQ(terms.diffuse.pixel(i)[3], image.pixel(i)[3]) << "alpha of pixel " << i;
+  }
+}
+
+TEST(Relighter, ReportCountsPixelsAndSaysWhatWasCompiled) {
+  PHONGCL_REQUIRE_ANY_DEVICE();
+  auto [scene, gbuffer] = random_scene({}, 1207);
+  gbuffer.normal[1][5] = std::nanf("");
+  Relighter relighter(scene, gbuffer);
+  relighter.shade();
+  const ShadeReport report = relighter.last_report();
+  PixelCounts expected;
+  for (std::size_t i = 0; i < gbuffer.pixel_count(); ++i) expected.add(classify_pixel(gbuffer, i));
+  EXPECT_EQ(report.counts.shaded, expected.shaded);
+  EXPECT_EQ(report.counts.background, expected.background);
+  EXPECT_EQ(report.counts.nonfinite_normal, 1u);
+  EXPECT_EQ(report.tiles, 1u);
+  EXPECT_EQ(report.point_lights, 3);
+  EXPECT_EQ(report.directional_lights, 2);
+  EXPECT_EQ(report.kernel_summary, relighter.kernel_summary());
+  EXPECT_EQ(report.build_options, relighter.build_options());
+  EXPECT_FALSE(report.recipe_reasons.empty());
+  EXPECT_FALSE(report.culled);
+  // A re-shade finds the same pixels without packing them again.
+  relighter.shade();
+  EXPECT_FALSE(relighter.last_timings().gbuffer_uploaded);
+  EXPECT_EQ(relighter.last_report().counts.nonfinite_normal, 1u);
+}
+
+TEST(Relighter, ManyLightsWithARangeAreCulledPerTile) {
+  PHONGCL_REQUIRE_ANY_DEVICE();
+  auto [scene, gbuffer] = random_scene({64, 48, 0, 1, 4}, 1208);
+  testing::add_shaped_lights(scene, {kAutoCullingLights}, 1208);
+  Relighter relighter(scene, gbuffer);
+  expect_matches_reference(relighter.shade(), scene, gbuffer, "culled");
+  const ShadeReport report = relighter.last_report();
+  ASSERT_TRUE(report.culled) << report.kernel_summary;
+  EXPECT_GT(report.culling.shaded_tiles, 0u);
+  EXPECT_LE(report.culling.max_lights_per_tile, static_cast<std::size_t>(kAutoCullingLights));
+  // New lights are culled again over the resident G-buffer.
+  scene.lights.resize(scene.lights.size() - 1);
+  testing::add_shaped_lights(scene, {1}, 1209);
+  relighter.set_lights(scene.lights);
+  expect_matches_reference(relighter.shade(), scene, gbuffer, "culled, new light");
+  EXPECT_FALSE(relighter.last_timings().gbuffer_uploaded);
+}
+
+TEST(Relighter, OneRelighterShadesASequenceOfFrames) {
+  PHONGCL_REQUIRE_ANY_DEVICE();
+  Relighter relighter{RelighterOptions{}};
+  EXPECT_EQ(relighter.width(), 0);
+  EXPECT_THROW(relighter.shade(), std::logic_error);
+  for (unsigned seed : {1210u, 1211u}) {
+    RandomSceneSpec spec;
+    spec.width += static_cast<int>(seed % 2);  // frames of other sizes too
+    auto [scene, gbuffer] = random_scene(spec, seed);
+    relighter.set_frame(scene, GBuffer(gbuffer));
+    EXPECT_EQ(relighter.width(), gbuffer.width);
+    expect_matches_reference(relighter.shade(), scene, gbuffer, "sequence frame");
+    EXPECT_TRUE(relighter.last_timings().gbuffer_uploaded);
+  }
+  // A frame the scene cannot shade is refused and the previous one kept.
+  auto [scene, gbuffer] = random_scene({}, 1212);
+  scene.materials.resize(1);
+  EXPECT_THROW(relighter.set_frame(scene, GBuffer(gbuffer)), InputError);
+  EXPECT_EQ(relighter.width(), RandomSceneSpec{}.width + 1);
 }
 
 TEST(Relighter, UnknownDeviceIsAClearError) {

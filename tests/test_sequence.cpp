@@ -142,12 +142,12 @@ struct RecordingStages {
             },
             [this](FrameWork& work) {
               enter();
-              work.result.image = Image(1, 1);
-              work.result.image.rgba[0] = static_cast<float>(work.frame);
+              work.image = Image(1, 1);
+              work.image.rgba[0] = static_cast<float>(work.frame);
             },
             [this](FrameWork& work) {
               enter();
-              work.written = std::to_string(work.result.image.rgba[0]);
+              work.written = std::to_string(work.image.rgba[0]);
             }};
   }
 };

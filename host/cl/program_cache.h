@@ -5,12 +5,10 @@
 #include <map>
 #include <string>
 
+#include "cl/cache_outcome.h"
 #include "cl/compute_context.h"
 
 namespace phongcl {
-
-enum class CacheOutcome { memory_hit, disk_hit, compiled };
-const char* to_string(CacheOutcome outcome);
 
 struct BuiltProgram {
   cl::Program program;

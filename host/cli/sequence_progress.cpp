@@ -58,9 +58,9 @@ void SequenceProgress::frame_done(const FrameWork& work) {
   } else {
     ++shaded_;
     totals_ += work.times;
-    if (work.result.cache != CacheOutcome::memory_hit) {
+    if (work.report.cache != CacheOutcome::memory_hit) {
       ++builds_;
-      build_ms_ += work.result.timings.build_ms;
+      build_ms_ += work.report.timings.build_ms;
     }
     if (!terminal_)
       std::cout << "  frame " << work.frame << "  " << describe_split(work.times) << "  [" << done_before + 1 << "/"

@@ -5,14 +5,14 @@
 #include <iostream>
 #include <memory>
 
-#include "cl/compute_context.h"
+#include <phongcl/relighter.hpp>
+
 #include "cli/commands.h"
 #include "cli/format.h"
 #include "cli/inputs.h"
 #include "cli/outputs.h"
 #include "cli/shade_sequence.h"
 #include "exr/exr_channels.h"
-#include "shading/phong_shader.h"
 
 namespace phongcl::cli {
 
@@ -45,18 +45,17 @@ double milliseconds_since(Clock::time_point start) {
   return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
 
-ShadeOptions shade_options(const ShadeArguments& args) {
-  ShadeOptions options{parse_precision(args.precision), !args.no_specialise};
-  options.lanes = args.lanes;
+RelighterOptions relighter_options(const ShadeArguments& args) {
+  RelighterOptions options{args.device, parse_precision(args.precision), !args.no_specialise, args.lanes};
   options.culling = parse_culling(args.culling);
   options.tile_size = args.tile;
-  options.write_terms = args.outputs.wants_terms();
+  options.terms = args.outputs.wants_terms();
   return options;
 }
 
 void run_shade(const ShadeArguments& args) {
   if (args.sequence.wanted(args.inputs, args.outputs)) {
-    run_shade_sequence(args.inputs, args.outputs, shade_options(args), args.device, args.sequence);
+    run_shade_sequence(args.inputs, args.outputs, relighter_options(args), args.sequence);
     return;
   }
   const auto start = Clock::now();
@@ -74,20 +73,21 @@ void run_shade(const ShadeArguments& args) {
     LoadedGBuffer loaded = args.inputs.load_described_gbuffer(scene);
     return Inputs{std::move(scene), std::move(loaded), milliseconds_since(start)};
   });
-  ComputeContext compute = make_compute_context(pick_device(args.device));
-  const Inputs inputs = reading.get();
+  const RelighterOptions options = relighter_options(args);
+  Relighter relighter(options);
+  Inputs inputs = reading.get();
   const Scene& scene = inputs.scene;
   const LoadedGBuffer& loaded = inputs.loaded;
-  const GBuffer& gbuffer = loaded.gbuffer;
   const double read_ms = inputs.read_ms;
-  ProgramCache cache(ProgramCache::default_directory());
-  PhongShader shader(std::move(compute), cache);
-  const ShadeResult result = shader.shade(scene, gbuffer, shade_options(args));
+  relighter.set_frame(scene, std::move(inputs.loaded.gbuffer));
+  const GBuffer& gbuffer = relighter.gbuffer();
+  TermImages terms;
+  const Image image = options.terms ? relighter.shade(terms) : relighter.shade();
+  const ShadeReport result = relighter.last_report();
   const auto write_start = Clock::now();
   ImageOutputs outputs = args.outputs;
   outputs.compression = args.sequence.output_compression(gbuffer.compression);
-  const std::string written =
-      outputs.write(result.image, {result.terms.ambient, result.terms.diffuse, result.terms.specular});
+  const std::string written = outputs.write(image, {terms.ambient, terms.diffuse, terms.specular});
   const double write_ms = milliseconds_since(write_start);
 
   const ShadeTimings& t = result.timings;
@@ -97,20 +97,20 @@ void run_shade(const ShadeArguments& args) {
             << "  image      " << gbuffer.width << " x " << gbuffer.height << ", " << with_commas(gbuffer.pixel_count())
             << " pixels: " << with_commas(result.counts.shaded) << " shaded, "
             << with_commas(gbuffer.pixel_count() - result.counts.shaded) << " background\n"
-            << "  lights     " << result.recipe.point_lights - result.recipe.spot_lights << " point + "
-            << (result.recipe.spot_lights > 0 ? std::to_string(result.recipe.spot_lights) + " spot + " : "")
-            << result.recipe.directional_lights << " directional\n"
-            << "  device     " << describe(shader.compute().device.info) << "\n"
-            << "  kernel     " << result.recipe.summary() << "\n"
+            << "  lights     " << result.point_lights - result.spot_lights << " point + "
+            << (result.spot_lights > 0 ? std::to_string(result.spot_lights) + " spot + " : "")
+            << result.directional_lights << " directional\n"
+            << "  device     " << describe(relighter.device()) << "\n"
+            << "  kernel     " << result.kernel_summary << "\n"
             << "  build      " << to_string(result.cache) << ", " << milliseconds(t.build_ms)
-            << (cache.disk_directory().empty() ? " (no disk cache: no writable cache directory)" : "") << "\n"
+            << (result.disk_cache_directory.empty() ? " (no disk cache: no writable cache directory)" : "") << "\n"
             << "  time       read " << milliseconds(read_ms) << ", pack " << milliseconds(t.pack_ms) << ", upload "
             << milliseconds(t.upload_ms) << ", kernel " << milliseconds(t.kernel_ms) << ", download "
             << milliseconds(t.download_ms) << ", write " << milliseconds(write_ms) << ", total "
             << milliseconds(milliseconds_since(start)) << " wall clock (shading "
             << mpixels_per_second(gbuffer.pixel_count(), t.total_ms) << "; kernel "
             << mpixels_per_second(gbuffer.pixel_count(), t.kernel_ms) << ")\n";
-  if (result.recipe.tiled) {
+  if (result.culled) {
     const CullingStats& c = result.culling;
     std::cout << "  culling    tiles " << c.tile_size << "x" << c.tile_size << ", " << with_commas(c.shaded_tiles)
               << " with shaded pixels; lights per tile mean " << std::fixed << std::setprecision(1)
@@ -121,10 +121,10 @@ void run_shade(const ShadeArguments& args) {
   print_unshaded(result.counts);
   for (const auto& warning : loaded.warnings) std::cout << "  warning    " << warning << "\n";
   for (const auto& warning : result.warnings) std::cout << "  warning    " << warning << "\n";
-  if (!cache.disk_problem().empty()) std::cout << "  note       " << cache.disk_problem() << "\n";
+  if (!result.disk_cache_problem.empty()) std::cout << "  note       " << result.disk_cache_problem << "\n";
   if (args.explain) {
     std::cout << "  recipe:\n";
-    for (const auto& reason : result.recipe.reasons) std::cout << "    " << reason << "\n";
+    for (const auto& reason : result.recipe_reasons) std::cout << "    " << reason << "\n";
     std::cout << "  build options: " << result.build_options << "\n";
   }
   std::cout << "  wrote      " << written << " (" << exr::compression_name(outputs.compression) << ")\n";

@@ -13,7 +13,8 @@
 #include <stdexcept>
 #include <thread>
 
-#include "cl/compute_context.h"
+#include <phongcl/relighter.hpp>
+
 #include "cli/format.h"
 #include "cli/sequence_progress.h"
 #include "exr/exr_channels.h"
@@ -21,7 +22,6 @@
 #include "sequence/frame_pattern.h"
 #include "sequence/shard.h"
 #include "sequence/stop_signal.h"
-#include "shading/phong_shader.h"
 
 namespace phongcl::cli {
 
@@ -126,8 +126,8 @@ ExrCompression SequenceOptions::output_compression(ExrCompression input) const {
   return compression.empty() ? input : exr::parse_compression(compression);
 }
 
-void run_shade_sequence(const SceneInputs& inputs, const ImageOutputs& outputs, const ShadeOptions& options,
-                        const std::string& device, const SequenceOptions& sequence) {
+void run_shade_sequence(const SceneInputs& inputs, const ImageOutputs& outputs, const RelighterOptions& options,
+                        const SequenceOptions& sequence) {
   const auto start = Clock::now();
   const SequenceFiles files(inputs, outputs);
   const std::vector<int> requested = requested_frames(sequence, files);
@@ -155,9 +155,8 @@ void run_shade_sequence(const SceneInputs& inputs, const ImageOutputs& outputs, 
   }
 
   sequence.start_exr_threads();
-  ProgramCache cache(ProgramCache::default_directory());
-  PhongShader shader(make_compute_context(pick_device(device)), cache);
-  std::cout << "  device     " << describe(shader.compute().device.info) << "\n";
+  Relighter relighter(options);  // one device, kernel cache and set of device buffers for every frame
+  std::cout << "  device     " << describe(relighter.device()) << "\n";
   // A scene that is not a pattern is the same for every frame: parse it once.
   const std::optional<Scene> shared_scene =
       files.scene.is_pattern() ? std::nullopt : std::optional<Scene>(inputs.load_scene());
@@ -171,17 +170,19 @@ void run_shade_sequence(const SceneInputs& inputs, const ImageOutputs& outputs, 
     work.layout = std::move(loaded.layout);
   };
   stages.shade = [&](FrameWork& work) {
-    work.result = shader.shade(work.scene, work.gbuffer, options);
-    const ShadeTimings& t = work.result.timings;
+    work.compression = work.gbuffer.compression;
+    relighter.set_frame(work.scene, std::move(work.gbuffer));
+    work.image = options.terms ? relighter.shade(work.terms) : relighter.shade();
+    work.report = relighter.last_report();
+    const ShadeTimings& t = work.report.timings;
     work.times.pack_ms = t.pack_ms + t.upload_ms;
     work.times.kernel_ms = t.kernel_ms;
     work.times.download_ms = t.download_ms;
   };
   stages.write = [&](FrameWork& work) {
     ImageOutputs framed = files.outputs_of(outputs, work.frame);
-    framed.compression = sequence.output_compression(work.gbuffer.compression);
-    const TermImages& terms = work.result.terms;
-    work.written = framed.write(work.result.image, {terms.ambient, terms.diffuse, terms.specular});
+    framed.compression = sequence.output_compression(work.compression);
+    work.written = framed.write(work.image, {work.terms.ambient, work.terms.diffuse, work.terms.specular});
   };
 
   SequenceProgress progress(to_shade.size(), ::isatty(STDOUT_FILENO) == 1);

@@ -7,7 +7,10 @@
 
 #include "cli/inputs.h"
 #include "cli/outputs.h"
-#include "shading/recipe.h"
+
+namespace phongcl {
+struct RelighterOptions;
+}
 
 namespace phongcl::cli {
 
@@ -30,7 +33,7 @@ struct SequenceOptions {
 
 // Shades every frame of the sequence, skipping those already done; prints progress and a summary.
 // Throws (after the summary) when a frame failed or a signal stopped the run.
-void run_shade_sequence(const SceneInputs& inputs, const ImageOutputs& outputs, const ShadeOptions& options,
-                        const std::string& device, const SequenceOptions& sequence);
+void run_shade_sequence(const SceneInputs& inputs, const ImageOutputs& outputs, const RelighterOptions& options,
+                        const SequenceOptions& sequence);
 
 }  // namespace phongcl::cli

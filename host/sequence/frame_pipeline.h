@@ -9,8 +9,9 @@
 #include <vector>
 
 #include "gbuffer/gbuffer.h"
+#include "image/image.h"
 #include "scene/scene.h"
-#include "shading/phong_shader.h"
+#include "shading/shade_stats.h"
 
 namespace phongcl {
 
@@ -25,9 +26,12 @@ struct FrameTimes {
 struct FrameWork {
   int frame = 0;
   Scene scene;
-  GBuffer gbuffer;
+  GBuffer gbuffer;      // until shading takes it
+  ExrCompression compression = ExrCompression::zip;  // the G-buffer's, which the outputs default to
   std::string layout;   // what was read, for the summary
-  ShadeResult result;
+  Image image;
+  TermImages terms;     // with AOV outputs
+  ShadeReport report;
   std::string written;  // what was written, for the summary
   FrameTimes times;     // the pipeline times read, shade and write; a stage may refine its split
   std::exception_ptr error;  // set by the stage that threw; later stages pass the frame on untouched

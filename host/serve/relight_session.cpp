@@ -66,7 +66,7 @@ Frame RelightSession::shade(const Scene& scene, const RenderSettings& settings) 
   Relighter& relighter = relighter_for(scene, settings);
   Frame frame;
   frame.image = relighter.shade();
-  const RelightTimings t = relighter.last_timings();
+  const ShadeTimings t = relighter.last_timings();
   frame.timings = {t.build_ms, t.kernel_ms, t.pack_ms + t.upload_ms + t.download_ms,
                    std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count()};
   frame.kernel = relighter.kernel_summary();

@@ -9,6 +9,7 @@
 #include "scene/scene.h"
 #include "shading/device_layout.h"
 #include "shading/recipe.h"
+#include "shading/shade_stats.h"  // PixelCounts
 
 namespace phongcl {
 
@@ -34,13 +35,6 @@ LightShape light_shape(const Light& light);
 // sphere around a spot's cone cut by it; radius -1 without a range. Widened by 1e-5 of the scale
 // against the float rounding of the kernel's distances: culling must never drop a light that adds.
 LightBounds light_bounds(const Light& light, const glm::dvec3& eye);
-
-// How many pixels fell in each class (the summary reports the non-finite ones).
-struct PixelCounts {
-  std::size_t shaded = 0, background = 0, nonfinite_position = 0, nonfinite_normal = 0, nonfinite_material = 0;
-  void add(PixelClass pixel_class);
-  PixelCounts& operator+=(const PixelCounts& other);
-};
 
 // Packs pixels [first, first + count) into float planes of `stride` values each (plane order in
 // kernels/layout.h, then the recipe's per-pixel material planes) and the material index of each

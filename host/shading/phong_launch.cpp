@@ -1,8 +1,10 @@
 #include "shading/phong_launch.h"
 
 #include <algorithm>
+#include <chrono>
 #include <vector>
 
+#include "cl/compute_context.h"
 #include "shading/host_threads.h"
 
 namespace phongcl {
@@ -26,6 +28,41 @@ cl::Buffer uniform_buffer(const cl::Context& context, std::vector<T> values) {
 }
 
 }  // namespace
+
+PackedTile pack_into_mapped(cl::CommandQueue& queue, const PackTarget& target, const GBuffer& gbuffer,
+                            const glm::dvec3& eye, const Recipe& recipe, std::size_t first, std::size_t count,
+                            std::size_t padded) {
+  using Clock = std::chrono::steady_clock;
+  const auto start = Clock::now();
+  const bool half = recipe.precision == Precision::half_storage;
+  const std::size_t stride = target.stride;
+  const std::size_t plane_bytes = stride * recipe.plane_count() * (half ? sizeof(cl_half) : sizeof(cl_float));
+  void* mapped_planes = queue.enqueueMapBuffer(target.planes, CL_TRUE, CL_MAP_WRITE_INVALIDATE_REGION, 0, plane_bytes);
+  auto* mapped_index = static_cast<cl_int*>(queue.enqueueMapBuffer(
+      target.material_index, CL_TRUE, CL_MAP_WRITE_INVALIDATE_REGION, 0, stride * sizeof(cl_int)));
+  std::vector<float> half_staging(half ? stride * recipe.plane_count() : 0);
+  float* float_planes = half ? half_staging.data() : static_cast<float*>(mapped_planes);
+  PackedTile packed;
+  try {
+    packed.counts = pack_tile(gbuffer, eye, recipe, first, count, padded, stride, float_planes, mapped_index);
+    if (half)
+      packed.flushed_to_zero = convert_planes_to_half(gbuffer, recipe, first, padded, stride, float_planes,
+                                                      static_cast<std::uint16_t*>(mapped_planes));
+  } catch (...) {
+    // A value beyond half's range throws: leave the buffers unmapped for the next frame.
+    queue.enqueueUnmapMemObject(target.planes, mapped_planes);
+    queue.enqueueUnmapMemObject(target.material_index, mapped_index);
+    queue.finish();
+    throw;
+  }
+  packed.pack_ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+  cl::Event unmap_planes, unmap_index;
+  queue.enqueueUnmapMemObject(target.planes, mapped_planes, nullptr, &unmap_planes);
+  queue.enqueueUnmapMemObject(target.material_index, mapped_index, nullptr, &unmap_index);
+  queue.finish();
+  packed.upload_ms = event_milliseconds(unmap_planes) + event_milliseconds(unmap_index);
+  return packed;
+}
 
 std::size_t tile_pixels(const DeviceInfo& device, const Recipe& recipe, std::size_t pixels, std::size_t limit) {
   const std::size_t plane_bytes = recipe.precision == Precision::half_storage ? 2 : 4;

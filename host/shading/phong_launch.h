@@ -1,7 +1,7 @@
 #pragma once
-// The pieces of a Phong frame on the device that the one-shot shader (phong_shader.h) and the
-// resident relighter (include/phongcl/relighter.hpp) share: tile sizes, the scene's tables on the
-// device, the typed kernel launch, and copying the output planes out.
+// The pieces of a Phong frame on the device, which the shader (phong_shader.h) puts together: tile
+// sizes, packing into device memory, the scene's tables on the device, the typed kernel launch, and
+// copying the output planes out.
 #include <cstddef>
 
 #include "cl/device_info.h"
@@ -18,6 +18,25 @@ std::size_t tile_pixels(const DeviceInfo& device, const Recipe& recipe, std::siz
 inline std::size_t round_up(std::size_t value, std::size_t multiple) {
   return (value + multiple - 1) / multiple * multiple;
 }
+
+// Where a tile's G-buffer goes: ALLOC_HOST_PTR buffers, mapped for writing so that on a CPU device
+// packing writes straight into device memory.
+struct PackTarget {
+  const cl::Buffer& planes;          // recipe.plane_count() planes of `stride` values (half with half-storage)
+  const cl::Buffer& material_index;  // `stride` ints
+  std::size_t stride = 0;
+};
+struct PackedTile {
+  PixelCounts counts;
+  std::size_t flushed_to_zero = 0;  // half-storage: non-zero values too small for half
+  double pack_ms = 0.0;             // host packing; upload_ms: the unmaps (profiling events)
+  double upload_ms = 0.0;
+};
+// Packs pixels [first, first + count) into the mapped buffers (pack_tile, then half conversion),
+// padded to `padded` slots, and unmaps them, on an exception too: they outlive the frame.
+PackedTile pack_into_mapped(cl::CommandQueue& queue, const PackTarget& target, const GBuffer& gbuffer,
+                            const glm::dvec3& eye, const Recipe& recipe, std::size_t first, std::size_t count,
+                            std::size_t padded);
 
 // The light and material tables in device memory, with the per-frame scalars they go with.
 struct DeviceUniforms {

@@ -1,58 +1,86 @@
 #pragma once
-// Phong shading of a G-buffer on an OpenCL device: recipe, kernel build (cached), packing, launch.
+// Phong shading of a G-buffer on an OpenCL device: kernel build (cached), packing, launch and
+// download, in tiles when a frame is larger than one device allocation. The one engine under
+// phongcl::Relighter (include/phongcl/relighter.hpp, which `phongcl shade` uses) and the lab.
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "cl/program_cache.h"
 #include "cl/reusable_buffer.h"
 #include "image/image.h"
+#include "shading/phong_launch.h"
 #include "shading/pack.h"
 #include "shading/recipe.h"
+#include "shading/shade_stats.h"
 #include "shading/tile_culling.h"
 
 namespace phongcl {
 
-// Milliseconds. pack: host packing into mapped device memory; upload: unmapping it; kernel:
-// profiling events; download: mapping the result and copying it out. total: wall clock of all of
-// it, build excluded (build_ms says what the build cost, 0 on a memory-cache hit).
-struct ShadeTimings {
-  double build_ms = 0.0, pack_ms = 0.0, upload_ms = 0.0, kernel_ms = 0.0, download_ms = 0.0, total_ms = 0.0;
-};
-
-// The three terms of L_o as images (RGB, alpha as in the combined image); their sum is the
-// combined image up to float rounding. Filled only with ShadeOptions::write_terms.
-struct TermImages {
-  Image ambient, diffuse, specular;
-};
-
-struct ShadeResult {
+// A one-shot frame: the report, the images, and the recipe they were shaded with.
+struct ShadeResult : ShadeReport {
   Image image;
-  TermImages terms;
+  TermImages terms;  // filled only with ShadeOptions::write_terms
   Recipe recipe;
-  std::string build_options;
-  CacheOutcome cache = CacheOutcome::compiled;
-  ShadeTimings timings;
-  PixelCounts counts;
-  CullingStats culling;  // with recipe.tiled; its time is also inside timings.kernel_ms
-  std::size_t tiles = 0;
-  std::vector<std::string> warnings;
+};
+
+// Where a frame goes: RGBA floats, 4 per pixel, row-major; the term images' too, or null to leave
+// out a recipe's terms.
+struct FrameTargets {
+  float* rgba = nullptr;
+  float* ambient = nullptr;
+  float* diffuse = nullptr;
+  float* specular = nullptr;
 };
 
 class PhongShader {
  public:
   PhongShader(ComputeContext compute, ProgramCache& cache) : compute_(std::move(compute)), cache_(cache) {}
 
-  // Checks material indices against the scene (InputError), builds or reuses the kernel the
-  // recipe asks for, and shades every pixel. Frames larger than the device's largest allocation
-  // are shaded in tiles of whole pixel ranges. Device buffers are kept for the next frame.
+  // One frame from scratch: checks material indices against the scene (InputError), makes the
+  // recipe, packs and shades every pixel into new images.
   ShadeResult shade(const Scene& scene, const GBuffer& gbuffer, const ShadeOptions& options);
 
+  // Shades `gbuffer` lit by `scene` with `recipe` (materials already checked) into `targets`. What
+  // the previous call left on the device is reused unless forgotten: the kernel when the build
+  // options are the same, the light and material tables, and the packed G-buffer when the frame
+  // fit one launch and was packed for the same eye, precision and planes.
+  // `max_tile_pixels` > 0 caps the pixels per launch.
+  ShadeReport shade_into(const Scene& scene, const GBuffer& gbuffer, const Recipe& recipe, const FrameTargets& targets,
+                         std::size_t max_tile_pixels = 0);
+  // The next shade_into packs the G-buffer again (another G-buffer) / uploads the tables again.
+  void forget_gbuffer() { packed_.reset(); }
+  void forget_uniforms() { uniforms_.reset(); }
+
   const ComputeContext& compute() const { return compute_; }
+  const ProgramCache& cache() const { return cache_; }
 
  private:
+  // What the resident G-buffer was packed for, and what packing it found.
+  struct PackedFor {
+    glm::dvec3 eye;
+    Precision precision;
+    int planes;
+    std::size_t stride;
+    bool operator==(const PackedFor&) const = default;
+  };
+  struct PackedFrame {
+    PackedFor key;
+    PixelCounts counts;
+    std::size_t flushed_to_zero = 0;
+  };
+  const cl::Kernel& kernel_for(ShadeReport& report);
+  TileCuller& culler_for(const std::string& build_options);
+
   ComputeContext compute_;
   ProgramCache& cache_;
+  std::optional<cl::Kernel> kernel_;  // built for kernel_options_
+  std::string kernel_options_;
+  std::optional<DeviceUniforms> uniforms_;  // packed for uniforms_options_ and uniforms_stride_
+  std::string uniforms_options_;
+  std::size_t uniforms_stride_ = 0;
+  std::optional<PackedFrame> packed_;  // the planes hold the whole frame, packed for this
   // ALLOC_HOST_PTR + map/unmap: on a CPU device packing writes straight into device memory.
   ReusableBuffer planes_{CL_MEM_READ_ONLY | CL_MEM_ALLOC_HOST_PTR};
   ReusableBuffer material_index_{CL_MEM_READ_ONLY | CL_MEM_ALLOC_HOST_PTR};

@@ -12,10 +12,6 @@
 
 namespace phongcl {
 
-// Tiled light culling: automatic (tiled when it pays, see make_recipe), or forced on or off.
-enum class Culling { automatic, tiled, none };
-Culling parse_culling(const std::string& name);  // "auto", "tiled", "none"; throws std::invalid_argument
-
 struct ShadeOptions {
   Precision precision = Precision::precise;
   bool specialise = true;           // false: the general kernel, everything compiled in
@@ -57,8 +53,6 @@ struct Recipe {
 
 // Lights up to this many of a type become compile-time constants (kernels/layout.h).
 inline constexpr int kUnrollLightLimit = PHONGCL_UNROLL_LIGHT_LIMIT;
-// Culling::automatic culls per tile from this many point and spot lights with a range.
-inline constexpr int kAutoCullingLights = 64;
 
 // Throws std::runtime_error when the device cannot run the precision (double without fp64).
 Recipe make_recipe(const Scene& scene, const GBuffer& gbuffer, const DeviceInfo& device, const ShadeOptions& options);

@@ -1,27 +1,16 @@
 #pragma once
 // Tiled light culling on the device (kernels/cull.cl): per screen tile, the box of its shaded
-// positions, then (coarse tiles of 8 x 8 first) the list of point and spot lights whose bounds reach it; phong_shade's
-// TILED_CULLING variant loops over its tile's list only.
+// positions, then (boxes of 8 x 8 and 2 x 2 tiles first) the list of point and spot lights whose
+// bounds reach it; phong_shade's TILED_CULLING variant loops over its tile's list only.
 #include <cstddef>
 #include <vector>
 
 #include "cl/program_cache.h"
 #include "cl/reusable_buffer.h"
 #include "shading/device_layout.h"
+#include "shading/shade_stats.h"  // CullingStats
 
 namespace phongcl {
-
-// What one frame's culling kept, for the summary and the many-lights benchmark.
-struct CullingStats {
-  int tile_size = 0;
-  std::size_t tiles = 0, shaded_tiles = 0;  // shaded: tiles with at least one shaded pixel
-  std::size_t max_lights_per_tile = 0;
-  double list_entries = 0.0;                // sum over shaded tiles of their list lengths
-  double kept_pairs = 0.0;                  // sum over shaded pixels of their tile's list length
-  double culling_ms = 0.0;                  // the three passes and the prefix sum
-  double mean_lights_per_tile() const { return shaded_tiles ? list_entries / static_cast<double>(shaded_tiles) : 0.0; }
-  CullingStats& operator+=(const CullingStats& other);
-};
 
 // The grid of tiles over an image of the given width and height.
 struct TileLayout {

@@ -3,7 +3,9 @@
 // each change of lights, materials or eye. A re-shade uploads only what changed (the light and
 // material tables are a few hundred bytes; the G-buffer only after an eye move) and costs the kernel
 // and the download; the kernel is rebuilt only when the recipe changes (say, the number of lights),
-// and built programs are cached in memory and on disk.
+// and built programs are cached in memory and on disk. A frame larger than the device's largest
+// allocation is shaded in tiles, re-packed each time. `phongcl shade` is a user of this class and
+// prints what last_report() says.
 //
 // The room headers included here are installed beside this one (include/phongcl/<room>/).
 #include <cstddef>
@@ -16,6 +18,7 @@
 #include "image/image.h"
 #include "scene/scene.h"
 #include "shading/precision.h"
+#include "shading/shade_stats.h"
 
 namespace phongcl {
 
@@ -24,28 +27,28 @@ struct RelighterOptions {
   Precision precision = Precision::precise;  // README "Precision variants"
   bool specialise = true;                    // false: the general kernel
   int lanes = 0;                             // pixels per work-item (1, 2, 4, 8, 16); 0: the device's choice
-};
-
-// What the last shade() cost, in milliseconds. build: compiling or loading the kernel (0 unless the
-// recipe changed); pack: packing what changed on the host; upload: handing it to the device; kernel:
-// from profiling events; download: mapping the output and copying it into the image; total: wall
-// clock of all of it.
-struct RelightTimings {
-  double build_ms = 0.0, pack_ms = 0.0, upload_ms = 0.0, kernel_ms = 0.0, download_ms = 0.0, total_ms = 0.0;
-  bool rebuilt = false;           // the recipe changed, so the kernel was (re)built or fetched from the cache
-  bool gbuffer_uploaded = false;  // the G-buffer was packed and uploaded (the first frame, or a new eye)
+  Culling culling = Culling::automatic;      // tiled light culling (README "Many lights")
+  int tile_size = 16;                        // culling tiles of tile_size x tile_size pixels
+  bool terms = false;                        // also shade ambient, diffuse and specular apart: shade(TermImages&)
+  std::size_t max_tile_pixels = 0;           // > 0: at most this many pixels per launch (else the device's limit)
 };
 
 class Relighter {
  public:
-  // Picks the device, checks the scene's materials against the G-buffer's indices (InputError),
-  // builds the kernel and packs the G-buffer into device memory. The G-buffer is copied (or moved):
-  // an eye change re-packs positions from it.
+  // Picks the device and takes the frame (set_frame). The G-buffer is copied (or moved): an eye
+  // change re-packs positions from it.
   Relighter(const Scene& scene, const GBuffer& gbuffer, const RelighterOptions& options = {});
   Relighter(const Scene& scene, GBuffer&& gbuffer, const RelighterOptions& options = {});
+  // Picks the device only (std::runtime_error naming an unknown one); set_frame() before shade().
+  explicit Relighter(const RelighterOptions& options);
   ~Relighter();
   Relighter(Relighter&&) noexcept;
   Relighter& operator=(Relighter&&) noexcept;
+
+  // A new scene and G-buffer (the next frame of a sequence), keeping the device, the built kernels
+  // and the device buffers. InputError when the G-buffer uses a material index the scene lacks;
+  // std::runtime_error when the device cannot run the precision. The previous frame is kept on either.
+  void set_frame(const Scene& scene, GBuffer&& gbuffer);
 
   // Each takes effect at the next shade(). std::invalid_argument for non-finite values, negative
   // colours or shininess, a zero direction; InputError when the G-buffer uses a material index
@@ -54,19 +57,28 @@ class Relighter {
   void set_materials(const std::vector<Material>& materials);
   void set_camera_eye(const glm::dvec3& eye);
 
-  // RGBA float, width() x height(), with the G-buffer's data and display windows.
+  // RGBA float, width() x height(), with the G-buffer's data and display windows. Frames larger
+  // than the device's largest allocation are shaded in tiles (and re-packed for every shade).
+  // std::logic_error without a frame.
   Image shade();
+  // The same, and the three terms of the shading (AOVs) into `terms`; needs RelighterOptions::terms
+  // (std::logic_error otherwise).
+  Image shade(TermImages& terms);
   // The same into a caller's buffer of 4 * width() * height() floats, interleaved RGBA, row-major
   // (std::invalid_argument if `floats` differs). Safe to call from several threads: calls take turns.
   void shade_into(float* rgba, std::size_t floats);
 
-  int width() const;
+  int width() const;   // 0 without a frame
   int height() const;
-  const Scene& scene() const;  // with the lights, materials and eye set so far
+  const Scene& scene() const;  // with the lights, materials and eye set so far (std::logic_error without a frame)
+  const GBuffer& gbuffer() const;
   const DeviceInfo& device() const;
   std::string kernel_summary() const;  // the recipe in one line, as `phongcl shade` prints it
   std::string build_options() const;
-  RelightTimings last_timings() const;
+  // What the last shade() cost and found: timings, pixel counts, culling, tiles, the recipe and
+  // why (`phongcl shade --explain`), warnings. Empty before the first shade().
+  ShadeReport last_report() const;
+  ShadeTimings last_timings() const;  // last_report().timings
 
  private:
   struct State;

@@ -12,7 +12,7 @@ import numpy_reference
 SCENES = pathlib.Path(__file__).resolve().parents[2] / "scenes"
 DEFAULT = SCENES / "default" / "scene.json"
 DEFAULT_GBUFFER = SCENES / "default" / "gbuffer.exr"
-# The product's bound (README "Accuracy"; derived in tests/test_shading.cpp): 5e-4 relative, 1e-6
+# The product's bound (README "Accuracy"; derived in tests/shading_support.h): 5e-4 relative, 1e-6
 # absolute near zero, on every shaded pixel.
 RELATIVE_BOUND = 5e-4
 
@@ -79,6 +79,22 @@ def test_shade_writes_into_a_callers_array(scene, gbuffer):
         relighter.shade(out=np.zeros((gbuffer.height, gbuffer.width, 4), dtype=np.float64))
     with pytest.raises(ValueError, match="C-contiguous float32"):
         relighter.shade(out=np.zeros((gbuffer.height, gbuffer.width, 4), dtype=np.float32)[:, ::-1])
+    with pytest.raises(ValueError, match=r"out must have shape \(%d, %d, 4\), got \(%d, %d, 3\)" % (
+            gbuffer.height, gbuffer.width, gbuffer.height, gbuffer.width)):
+        relighter.shade(out=np.zeros((gbuffer.height, gbuffer.width, 3), dtype=np.float32))
+
+
+@needs_device
+def test_the_report_counts_pixels_and_gives_the_recipe(scene, gbuffer):
+    relighter = phongcl.Relighter(scene, gbuffer)
+    image = relighter.shade()
+    report = relighter.last_report
+    shaded = int((image[..., 3] == 1).sum())
+    assert report["counts"]["shaded"] == shaded
+    assert report["counts"]["shaded"] + report["counts"]["background"] == gbuffer.width * gbuffer.height
+    assert report["tiles"] == 1
+    assert report["kernel_summary"] == relighter.kernel_summary
+    assert any(reason.startswith("precision") for reason in report["recipe_reasons"])
 
 
 @needs_device

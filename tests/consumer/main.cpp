@@ -1,6 +1,6 @@
 // The README's C++ usage, as written, against the installed package: shade a scene, brighten its
 // first light, shade again, write both. Exits non-zero unless the relit frame is brighter where
-// that light reaches and identical in the background.
+// that light reaches and identical in the background, and the report counts every pixel.
 #include <phongcl/phongcl.hpp>
 
 #include <cstdio>
@@ -36,11 +36,14 @@ int main(int argc, char** argv) {
         darker += b[c] < a[c];
       }
     }
+    const phongcl::ShadeReport report = relighter.last_report();
+    const bool counted = report.counts.shaded + report.counts.background == image.pixel_count();
     std::printf("phongcl_consumer: %dx%d on %s; after doubling light 0: %zu channel values brighter, %zu darker, "
-                "%zu background pixels changed; kernel %.2f ms\n",
+                "%zu background pixels changed; kernel %.2f ms; %zu pixels shaded (%s)\n",
                 relighter.width(), relighter.height(), phongcl::describe(relighter.device()).c_str(), brighter,
-                darker, background_changed, relighter.last_timings().kernel_ms);
-    return brighter > 0 && darker == 0 && background_changed == 0 ? 0 : 1;
+                darker, background_changed, report.timings.kernel_ms, report.counts.shaded,
+                report.kernel_summary.c_str());
+    return brighter > 0 && darker == 0 && background_changed == 0 && counted ? 0 : 1;
   } catch (const std::exception& error) {
     std::fprintf(stderr, "phongcl_consumer: %s\n", error.what());
     return 1;
