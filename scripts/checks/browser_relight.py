@@ -310,7 +310,7 @@ def main():
     parser.add_argument("--seconds", type=float, default=5)
     args = parser.parse_args()
     work = args.work
-    processes = []
+    processes, driver = [], None
     try:
         driver_port = free_port()
         processes.append(subprocess.Popen([args.chromedriver, f"--port={driver_port}"],
@@ -415,7 +415,6 @@ def main():
         driver.run("const fit = document.getElementById('fit'); fit.checked = false; fit.dispatchEvent(new Event('change'));")
         time.sleep(1)
         large_full = measure(driver, args.seconds)
-        driver.quit()
         for name, r, target in (("640x480", small, 25), ("1920x1080", large, 10), ("1920x1080 streamed at full size", large_full, 10)):
             print(f"70-browser: {name}: {r['fps']:.1f} frames/s displayed while dragging (target >= {target}), "
                   f"displayed at {r['width']}x{r['height']}, "
@@ -428,6 +427,9 @@ def main():
               f"range, light linking), a light switched off, served EXR within 5e-4 of the reference; split within "
               f"1/255 of the relit reference on {split_left} pixels and of the beauty pass on {split_right}")
     finally:
+        # The session first: chromedriver leaves its Chromium running when it is terminated.
+        if driver is not None:
+            driver.quit()
         for process in processes:
             if process.poll() is None:
                 process.terminate()
