@@ -44,6 +44,16 @@ StabilityCase complete(StabilityCase c) {
   return c;
 }
 
+StabilityCase with_edge(StabilityCase c, const std::vector<Scene>& moved, bool step) {
+  for (const Scene& scene : moved) {
+    std::vector<ExactColor> values;
+    for (std::size_t i = 0; i < c.gbuffer.pixel_count(); ++i) values.push_back(exact_shade_pixel(scene, c.gbuffer, i));
+    c.across.push_back(std::move(values));
+  }
+  c.edge_is_step = step;
+  return c;
+}
+
 Expectation reference_expectation(double direct_amplification) {
   return Expectation::within(1e-6 + 16 * kDoubleUnit * direct_amplification, "float result rounding; pow of v.r directly");
 }

@@ -11,6 +11,15 @@ namespace phongcl {
 
 namespace {
 
+// The error of one value against the case: its oracle value, or on an edge (StabilityCase::across)
+// the nearest of the values the edge's rounding admits.
+double case_error(const StabilityCase& c, float value, std::size_t pixel, int channel) {
+  if (c.across.empty()) return relative_error(value, c.exact[pixel][channel], c.abs_floor);
+  std::vector<long double> admissible{c.exact[pixel][channel]};
+  for (const std::vector<ExactColor>& moved : c.across) admissible.push_back(moved[pixel][channel]);
+  return relative_error_to_any(value, admissible, !c.edge_is_step, c.abs_floor);
+}
+
 // Judges one image against the case: sets max_rel and returns "" or what is wrong. Every kind of
 // expectation forbids NaN and wants background pixels exactly; `within` also bounds the error, and
 // `finite_only` wants +-Inf only where the exact value overflows.
@@ -30,7 +39,8 @@ std::string judge_image(const Image& image, const StabilityCase& c, const Expect
       continue;
     }
     for (int ch = 0; ch < 3; ++ch) {
-      const double error = relative_error(pixel[ch], c.exact[i][ch], c.abs_floor);
+      const bool early_overflow = std::isinf(pixel[ch]) && pixel[ch] > 0 && c.exact[i][ch] > expectation.overflow_above;
+      const double error = early_overflow ? 0.0 : case_error(c, pixel[ch], i, ch);
       if (expectation.kind == Expectation::Kind::finite_only) {
         if (std::isinf(error)) return "+-Inf where the exact value is finite, at pixel " + std::to_string(i);
         continue;
