@@ -1,5 +1,5 @@
 /* Tiled light culling (Andersson 2009; ISPC's examples/cpu/deferred), before phong_shade:
- *   tile_bounds        one work-item per tile: the box of the tile's shaded positions
+ *   tile_bounds        one work-item per tile: the box of the tile's shaded positions, in lane vectors
  *   count_tile_lights  one work-item per tile: how many of its candidate lights can reach its box
  *   fill_tile_lights   the same test again, writing the light indices at the tile's offset
  * The host turns the counts into offsets (a prefix sum over a few thousand tiles) between the last
@@ -9,54 +9,73 @@
  * pixel (tiles.h), so a tile's box covers every pixel its work-items shade.
  * Options: PHONGCL_LANES (as phong_shade's), HALF_STORAGE. */
 #include "layout.h"
+#include "phong_math.h"
 #include "tiles.h"
-
-#ifndef PHONGCL_LANES
-#define PHONGCL_LANES 1
-#endif
 
 #ifdef HALF_STORAGE
 #define STORAGE half
-#define LOAD_VALUE(plane, slot) vload_half((slot), planes + (size_t)(plane) * plane_stride)
+#define LOAD_VALUES(plane, chunk) VLOAD_HALF(chunk, planes + (size_t)(plane) * plane_stride)
 #else
 #define STORAGE float
-#define LOAD_VALUE(plane, slot) (planes + (size_t)(plane) * plane_stride)[slot]
+#define LOAD_VALUES(plane, chunk) VLOAD_FLOAT(chunk, planes + (size_t)(plane) * plane_stride)
 #endif
 
 inline uint round_up_lanes(uint pixel) { return (pixel + PHONGCL_LANES - 1) / PHONGCL_LANES * PHONGCL_LANES; }
 
+/* The smallest, the largest and the sum of a vector's lanes, by halving it. */
+#if PHONGCL_LANES == 1
+#define REDUCE_LANES(v, op) (v)
+#else
+#define REDUCE_16(v, op) op((v).lo, (v).hi)
+#define REDUCE_8(v, op) op((v).lo, (v).hi)
+#define REDUCE_4(v, op) op((v).lo, (v).hi)
+#define REDUCE_2(v, op) op((v).x, (v).y)
+#if PHONGCL_LANES == 16
+#define REDUCE_LANES(v, op) REDUCE_2(REDUCE_4(REDUCE_8(REDUCE_16(v, op), op), op), op)
+#elif PHONGCL_LANES == 8
+#define REDUCE_LANES(v, op) REDUCE_2(REDUCE_4(REDUCE_8(v, op), op), op)
+#elif PHONGCL_LANES == 4
+#define REDUCE_LANES(v, op) REDUCE_2(REDUCE_4(v, op), op)
+#else
+#define REDUCE_LANES(v, op) REDUCE_2(v, op)
+#endif
+#endif
+#define PLUS(a, b) ((a) + (b))
+
+/* The work-items whose first pixel is in [row + x_begin, row + x_end) shade a tile's pixels of that
+ * row; those rows' slots begin and end at multiples of PHONGCL_LANES (so does first_pixel), so the
+ * box is taken over whole lane vectors, background lanes left out by selects. */
 __kernel void tile_bounds(__global const STORAGE* restrict planes, uint plane_stride,
                           __global const int* restrict material_index, uint slot_count, TileGrid grid,
                           __global TileBox* restrict boxes) {
   const uint tile = get_global_id(0);
   const uint tile_x = tile % grid.tiles_x, tile_y = tile / grid.tiles_x;
   const uint x_begin = tile_x * grid.tile_size, x_end = min(x_begin + grid.tile_size, grid.image_width);
-  float lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
-  uint shaded = 0;
+  floatv lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+  intv shaded = 0;
   for (uint y = tile_y * grid.tile_size; y < (tile_y + 1) * grid.tile_size; ++y) {
-    /* The work-items whose first pixel is in [row + x_begin, row + x_end) shade these pixels. */
     const ulong row = (ulong)y * grid.image_width;
     const ulong begin = round_up_lanes(row + x_begin), end = round_up_lanes(row + x_end);
     if (end <= grid.first_pixel) continue;
     if (begin >= (ulong)grid.first_pixel + slot_count) break;
     const uint slot_begin = (uint)(max(begin, (ulong)grid.first_pixel) - grid.first_pixel);
     const uint slot_end = (uint)(min(end, (ulong)grid.first_pixel + slot_count) - grid.first_pixel);
-    for (uint slot = slot_begin; slot < slot_end; ++slot) {
-      if (material_index[slot] == PHONGCL_BACKGROUND) continue;
-      ++shaded;
+    for (uint chunk = slot_begin / PHONGCL_LANES; chunk < slot_end / PHONGCL_LANES; ++chunk) {
+      const intv is_shaded = VLOAD_INT(chunk, material_index) != PHONGCL_BACKGROUND;
+      shaded += select((intv)0, (intv)1, is_shaded);
       for (int axis = 0; axis < 3; ++axis) {
-        const float value = LOAD_VALUE(PLANE_PX + axis, slot);
-        lo[axis] = fmin(lo[axis], value);
-        hi[axis] = fmax(hi[axis], value);
+        const floatv value = LOAD_VALUES(PLANE_PX + axis, chunk);
+        lo[axis] = fmin(lo[axis], select((floatv)INFINITY, value, is_shaded));
+        hi[axis] = fmax(hi[axis], select((floatv)-INFINITY, value, is_shaded));
       }
     }
   }
   TileBox box;
   for (int axis = 0; axis < 3; ++axis) {
-    box.lo[axis] = lo[axis];
-    box.hi[axis] = hi[axis];
+    box.lo[axis] = REDUCE_LANES(lo[axis], fmin);
+    box.hi[axis] = REDUCE_LANES(hi[axis], fmax);
   }
-  box.shaded = shaded;
+  box.shaded = (uint)REDUCE_LANES(shaded, PLUS);
   box.padding = 0;
   boxes[tile] = box;
 }

@@ -233,6 +233,9 @@ __kernel void phong_shade(
       UNIFORM_SPACE const PointLight* light = &point_lights[light_index];
       const vec3 position = make_vec3(light->position[0], light->position[1], light->position[2]);
       vec3 toward = sub3(position, p);
+#if defined(TILED_CULLING) && defined(RANGE_WINDOW)
+      if (beyond_range_in_every_lane(&point_shapes[light_index], toward)) continue;
+#endif
 #ifdef NEEDS_DISTANCE
       realv distance, inverse_distance;
       const realv inverse = distance_in_range(&toward, &distance, &inverse_distance);

@@ -2,8 +2,12 @@
 # A second OpenCL implementation: Oclgrind (Debian) simulates the kernel and checks every memory
 # access. Registered for this run only (an ICD file in a temp dir via OCL_ICD_VENDORS, nothing in
 # /etc), it shades a small G-buffer at lanes 1 (the GPU path) in every precision variant, both
-# specialised and general, with --check-api --uninitialized --data-races. Passes when Oclgrind
-# reports nothing and each image is within that variant's bound of the C++ reference.
+# specialised and general, with --check-api --uninitialized --data-races, and the spot-light scene
+# through tiled culling (cull.cl and the tile lists). Passes when Oclgrind reports nothing and each
+# image is within that variant's bound of the C++ reference.
+# The tiled runs leave out --uninitialized: Oclgrind 21.10's checker stops on the `freeze` LLVM puts
+# between a / and a % (tile_bounds), and then takes the tile lists the fill kernel wrote for
+# uninitialized (its own memory checker finds every read in bounds, and the image matches).
 # Lanes > 1 are not run: Oclgrind 21.10 crashes under --uninitialized on the shuffle with an
 # undefined mask that all_lanes() compiles to (at lanes 1 it is `return mask`).
 set -euo pipefail
@@ -16,16 +20,22 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 echo "$icd" > "$work/oclgrind.icd"
 
-# The default scene at 48x32 pixels: every light type, a material table, background pixels.
-python3 - scenes/default/scene.json "$work/scene.json" << 'PY'
+# The default scene at 48x32 pixels: every light type, a material table, background pixels; and
+# the spot-light scene (spots, falloff, ranges, linking) at 40x30 in tiles of 8 (the last ones partial).
+small_scene() {
+  python3 - "$1" "$2" "$3" "$4" << 'PY'
 import json, sys
 scene = json.load(open(sys.argv[1]))
-scene["camera"].update(width=48, height=32)
+scene["camera"].update(width=int(sys.argv[3]), height=int(sys.argv[4]))
 scene["gbuffer"] = "gbuffer.exr"
 json.dump(scene, open(sys.argv[2], "w"))
 PY
-"$phongcl" gbuffer --scene "$work/scene.json" > /dev/null
-"$phongcl" reference --scene "$work/scene.json" --out "$work/reference.exr" > /dev/null
+  "$phongcl" gbuffer --scene "$2" > /dev/null
+  "$phongcl" reference --scene "$2" --out "$(dirname "$2")/reference.exr" > /dev/null
+}
+mkdir "$work/spots"
+small_scene scenes/default/scene.json "$work/scene.json" 48 32
+small_scene scenes/spotlights/scene.json "$work/spots/scene.json" 40 30
 
 export OCL_ICD_VENDORS="$work" PHONGCL_CACHE_DIR="$work/cache"
 export OCLGRIND_CHECK_API=1 OCLGRIND_UNINITIALIZED=1 OCLGRIND_DATA_RACES=1
@@ -33,22 +43,29 @@ export OCLGRIND_CHECK_API=1 OCLGRIND_UNINITIALIZED=1 OCLGRIND_DATA_RACES=1
 # inputs to 11 bits, which the specular power multiplies (measured bound 0.5).
 declare -A bound=([double]=5e-4 [precise]=5e-4 [fast]=5e-4 [half-storage]=0.5)
 runs=0
+# shade_on_oclgrind WHAT SCENE_DIR PRECISION [FLAGS...]
+shade_on_oclgrind() {
+  local what=$1 dir=$2 precision=$3
+  shift 3
+  local flags=(--precision "$precision" --lanes 1 --device oclgrind "$@")
+  if ! "$phongcl" shade --scene "$dir/scene.json" "${flags[@]}" --out "$work/lit.exr" > "$work/out.txt" 2> "$work/err.txt"; then
+    head -20 "$work/err.txt"; echo "oclgrind: $what: phongcl failed"; exit 1
+  fi
+  if [ -s "$work/err.txt" ]; then
+    head -40 "$work/err.txt"; echo "oclgrind: $what: Oclgrind reported errors (above)"; exit 1
+  fi
+  grep -q "Oclgrind" "$work/out.txt" || { cat "$work/out.txt"; echo "oclgrind: $what did not run on Oclgrind"; exit 1; }
+  if ! "$phongcl" compare "$work/lit.exr" "$dir/reference.exr" --tolerance "${bound[$precision]}" > "$work/compare.txt" 2>&1; then
+    cat "$work/compare.txt"; echo "oclgrind: $what: outside ${bound[$precision]} of the reference"; exit 1
+  fi
+  runs=$((runs + 1))
+}
 for precision in double precise fast half-storage; do
-  for form in specialised general; do
-    flags=(--precision "$precision" --lanes 1 --device oclgrind)
-    [ "$form" = general ] && flags+=(--no-specialise)
-    what="$precision $form"
-    if ! "$phongcl" shade --scene "$work/scene.json" "${flags[@]}" --out "$work/lit.exr" > "$work/out.txt" 2> "$work/err.txt"; then
-      head -20 "$work/err.txt"; echo "oclgrind: $what: phongcl failed"; exit 1
-    fi
-    if [ -s "$work/err.txt" ]; then
-      head -40 "$work/err.txt"; echo "oclgrind: $what: Oclgrind reported errors (above)"; exit 1
-    fi
-    grep -q "Oclgrind" "$work/out.txt" || { cat "$work/out.txt"; echo "oclgrind: $what did not run on Oclgrind"; exit 1; }
-    if ! "$phongcl" compare "$work/lit.exr" "$work/reference.exr" --tolerance "${bound[$precision]}" > "$work/compare.txt" 2>&1; then
-      cat "$work/compare.txt"; echo "oclgrind: $what: outside ${bound[$precision]} of the reference"; exit 1
-    fi
-    runs=$((runs + 1))
-  done
+  shade_on_oclgrind "$precision specialised" "$work" "$precision"
+  shade_on_oclgrind "$precision general" "$work" "$precision" --no-specialise
 done
-echo "oclgrind: $runs variants (4 precisions x specialised/general, lanes 1) clean under --check-api --uninitialized --data-races, within bounds of the reference"
+for precision in precise half-storage; do
+  OCLGRIND_UNINITIALIZED=0 shade_on_oclgrind "$precision tiled" "$work/spots" "$precision" --culling tiled --tile 8
+  grep -q "tiled culling 8x8" "$work/out.txt" || { cat "$work/out.txt"; echo "oclgrind: $precision tiled: not culled"; exit 1; }
+done
+echo "oclgrind: $runs runs (4 precisions x specialised/general, and tiled culling in precise and half-storage, without --uninitialized; lanes 1) clean under --check-api --uninitialized --data-races, within bounds of the reference"
