@@ -77,13 +77,15 @@ inline realv shape_weight(UNIFORM_SPACE const LightShape* shape, vec3 toward, re
 #endif
 
 #if defined(TILED_CULLING) && defined(RANGE_WINDOW)
-/* Whether every lane is clearly beyond the light's range, d^2 / R^2 > 1.01: there the window, and so
+/* Whether every lane is clearly beyond the light's range, |d / R|^2 > 1.01: there the window, and so
  * the light's weight, is exactly 0, so skipping the light changes no bit of the sums. A tile's list
  * holds every light that reaches some pixel of the tile; this drops, per work-item, the ones that
- * reach none of its pixels. A light without a range (inverse_range 0) is never skipped. */
+ * reach none of its pixels. A light without a range (inverse_range 0) is never skipped. toward is
+ * scaled by 1 / R before it is squared: d^2 and 1 / R^2 apart overflow float for R = 1e20 and 1e-20
+ * (Inf * a tiny factor skipped lights at R / 2). */
 inline bool beyond_range_in_every_lane(UNIFORM_SPACE const LightShape* shape, vec3 toward) {
-  const real inverse_range_sq = shape->inverse_range * shape->inverse_range;
-  return all_lanes(LANE_MASK(dot3(toward, toward) * inverse_range_sq > (real)1.01));
+  const vec3 in_ranges = scale3(toward, (realv)shape->inverse_range);
+  return all_lanes(LANE_MASK(dot3(in_ranges, in_ranges) > (real)1.01));
 }
 #endif
 

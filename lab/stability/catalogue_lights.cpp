@@ -94,9 +94,10 @@ std::vector<StabilityCase> falloff_cases() {
   return cases;
 }
 
-// --- Range: pixels at d = R/2, R(1 - 2^-4), one float below R, R itself, one float above,
-// R(1 + 2^-4) and 2R along -z, R a float so that one pixel is exactly at it. Li = R^k keeps the
-// unwindowed value near 1.
+// --- Range: rows of pixels at d = R/2, R(1 - 2^-4), one float below R, R itself, one float
+// above, R(1 + 2^-4) and 2R along -z, R a float so that one pixel is exactly at it. Li = R^k keeps
+// the unwindowed value near 1. A row is 16 pixels, so a work-item of up to 16 lanes holds one
+// distance only (no background lane to hide a tiled kernel's skipping a light that reaches it).
 StabilityCase range_row(float range, Falloff falloff) {
   StabilityCase c;
   const int power = static_cast<int>(falloff);
@@ -110,8 +111,9 @@ StabilityCase range_row(float range, Falloff falloff) {
   c.scene.lights.push_back(light);
   const float distances[] = {range / 2, range * (1 - 0x1p-4f), std::nextafter(range, 0.0f), range,
                              std::nextafter(range, 2 * range), range * (1 + 0x1p-4f), 2 * range};
-  c.gbuffer = blank_gbuffer(7, 1, c.name);
-  for (std::size_t i = 0; i < 7; ++i) set_facing(c.gbuffer, i, {0.0f, 0.0f, -distances[i]});
+  constexpr int kRow = 16;
+  c.gbuffer = blank_gbuffer(kRow, 7, c.name);
+  for (std::size_t i = 0; i < c.gbuffer.pixel_count(); ++i) set_facing(c.gbuffer, i, {0.0f, 0.0f, -distances[i / kRow]});
   c = complete(std::move(c));
   // The pixels at R and one float either side are on the window's end within d / R's rounding;
   // the window meets 0 with zero slope, so anything between the moved edges' values passes.
