@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 namespace phongcl {
 
@@ -27,6 +28,12 @@ bool exact_in_half(const Plane& plane) {
 double above_floor(long double value) { return static_cast<double>(std::min<long double>(1, value / 1e-6L)); }
 
 }  // namespace
+
+std::string number(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", value);
+  return text;
+}
 
 Scene starting_scene(double ka, double kd, double ks, double shininess) {
   Scene scene;

@@ -12,6 +12,9 @@ namespace phongcl {
 // floats the case wrote; no ambient, no lights; material 0 is (ka, kd, ks, q).
 Scene starting_scene(double ka, double kd, double ks, double shininess);
 
+// A case name's number: "1e-20", "179.999" (%g).
+std::string number(double value);
+
 // Fills exact (the oracle, pixel by pixel) and abs_floor (1e-6 of the brightest light or ambient
 // colour, since shading is linear in them) unless the case set a smaller floor already.
 StabilityCase complete(StabilityCase c);

@@ -14,12 +14,6 @@ namespace {
 
 constexpr long double kPi = 3.141592653589793238462643383279502884L;
 
-std::string number(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%g", value);
-  return text;
-}
-
 // Every light of these cases sits at the eye (the origin) and every pixel faces it: v = l = n, so
 // n.l = v.r = 1 exactly and a value is Li (kd + ks) F, F = falloff(d) * window(d) * cone(l).
 Light light_at_eye(LightType type, double brightness, Falloff falloff = Falloff::none) {
