@@ -41,6 +41,18 @@ inline realv linked(UNIFORM_SPACE const LinkWord* mask, intv index) {
 #define LINK_GATE(light) ((realv)1)
 #endif
 
+#ifdef SPOT_LIGHTS
+/* 1 - c for c = dot(-l, axis), the cosine of the angle between a spot's axis and the way to the
+ * pixel, as |-l - axis|^2 / 2: no cancellation (1 - dot(-l, axis) lost a cone of 1e-3 degrees,
+ * 1 - c = 4e-11, entirely: every pixel within 0.03 degrees was lit). The cone compares it with
+ * versines: c >= cos(A/2) is 1 - c <= 1 - cos(A/2), and s = (c - co) / (ci - co) the same ratio. */
+inline realv cone_versine(UNIFORM_SPACE const LightShape* shape, vec3 toward, realv inverse) {
+  const vec3 off_axis = make_vec3(fma(-inverse, toward.x, -(realv)shape->axis[0]), fma(-inverse, toward.y, -(realv)shape->axis[1]),
+                                  fma(-inverse, toward.z, -(realv)shape->axis[2]));
+  return (real)0.5 * dot3(off_axis, off_axis);
+}
+#endif
+
 #ifdef POINT_SHAPES
 /* F for one point or spot light; `gate` (0 or 1) is its linking. toward * inverse is l. */
 inline realv shape_weight(UNIFORM_SPACE const LightShape* shape, vec3 toward, realv inverse, realv distance,
@@ -52,12 +64,7 @@ inline realv shape_weight(UNIFORM_SPACE const LightShape* shape, vec3 toward, re
   bounded *= t * t;
 #endif
 #ifdef SPOT_LIGHTS
-  /* c >= cos(A/2) as 1 - c <= 1 - cos(A/2), and s = (c - co) / (ci - co) as the same ratio of
-   * versines: 1 - c = |-l - axis|^2 / 2 has no cancellation (1 - dot(-l, axis) lost a cone of
-   * 1e-3 degrees, 1 - c = 4e-11, entirely: every pixel within 0.03 degrees was lit). */
-  const vec3 off_axis = make_vec3(fma(-inverse, toward.x, -(realv)shape->axis[0]), fma(-inverse, toward.y, -(realv)shape->axis[1]),
-                                  fma(-inverse, toward.z, -(realv)shape->axis[2]));
-  const realv versine = (real)0.5 * dot3(off_axis, off_axis);
+  const realv versine = cone_versine(shape, toward, inverse);
   const realv s = SELECT(versine <= shape->versine_inner, 1,
                          clamp((shape->versine_outer - versine) * shape->inverse_cone_width, (real)0, (real)1));
   bounded *= s * s * (3 - 2 * s);
@@ -86,6 +93,14 @@ inline realv shape_weight(UNIFORM_SPACE const LightShape* shape, vec3 toward, re
 inline bool beyond_range_in_every_lane(UNIFORM_SPACE const LightShape* shape, vec3 toward) {
   const vec3 in_ranges = scale3(toward, (realv)shape->inverse_range);
   return all_lanes(LANE_MASK(dot3(in_ranges, in_ranges) > (real)1.01));
+}
+#endif
+
+#if defined(TILED_CULLING) && defined(SPOT_LIGHTS)
+/* Whether every lane is outside a spot's cone, 1 - c > versine_outer: there the cone factor, and so
+ * the weight, is exactly 0 (as beyond the range above). A point light (versine_outer 3) never is. */
+inline bool outside_cone_in_every_lane(UNIFORM_SPACE const LightShape* shape, vec3 toward, realv inverse) {
+  return all_lanes(LANE_MASK(cone_versine(shape, toward, inverse) > shape->versine_outer));
 }
 #endif
 

@@ -242,6 +242,9 @@ __kernel void phong_shade(
 #else
       const realv inverse = inverse_length_in_range(&toward);
 #endif
+#if defined(TILED_CULLING) && defined(SPOT_LIGHTS)
+      if (outside_cone_in_every_lane(&point_shapes[light_index], toward, inverse)) continue;
+#endif
 #ifdef POINT_SHAPES
 #ifndef NEEDS_DISTANCE
       const realv distance = 0, inverse_distance = 0; /* spots alone read neither */
