@@ -40,14 +40,16 @@ typedef struct {
 
 /* How a point or spot light's F = falloff(d) * window(d) * cone(l) is shaped (README "The shading,
  * exactly"), parallel to the point lights; only scenes with falloff, ranges or spots read it.
- * A point light has cos_inner = cos_outer = -2 (every direction is inside its "cone"); a hard-edged
- * spot has cos_outer = cos_inner and inverse_cone_width 0. */
+ * The cone is given by versines, 1 - cos, computed in double: a cone of 1e-3 degrees has
+ * cos(A/2) = 1 - 4e-11, which is 1 in float. A point light has versine_inner = versine_outer = 3
+ * (every direction is inside its "cone": 1 - c <= 2); a hard-edged spot has versine_outer =
+ * versine_inner and inverse_cone_width 0. */
 typedef struct {
   layout_float axis[4];             /* spot: unit direction it points; w unused */
   layout_float inverse_range;       /* 1 / R, 0 without a range */
-  layout_float cos_inner;           /* cos(A/2) */
-  layout_float cos_outer;           /* cos(A/2 + P) */
-  layout_float inverse_cone_width;  /* 1 / (cos_inner - cos_outer), 0 for a hard edge */
+  layout_float versine_inner;       /* 1 - cos(A/2) */
+  layout_float versine_outer;       /* 1 - cos(A/2 + P) */
+  layout_float inverse_cone_width;  /* 1 / (versine_outer - versine_inner), 0 for a hard edge */
   int falloff;                      /* the power k of 1/d^k: 0 to 3 */
   int padding[3];
 } LightShape;

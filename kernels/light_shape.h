@@ -42,10 +42,14 @@ inline realv linked(UNIFORM_SPACE const LinkWord* mask, intv index) {
 #endif
 
 #ifdef SPOT_LIGHTS
-/* c = dot(-l, axis), the cosine of the angle between a spot's axis and the way to the pixel. */
-inline realv cone_cosine(UNIFORM_SPACE const LightShape* shape, vec3 toward, realv inverse) {
-  const vec3 axis = make_vec3(shape->axis[0], shape->axis[1], shape->axis[2]);
-  return -inverse * dot3(toward, axis);
+/* 1 - c for c = dot(-l, axis), the cosine of the angle between a spot's axis and the way to the
+ * pixel, as |-l - axis|^2 / 2: no cancellation (1 - dot(-l, axis) lost a cone of 1e-3 degrees,
+ * 1 - c = 4e-11, entirely: every pixel within 0.03 degrees was lit). The cone compares it with
+ * versines: c >= cos(A/2) is 1 - c <= 1 - cos(A/2), and s = (c - co) / (ci - co) the same ratio. */
+inline realv cone_versine(UNIFORM_SPACE const LightShape* shape, vec3 toward, realv inverse) {
+  const vec3 off_axis = make_vec3(fma(-inverse, toward.x, -(realv)shape->axis[0]), fma(-inverse, toward.y, -(realv)shape->axis[1]),
+                                  fma(-inverse, toward.z, -(realv)shape->axis[2]));
+  return (real)0.5 * dot3(off_axis, off_axis);
 }
 #endif
 
@@ -60,9 +64,9 @@ inline realv shape_weight(UNIFORM_SPACE const LightShape* shape, vec3 toward, re
   bounded *= t * t;
 #endif
 #ifdef SPOT_LIGHTS
-  const realv c = cone_cosine(shape, toward, inverse);
-  const realv s = SELECT(c >= shape->cos_inner, 1,
-                         clamp((c - shape->cos_outer) * shape->inverse_cone_width, (real)0, (real)1));
+  const realv versine = cone_versine(shape, toward, inverse);
+  const realv s = SELECT(versine <= shape->versine_inner, 1,
+                         clamp((shape->versine_outer - versine) * shape->inverse_cone_width, (real)0, (real)1));
   bounded *= s * s * (3 - 2 * s);
 #endif
   realv weight = bounded;
@@ -80,21 +84,23 @@ inline realv shape_weight(UNIFORM_SPACE const LightShape* shape, vec3 toward, re
 #endif
 
 #if defined(TILED_CULLING) && defined(RANGE_WINDOW)
-/* Whether every lane is clearly beyond the light's range, d^2 / R^2 > 1.01: there the window, and so
+/* Whether every lane is clearly beyond the light's range, |d / R|^2 > 1.01: there the window, and so
  * the light's weight, is exactly 0, so skipping the light changes no bit of the sums. A tile's list
  * holds every light that reaches some pixel of the tile; this drops, per work-item, the ones that
- * reach none of its pixels. A light without a range (inverse_range 0) is never skipped. */
+ * reach none of its pixels. A light without a range (inverse_range 0) is never skipped. toward is
+ * scaled by 1 / R before it is squared: d^2 and 1 / R^2 apart overflow float for R = 1e20 and 1e-20
+ * (Inf * a tiny factor skipped lights at R / 2). */
 inline bool beyond_range_in_every_lane(UNIFORM_SPACE const LightShape* shape, vec3 toward) {
-  const real inverse_range_sq = shape->inverse_range * shape->inverse_range;
-  return all_lanes(LANE_MASK(dot3(toward, toward) * inverse_range_sq > (real)1.01));
+  const vec3 in_ranges = scale3(toward, (realv)shape->inverse_range);
+  return all_lanes(LANE_MASK(dot3(in_ranges, in_ranges) > (real)1.01));
 }
 #endif
 
 #if defined(TILED_CULLING) && defined(SPOT_LIGHTS)
-/* Whether every lane is outside a spot's cone, c < cos_outer: there the cone factor, and so the
- * weight, is exactly 0 (as beyond the range above). A point light (cos_outer -2) never is. */
+/* Whether every lane is outside a spot's cone, 1 - c > versine_outer: there the cone factor, and so
+ * the weight, is exactly 0 (as beyond the range above). A point light (versine_outer 3) never is. */
 inline bool outside_cone_in_every_lane(UNIFORM_SPACE const LightShape* shape, vec3 toward, realv inverse) {
-  return all_lanes(LANE_MASK(cone_cosine(shape, toward, inverse) < shape->cos_outer));
+  return all_lanes(LANE_MASK(cone_versine(shape, toward, inverse) > shape->versine_outer));
 }
 #endif
 

@@ -53,7 +53,30 @@ TEST(Stability, CatalogueCoversTheIssuesCases) {
   std::size_t stiff = 0;
   for (const StabilityCase& c : catalogue()) stiff += c.group == "stiff exponents";
   EXPECT_EQ(stiff, 8u * 5u) << "q in {0, 1e-3, 0.5, 1, 128, 1e4, 1e6, 1e8} x v.r in {1, 1-1e-7, 0.5, 1e-30, 0}";
-  EXPECT_GE(catalogue().size(), 65u);
+  EXPECT_GE(catalogue().size(), 88u);
+}
+
+// The light-shape cases reach what they are for: each quadratic and cubic falloff sweep has pixels
+// where 1/d^k exceeds float (exact values above Li * FLT_MAX) and pixels where it does not, and a
+// zero green channel throughout; the hard spot edges and range ends carry the values their
+// rounding admits.
+TEST(Stability, LightShapeCasesCrossTheirEdges) {
+  std::size_t sweeps = 0, edges = 0;
+  for (const StabilityCase& c : catalogue()) {
+    edges += !c.across.empty();
+    if (c.group != "falloff over distance" || c.scene.lights[0].falloff == Falloff::linear) continue;
+    ++sweeps;
+    std::size_t overflowing = 0, finite = 0, green = 0;
+    for (const ExactColor& value : c.exact) {
+      (value[0] > c.expect.precise.overflow_above ? overflowing : finite) += 1;
+      green += value[1] != 0;
+    }
+    EXPECT_GT(overflowing, 0u) << c.name;
+    EXPECT_GT(finite, 0u) << c.name;
+    EXPECT_EQ(green, 0u) << c.name;
+  }
+  EXPECT_EQ(sweeps, 4u) << "quadratic and cubic, Li = 1 and 1e-30";
+  EXPECT_EQ(edges, 5u + 3u + 4u) << "range windows, hard spots, soft spots";
 }
 
 // Finite but extreme: normals from 1e-45 to 1e38 long (and zero), surfaces from 1e-6 to 1e4 from

@@ -108,14 +108,16 @@ LightShape light_shape(const Light& light) {
   LightShape shape{};
   shape.falloff = static_cast<int>(light.falloff);
   shape.inverse_range = light.has_range() ? static_cast<float>(1.0 / light.range) : 0.0f;
-  shape.cos_inner = shape.cos_outer = -2.0f;  // a point light: every direction is inside
+  shape.versine_inner = shape.versine_outer = 3.0f;  // a point light: every direction is inside
   if (light.type == LightType::spot) {
     store3(shape.axis, glm::normalize(light.direction));
+    // 1 - cos(t) = 2 sin^2(t / 2): no cancellation for narrow cones.
+    auto versine = [](double angle) { return 2.0 * std::sin(angle / 2.0) * std::sin(angle / 2.0); };
     const double half_angle = light.cone_angle_deg / 2.0 * kPi / 180.0;
-    const double inner = std::cos(half_angle), outer = std::cos(half_angle + light.penumbra_angle_deg * kPi / 180.0);
-    shape.cos_inner = static_cast<float>(inner);
-    shape.cos_outer = light.penumbra_angle_deg > 0.0 ? static_cast<float>(outer) : shape.cos_inner;
-    shape.inverse_cone_width = light.penumbra_angle_deg > 0.0 ? static_cast<float>(1.0 / (inner - outer)) : 0.0f;
+    const double inner = versine(half_angle), outer = versine(half_angle + light.penumbra_angle_deg * kPi / 180.0);
+    shape.versine_inner = static_cast<float>(inner);
+    shape.versine_outer = light.penumbra_angle_deg > 0.0 ? static_cast<float>(outer) : shape.versine_inner;
+    shape.inverse_cone_width = light.penumbra_angle_deg > 0.0 ? static_cast<float>(1.0 / (outer - inner)) : 0.0f;
   }
   return shape;
 }

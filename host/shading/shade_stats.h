@@ -36,7 +36,7 @@ struct CullingStats {
   std::size_t max_lights_per_tile = 0;
   double list_entries = 0.0;                // sum over shaded tiles of their list lengths
   double kept_pairs = 0.0;                  // sum over shaded pixels of their tile's list length
-  double culling_ms = 0.0;                  // the three passes and the prefix sum
+  double culling_ms = 0.0;                  // the culling passes and their prefix sums
   double mean_lights_per_tile() const { return shaded_tiles ? list_entries / static_cast<double>(shaded_tiles) : 0.0; }
   CullingStats& operator+=(const CullingStats& other);
 };

@@ -44,7 +44,7 @@ void pack_shape(const Light& light, const glm::dvec3& eye, PackedScene& packed) 
   for (auto [plane, value] :
        {std::pair{&packed.falloff_power, static_cast<float>(shape.falloff)}, {&packed.inverse_range, shape.inverse_range},
         {&packed.axis_x, shape.axis[0]}, {&packed.axis_y, shape.axis[1]}, {&packed.axis_z, shape.axis[2]},
-        {&packed.cos_inner, shape.cos_inner}, {&packed.cos_outer, shape.cos_outer},
+        {&packed.versine_inner, shape.versine_inner}, {&packed.versine_outer, shape.versine_outer},
         {&packed.inverse_cone_width, shape.inverse_cone_width}, {&packed.bound_x, bounds.center[0]},
         {&packed.bound_y, bounds.center[1]}, {&packed.bound_z, bounds.center[2]}, {&packed.bound_radius, bounds.radius}}) {
     plane->push_back(value);

@@ -53,9 +53,9 @@ struct PackedScene {
   // Point lights: position - eye; directional lights: l = -normalize(direction), both in double first.
   std::vector<float> point_x, point_y, point_z, point_r, point_g, point_b;  // point and spot lights
   // Their shapes (README "The shading, exactly"), read by cpp-tiled only: 1/d^k power, 1/R (0: no
-  // range), the spot's unit axis and cos(A/2), cos(A/2 + P), 1/(the two's difference) (points:
-  // cosines -2, every direction inside); and a bounding sphere (radius < 0: reaches everything).
-  std::vector<float> falloff_power, inverse_range, axis_x, axis_y, axis_z, cos_inner, cos_outer, inverse_cone_width;
+  // range), the spot's unit axis and 1 - cos(A/2), 1 - cos(A/2 + P), 1/(the two's difference)
+  // (points: versines 3, every direction inside); and a bounding sphere (radius < 0: reaches everything).
+  std::vector<float> falloff_power, inverse_range, axis_x, axis_y, axis_z, versine_inner, versine_outer, inverse_cone_width;
   std::vector<float> bound_x, bound_y, bound_z, bound_radius;
   bool linking = false;  // some light lights only some materials: no peer implements that
   std::vector<float> dir_x, dir_y, dir_z, dir_r, dir_g, dir_b;

@@ -66,13 +66,13 @@ void cull(const PackedScene& s, const Box& box, std::vector<int>& list) {
 
 // One light's shape, loaded once before the simd loop over a row.
 struct Shape {
-  float inverse_range, axis_x, axis_y, axis_z, cos_inner, cos_outer, inverse_cone_width;
+  float inverse_range, axis_x, axis_y, axis_z, versine_inner, versine_outer, inverse_cone_width;
   float powers;  // of 1/d, 0 to 3 (a float: an int compare in the loop stops GCC vectorising it)
 };
 
 Shape shape_of(const PackedScene& s, int k) {
   return {s.inverse_range[k], s.axis_x[k],    s.axis_y[k],           s.axis_z[k],
-          s.cos_inner[k],     s.cos_outer[k], s.inverse_cone_width[k], s.falloff_power[k]};
+          s.versine_inner[k], s.versine_outer[k], s.inverse_cone_width[k], s.falloff_power[k]};
 }
 
 inline float saturate(float x) { return std::fmin(std::fmax(x, 0.0f), 1.0f); }
@@ -83,8 +83,9 @@ inline float saturate(float x) { return std::fmin(std::fmax(x, 0.0f), 1.0f); }
 inline float light_weight(Shape shape, float d, float inverse_d, float ux, float uy, float uz) {
   const float x = d * shape.inverse_range, x2 = x * x;
   const float t = saturate(1.0f - x2 * x2);
-  const float c = -(ux * shape.axis_x + uy * shape.axis_y + uz * shape.axis_z);
-  const float e = c >= shape.cos_inner ? 1.0f : saturate((c - shape.cos_outer) * shape.inverse_cone_width);
+  const float ox = -ux - shape.axis_x, oy = -uy - shape.axis_y, oz = -uz - shape.axis_z;  // -l - axis
+  const float versine = 0.5f * (ox * ox + oy * oy + oz * oz);                               // 1 - c
+  const float e = versine <= shape.versine_inner ? 1.0f : saturate((shape.versine_outer - versine) * shape.inverse_cone_width);
   const float bounded = t * t * (e * e * (3.0f - 2.0f * e));
   const float once = shape.powers >= 1.0f ? inverse_d : 1.0f, twice = shape.powers >= 2.0f ? inverse_d : 1.0f;
   const float thrice = shape.powers >= 3.0f ? inverse_d : 1.0f;

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 namespace phongcl {
 
@@ -28,6 +29,12 @@ double above_floor(long double value) { return static_cast<double>(std::min<long
 
 }  // namespace
 
+std::string number(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", value);
+  return text;
+}
+
 Scene starting_scene(double ka, double kd, double ks, double shininess) {
   Scene scene;
   scene.camera.eye = {0.0, 0.0, 0.0};
@@ -41,6 +48,16 @@ StabilityCase complete(StabilityCase c) {
   }
   const double floor = 1e-6 * brightest(c.scene);
   if (floor > 0.0) c.abs_floor = std::min(c.abs_floor, floor);
+  return c;
+}
+
+StabilityCase with_edge(StabilityCase c, const std::vector<Scene>& moved, bool step) {
+  for (const Scene& scene : moved) {
+    std::vector<ExactColor> values;
+    for (std::size_t i = 0; i < c.gbuffer.pixel_count(); ++i) values.push_back(exact_shade_pixel(scene, c.gbuffer, i));
+    c.across.push_back(std::move(values));
+  }
+  c.edge_is_step = step;
   return c;
 }
 

@@ -12,14 +12,29 @@ namespace phongcl {
 // floats the case wrote; no ambient, no lights; material 0 is (ka, kd, ks, q).
 Scene starting_scene(double ka, double kd, double ks, double shininess);
 
+// A case name's number: "1e-20", "179.999" (%g).
+std::string number(double value);
+
 // Fills exact (the oracle, pixel by pixel) and abs_floor (1e-6 of the brightest light or ambient
 // colour, since shading is linear in them) unless the case set a smaller floor already.
 StabilityCase complete(StabilityCase c);
+
+// Sets c.across from the oracle on each of `moved`: the case's scene with an edge moved by the
+// kernel's rounding (StabilityCase::across), on a step edge or a continuous one.
+StabilityCase with_edge(StabilityCase c, const std::vector<Scene>& moved, bool step);
 
 // --- Tolerances. u = 2^-24 = 6e-8, the float rounding unit. `amplification` is the case's
 // condition number (1 for plain shading; stiff_amplification for x^q): each variant's bound is a
 // base for the fixed chain of operations plus 16 rounding units times the amplification (a few
 // roundings feed the amplified quantity; 16 leaves a factor of about 4 over them).
+
+// How far the kernel's rounding can move an edge of F = falloff * window * cone. d / R carries
+// ~6 u (|toward|^2, rsqrt's 2 ulp, the products, 1 / R rounded to float); the cone's off-axis
+// angle theta ~3 u relative (1 - c from |-l - a|^2 / 2, its three roundings) plus ~u absolute
+// per component of l and of the axis rounded to float. With 16 u relative and 4 u absolute, a
+// range edge moves by R * kEdgeRelative, a cone's by theta * kEdgeRelative + kEdgeAbsolute.
+constexpr double kEdgeRelative = 16 * 0x1p-24;
+constexpr double kEdgeAbsolute = 4 * 0x1p-24;
 
 // The double reference: rounds its result to float (u), and takes pow(v.r, q) directly, so at
 // v.r near 1 it has fast's amplification with the double unit 2^-53 in place of u.

@@ -13,5 +13,6 @@ std::vector<StabilityCase> stability_catalogue();
 std::vector<StabilityCase> stiff_exponent_cases();   // catalogue_stiff.cpp
 std::vector<StabilityCase> geometry_cases();         // catalogue_geometry.cpp: grazing, degenerate, far
 std::vector<StabilityCase> range_cases();            // catalogue_range.cpp: HDR, half, many lights, non-finite
+std::vector<StabilityCase> light_shape_cases();      // catalogue_lights.cpp: falloff, range window, spots, linking
 
 }  // namespace phongcl

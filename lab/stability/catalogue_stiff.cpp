@@ -33,12 +33,6 @@ std::vector<Geometry> geometries() {
   };
 }
 
-std::string number(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%g", value);
-  return text;
-}
-
 }  // namespace
 
 std::vector<StabilityCase> stiff_exponent_cases() {

@@ -1,5 +1,6 @@
 #include "stability/exact_error.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -12,6 +13,16 @@ double relative_error(float value, long double exact, double abs_floor) {
   if (std::isinf(exact_in_float) || std::isinf(value)) return value == exact_in_float ? 0.0 : kInfinite;
   const long double scale = std::max(std::fabs(exact), static_cast<long double>(abs_floor));
   return static_cast<double>(std::fabs(static_cast<long double>(value) - exact) / scale);
+}
+
+double relative_error_to_any(float value, const std::vector<long double>& admissible, bool span, double abs_floor) {
+  double error = std::numeric_limits<double>::infinity();
+  for (long double exact : admissible) error = std::min(error, relative_error(value, exact, abs_floor));
+  if (span && std::isfinite(value) && !admissible.empty()) {
+    const auto [lo, hi] = std::minmax_element(admissible.begin(), admissible.end());
+    if (*lo <= value && value <= *hi) return 0.0;
+  }
+  return error;
 }
 
 ExactComparison compare_with_exact(const Image& image, const Scene& scene, const GBuffer& gbuffer, double abs_floor) {

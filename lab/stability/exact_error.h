@@ -1,6 +1,7 @@
 #pragma once
 // How far a shaded image is from the long double oracle, value by value.
 #include <cstddef>
+#include <vector>
 
 #include "image/image.h"
 #include "stability/exact_shade.h"
@@ -11,6 +12,10 @@ namespace phongcl {
 // value must be that infinity (error 0) and anything else is an infinite error; a NaN value is an
 // infinite error whatever the exact value. So overflow counts as right only where it is exact.
 double relative_error(float value, long double exact, double abs_floor);
+
+// relative_error against the nearest of several admissible exact values; with `span`, 0 anywhere
+// between the smallest and the largest of them.
+double relative_error_to_any(float value, const std::vector<long double>& admissible, bool span, double abs_floor);
 
 struct ExactComparison {
   double max_rel = 0.0;

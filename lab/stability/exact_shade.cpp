@@ -36,6 +36,42 @@ long double specular_factor(const Vec& v, const Vec& r, long double q) {
   return std::exp(q * (one_minus_cos < 0.5L ? std::log1p(-one_minus_cos) : std::log(cos_vr)));
 }
 
+constexpr long double kPi = 3.141592653589793238462643383279502884L;
+
+// 1 - cos(angle) without cancellation: 2 sin^2(angle / 2).
+long double versine(long double angle) {
+  const long double half_sine = std::sin(angle / 2);
+  return 2 * half_sine * half_sine;
+}
+
+// F = falloff(d) * window(d) * cone(l) for a point or spot light (README "The shading, exactly").
+// The cone compares 1 - c = |-l - a|^2 / 2 with 1 - cos(A/2) = 2 sin^2(A/4), as specular_factor
+// does 1 - v.r: a cone of 1e-3 degrees, 1 - cos = 4e-11, keeps its full precision. Long double
+// holds 1/d^3 for any float d, so F is never infinite here.
+long double shape_factor(const Light& light, const Vec& to_light, const Vec& l) {
+  const long double d = std::sqrt(dot(to_light, to_light));
+  const long double falloff = std::pow(d, -static_cast<long double>(static_cast<int>(light.falloff)));
+  long double window = 1;
+  if (light.has_range()) {
+    const long double x = d / light.range, t = std::clamp(1 - x * x * x * x, 0.0L, 1.0L);
+    window = t * t;
+  }
+  long double cone = 1;
+  if (light.type == LightType::spot) {
+    const Vec off_axis = sub(scale(l, -1), unit_or_zero(widen(light.direction)));
+    const long double off = dot(off_axis, off_axis) / 2;  // 1 - c
+    const long double half_angle = light.cone_angle_deg / 2 * kPi / 180;
+    const long double inner = versine(half_angle), outer = versine(half_angle + light.penumbra_angle_deg * kPi / 180);
+    if (light.penumbra_angle_deg == 0) {
+      cone = off <= inner ? 1 : 0;
+    } else {
+      const long double s = std::clamp((outer - off) / (outer - inner), 0.0L, 1.0L);
+      cone = s * s * (3 - 2 * s);
+    }
+  }
+  return falloff * window * cone;
+}
+
 }  // namespace
 
 ExactColor exact_shade_pixel(const Scene& scene, const GBuffer& gbuffer, std::size_t index) {
@@ -48,15 +84,18 @@ ExactColor exact_shade_pixel(const Scene& scene, const GBuffer& gbuffer, std::si
 
   Vec diffuse{0, 0, 0}, specular{0, 0, 0};
   for (const Light& light : scene.lights) {
-    const Vec l = light.type == LightType::point ? unit_or_zero(sub(widen(light.position), position))
-                                                 : scale(unit_or_zero(widen(light.direction)), -1);
+    if (!light.reaches(point.material)) continue;  // light linking
+    const bool positional = light.type != LightType::directional;
+    const Vec to_light = positional ? sub(widen(light.position), position) : scale(widen(light.direction), -1);
+    const Vec l = unit_or_zero(to_light);
     const long double ndl = dot(n, l);
     if (!(ndl > 0)) continue;
+    const long double factor = positional ? shape_factor(light, to_light, l) : 1;
     const Vec r = sub(scale(n, 2 * ndl), l);
     const long double spec = specular_factor(v, r, point.shininess);
     for (int c = 0; c < 3; ++c) {
-      diffuse[c] += static_cast<long double>(light.color[c]) * ndl;
-      specular[c] += static_cast<long double>(light.color[c]) * spec;
+      diffuse[c] += static_cast<long double>(light.color[c]) * ndl * factor;
+      specular[c] += static_cast<long double>(light.color[c]) * spec * factor;
     }
   }
   ExactColor color;

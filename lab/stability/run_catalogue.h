@@ -1,6 +1,7 @@
 #pragma once
 // Runs stability cases through the real pipeline (PhongShader::shade, every precision variant the
-// device supports) and the double reference, and judges each against its expectations.
+// device supports, unculled and, with point or spot lights, with tiled light culling) and the
+// double reference, and judges each against its expectations.
 #include <string>
 #include <vector>
 

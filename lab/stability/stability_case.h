@@ -2,6 +2,7 @@
 // One entry of the stability catalogue: a tiny scene and G-buffer, what each precision variant
 // must produce, and why. The catalogue is data; run_catalogue (stability/run_catalogue.h) runs it.
 #include <cstddef>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -23,10 +24,20 @@ struct Expectation {
   double relative = 0.0;
   bool warns = false;  // ShadeResult::warnings must say something
   std::string why;     // the justification, printed in the report
+  // The float kernels compute a light's F = falloff * window * cone before its colour, n.l, the
+  // specular factor and kd or ks multiply it, so where F alone exceeds float they give +Inf even
+  // when the exact product does not (README "Stiff and extreme inputs"). A case whose values exceed
+  // this threshold exactly where F does (overflowing_above) accepts +Inf there.
+  long double overflow_above = std::numeric_limits<long double>::infinity();
 
   static Expectation within(double relative, std::string why) { return {Kind::within, relative, false, std::move(why)}; }
   static Expectation finite_only(std::string why) { return {Kind::finite_only, 0.0, false, std::move(why)}; }
   static Expectation refused(std::string why) { return {Kind::refused, 0.0, false, std::move(why)}; }
+  Expectation overflowing_above(long double threshold) const {
+    Expectation early = *this;
+    early.overflow_above = threshold;
+    return early;
+  }
   Expectation with_warning() const {
     Expectation warned = *this;
     warned.warns = true;
@@ -51,6 +62,12 @@ struct StabilityCase {
   // Relative errors are taken against max(|exact|, abs_floor): 1e-6 of the scene's brightest light
   // or ambient colour, since shading is linear in them (the product's 1e-6 floor at unit lights).
   double abs_floor = 1e-6;
+  // Pixels on an edge of the formula (a hard spot cone, a range's end), where rounding may put
+  // them on either side: the oracle's values with the edge moved by the kernel's rounding, each
+  // way (with_edge in case_builder.h). A value may equal any of them (a step: lit or not) or, on a
+  // continuous edge (the window meets 0 smoothly), anything between them. Empty: no edge.
+  std::vector<std::vector<ExactColor>> across;
+  bool edge_is_step = true;
   std::size_t nonfinite_pixels = 0;  // pixels ShadeResult::counts must report as non-finite
   VariantExpectations expect;
   Expectation reference = Expectation::within(1e-6, "float rounding of the result");  // the double reference
