@@ -3,7 +3,6 @@
 #include <chrono>
 #include <stdexcept>
 
-#include "cl/compute_context.h"
 #include "cl/device.h"
 
 namespace phongcl {
@@ -39,18 +38,21 @@ void RelightSession::check(const Scene& scene) const {
   }
 }
 
-// The Relighter keeps its precision, ambient and background from construction: a change of those
-// builds a new one (which packs the G-buffer again); lights, materials and the eye are updates.
+// The Relighter keeps its precision, ambient, background and whether it shades the terms from
+// construction: a change of those builds a new one (which packs the G-buffer again); lights,
+// materials and the eye are updates.
 Relighter& RelightSession::relighter_for(const Scene& scene, const RenderSettings& settings) {
   const bool same = relighter_ && relighter_settings_.precision == settings.precision &&
                     relighter_settings_.specialise == settings.specialise &&
-                    relighter_->scene().ambient == scene.ambient && relighter_->scene().background == scene.background;
+                    relighter_settings_.terms == settings.terms && relighter_->scene().ambient == scene.ambient &&
+                    relighter_->scene().background == scene.background;
   if (!same) {
     relighter_.reset();  // first: two copies of a large G-buffer need not fit on the device
     RelighterOptions options;
     options.device = device_;
     options.precision = settings.precision;
     options.specialise = settings.specialise;
+    options.terms = settings.terms;
     relighter_.emplace(scene, gbuffer_, options);
     relighter_settings_ = settings;
   }
@@ -61,31 +63,18 @@ Relighter& RelightSession::relighter_for(const Scene& scene, const RenderSetting
 }
 
 Frame RelightSession::shade(const Scene& scene, const RenderSettings& settings) {
-  if (settings.terms) return shade_with_terms(scene, settings);
   const auto start = std::chrono::steady_clock::now();
   Relighter& relighter = relighter_for(scene, settings);
   Frame frame;
-  frame.image = relighter.shade();
-  const ShadeTimings t = relighter.last_timings();
+  frame.image = settings.terms ? relighter.shade(frame.terms) : relighter.shade();
+  const ShadeReport report = relighter.last_report();
+  const ShadeTimings& t = report.timings;
   frame.timings = {t.build_ms, t.kernel_ms, t.pack_ms + t.upload_ms + t.download_ms,
                    std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count()};
   frame.kernel = relighter.kernel_summary();
   frame.build = t.rebuilt ? "kernel built or fetched from the cache" : "kernel reused";
+  frame.warnings = report.warnings;
   return frame;
-}
-
-Frame RelightSession::shade_with_terms(const Scene& scene, const RenderSettings& settings) {
-  if (!terms_shader_) {
-    terms_cache_ = std::make_unique<ProgramCache>(ProgramCache::default_directory());
-    terms_shader_ = std::make_unique<PhongShader>(make_compute_context(pick_device(device_)), *terms_cache_);
-  }
-  ShadeOptions options{settings.precision, settings.specialise};
-  options.write_terms = true;
-  ShadeResult result = terms_shader_->shade(scene, gbuffer_, options);
-  const ShadeTimings& t = result.timings;
-  return {std::move(result.image), std::move(result.terms),
-          {t.build_ms, t.kernel_ms, t.pack_ms + t.upload_ms + t.download_ms, t.total_ms},
-          result.recipe.summary(), to_string(result.cache), std::move(result.warnings)};
 }
 
 SurfacePick RelightSession::pick(int x, int y) const {

@@ -1,7 +1,7 @@
 #pragma once
 // The server's only contact with the shading library: the G-buffer resident on the device
-// (phongcl::Relighter), shaded for whatever scene the page holds now, and read back under the
-// cursor. The AOV terms, which the Relighter does not produce, come from the one-shot shader.
+// (phongcl::Relighter), shaded for whatever scene the page holds now (with the AOV terms when the
+// page shows one), and read back under the cursor.
 #include <atomic>
 #include <limits>
 #include <memory>
@@ -14,7 +14,6 @@
 #include "image/image.h"
 #include "phongcl/relighter.hpp"
 #include "scene/scene.h"
-#include "shading/phong_shader.h"
 
 namespace phongcl {
 
@@ -69,7 +68,6 @@ class RelightSession {
 
  private:
   Relighter& relighter_for(const Scene& scene, const RenderSettings& settings);
-  Frame shade_with_terms(const Scene& scene, const RenderSettings& settings);
 
   GBuffer gbuffer_;
   mutable std::atomic<std::size_t> smallest_passing_count_{std::numeric_limits<std::size_t>::max()};  // of check()
@@ -77,9 +75,6 @@ class RelightSession {
   std::string device_;
   std::optional<Relighter> relighter_;
   RenderSettings relighter_settings_;
-  // Only once a page asks for the terms.
-  std::unique_ptr<ProgramCache> terms_cache_;
-  std::unique_ptr<PhongShader> terms_shader_;
 };
 
 }  // namespace phongcl
