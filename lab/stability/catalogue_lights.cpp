@@ -206,7 +206,8 @@ StabilityCase hard_spot(double cone_deg) {
   StabilityCase c = spot_case("hard A=" + number(cone_deg), "spot of A = " + number(cone_deg) + " degrees, P = 0: "
                               "lit inside, 0 outside; the pixel on the edge and its float neighbours lit or 0, "
                               "nothing between", 2 * degrees(half_angle), 0.0, pixels);
-  c = with_edge(std::move(c), cones_moved(c.scene, half_angle), /*step=*/true);
+  const std::vector<Scene> moved = cones_moved(c.scene, half_angle);  // before c is moved from
+  c = with_edge(std::move(c), moved, /*step=*/true);
   // d's few rounding units, times the window's amplification at d/R = 0.94.
   const double window = spot_window_amplification();
   c.expect = {double_expectation(), precise_expectation(window), fast_expectation(window),
@@ -229,7 +230,8 @@ StabilityCase soft_spot(double cone_deg, double penumbra_deg) {
                                   (std::fabs(cone_deg / 2 + penumbra_deg - 90) < 1e-9 ? " (A/2 + P = 90)" : "") +
                                   ": 1 inside, the smoothstep through the penumbra, 0 outside",
                               cone_deg, penumbra_deg, pixels);
-  c = with_edge(std::move(c), cones_moved(c.scene, outer), /*step=*/false);
+  const std::vector<Scene> moved = cones_moved(c.scene, outer);  // before c is moved from
+  c = with_edge(std::move(c), moved, /*step=*/false);
   // Half rounds P to 2^-11: theta moves by up to ~5e-4 rad, s by that over the penumbra, and the
   // smoothstep by up to ~7 times s's error, relatively, at a quarter of the way through; d by
   // 2^-11 relative, which the window multiplies by spot_window_amplification() (29).
