@@ -23,25 +23,7 @@
 
 inline uint round_up_lanes(uint pixel) { return (pixel + PHONGCL_LANES - 1) / PHONGCL_LANES * PHONGCL_LANES; }
 
-/* The smallest, the largest and the sum of a vector's lanes, by halving it. */
-#if PHONGCL_LANES == 1
-#define REDUCE_LANES(v, op) (v)
-#else
-#define REDUCE_16(v, op) op((v).lo, (v).hi)
-#define REDUCE_8(v, op) op((v).lo, (v).hi)
-#define REDUCE_4(v, op) op((v).lo, (v).hi)
-#define REDUCE_2(v, op) op((v).x, (v).y)
-#if PHONGCL_LANES == 16
-#define REDUCE_LANES(v, op) REDUCE_2(REDUCE_4(REDUCE_8(REDUCE_16(v, op), op), op), op)
-#elif PHONGCL_LANES == 8
-#define REDUCE_LANES(v, op) REDUCE_2(REDUCE_4(REDUCE_8(v, op), op), op)
-#elif PHONGCL_LANES == 4
-#define REDUCE_LANES(v, op) REDUCE_2(REDUCE_4(v, op), op)
-#else
-#define REDUCE_LANES(v, op) REDUCE_2(v, op)
-#endif
-#endif
-#define PLUS(a, b) ((a) + (b))
+#define PLUS(a, b) ((a) + (b)) /* for REDUCE_LANES (phong_math.h) */
 
 /* The work-items whose first pixel is in [row + x_begin, row + x_end) shade a tile's pixels of that
  * row; those rows' slots begin and end at multiples of PHONGCL_LANES (so does first_pixel), so the

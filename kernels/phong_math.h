@@ -58,30 +58,25 @@ typedef PHONGCL_XCAT(int, PHONGCL_LANES) intv;
 #define LANE_MASK(comparison) (comparison)
 #endif
 
+/* A vector's lanes combined by a two-operand `op` (a macro or function), by halving the vector:
+ * op(v.lo, v.hi) until one lane is left. */
+#define HALVE_LANES(v, op) op((v).lo, (v).hi)
+#if PHONGCL_LANES == 1
+#define REDUCE_LANES(v, op) (v)
+#elif PHONGCL_LANES == 2
+#define REDUCE_LANES(v, op) HALVE_LANES(v, op)
+#elif PHONGCL_LANES == 4
+#define REDUCE_LANES(v, op) HALVE_LANES(HALVE_LANES(v, op), op)
+#elif PHONGCL_LANES == 8
+#define REDUCE_LANES(v, op) HALVE_LANES(HALVE_LANES(HALVE_LANES(v, op), op), op)
+#else
+#define REDUCE_LANES(v, op) HALVE_LANES(HALVE_LANES(HALVE_LANES(HALVE_LANES(v, op), op), op), op)
+#endif
+#define BITWISE_AND(a, b) ((a) & (b))
+
 /* Whether every lane of a mask is true, by halving the vector with ANDs: PoCL's all() and any()
  * test the lanes one by one, each with a branch. */
-#if PHONGCL_LANES == 1
-inline int all_lanes(intv mask) { return mask; }
-#else
-inline int all_lanes(intv mask) {
-#if PHONGCL_LANES == 16
-  const int8 mask8 = mask.lo & mask.hi;
-#elif PHONGCL_LANES == 8
-  const int8 mask8 = mask;
-#endif
-#if PHONGCL_LANES >= 8
-  const int4 mask4 = mask8.lo & mask8.hi;
-#elif PHONGCL_LANES == 4
-  const int4 mask4 = mask;
-#endif
-#if PHONGCL_LANES >= 4
-  const int2 mask2 = mask4.lo & mask4.hi;
-#else
-  const int2 mask2 = mask;
-#endif
-  return (mask2.x & mask2.y) != 0;
-}
-#endif
+inline int all_lanes(intv mask) { return REDUCE_LANES(mask, BITWISE_AND) != 0; }
 
 /* Per-lane choice without branches: `condition` is a comparison of realv values. */
 #define SELECT(condition, if_true, if_false) ((condition) ? (realv)(if_true) : (realv)(if_false))
