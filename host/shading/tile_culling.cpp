@@ -55,7 +55,7 @@ namespace {
 
 // The culling levels above the tiles, coarsest first, in tiles per side of their boxes: every light
 // is tested against one box per 8 x 8 tiles, the survivors against one per 2 x 2, and theirs against
-// each tile (1080p, 10,000 lights: about 1/50 of the tests of one level).
+// each tile.
 constexpr std::size_t kLevelSpans[] = {8, 2};
 
 // A grid of boxes, each the union of the tile boxes it spans.
@@ -64,8 +64,7 @@ struct BoxGrid {
   std::vector<TileBox> boxes;
 };
 
-// The boxes of `grid` (whose boxes span `span` tiles each) merged `factor` x `factor`; parent[i] is
-// the merged box that holds grid box i.
+// The boxes of `grid` merged `factor` x `factor`; parent[i] is the merged box that holds grid box i.
 BoxGrid merge_boxes(const BoxGrid& grid, std::size_t factor, std::vector<cl_uint>& parent) {
   const std::size_t rows = grid.boxes.size() / grid.columns;
   BoxGrid merged;
