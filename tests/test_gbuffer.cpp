@@ -27,6 +27,7 @@
 #include "common/error.h"
 #include "gbuffer/gbuffer.h"
 #include "gbuffer/layouts.h"
+#include "gbuffer/material_check.h"
 
 #include "temp_dir.h"
 
@@ -535,6 +536,20 @@ TEST(MaterialCheck, OutOfRangeNamesPixelInFileCoordinates) {
   g.material[3 * 5 + 0] = 9.0f;  // a later offender is not the one reported
   EXPECT_EQ(material_error(g, 3), "scene_g.exr: pixel (13, 22): material index 7 out of range (scene has 3 materials)");
   EXPECT_EQ(material_error(g, 10), "");
+}
+
+// A table at least as long as one that passed is not checked again; a shorter one is.
+TEST(MaterialCheck, RemembersTheShortestTableThatPassed) {
+  GBuffer g = pixels(2, false);
+  g.material[1] = 2.0f;
+  const MaterialCheck check;
+  EXPECT_NO_THROW(check.check(g, 4));
+  g.material[1] = 9.0f;  // the G-buffer must not change: a table of 4 or more is no longer scanned
+  EXPECT_NO_THROW(check.check(g, 6));
+  EXPECT_THROW(check.check(g, 3), InputError);  // shorter than any that passed: scanned
+  const MaterialCheck known(4);
+  EXPECT_NO_THROW(known.check(g, 4));
+  EXPECT_THROW(known.check(g, 2), InputError);
 }
 
 TEST(MaterialCheck, IndexEqualToCountIsOutOfRange) {

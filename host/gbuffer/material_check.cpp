@@ -5,6 +5,7 @@
 
 #include "common/error.h"
 #include "gbuffer/gbuffer.h"
+#include "gbuffer/material_check.h"
 
 namespace phongcl {
 
@@ -46,6 +47,14 @@ void check_materials(const GBuffer& g, std::size_t material_count) {
                                      " materials)");
     if (shininess_stored && g.shininess[i] < 0.0f)
       throw InputError(g.source, pixel_name(g, i) + "shininess " + number(g.shininess[i]) + " is negative");
+  }
+}
+
+void MaterialCheck::check(const GBuffer& gbuffer, std::size_t material_count) const {
+  std::size_t passed = smallest_passing_.load();
+  if (material_count >= passed) return;
+  check_materials(gbuffer, material_count);
+  while (material_count < passed && !smallest_passing_.compare_exchange_weak(passed, material_count)) {
   }
 }
 

@@ -27,16 +27,7 @@ RelightSession::RelightSession(GBuffer gbuffer, std::string device)
 
 RelightSession::~RelightSession() = default;
 
-// The G-buffer never changes and a larger table only admits more indices, so a count that passed
-// once passes again: this spares a scan of every pixel on each edit of a drag.
-void RelightSession::check(const Scene& scene) const {
-  const std::size_t count = scene.materials.size();
-  std::size_t passed = smallest_passing_count_.load();
-  if (count >= passed) return;
-  check_materials(gbuffer_, count);
-  while (count < passed && !smallest_passing_count_.compare_exchange_weak(passed, count)) {
-  }
-}
+void RelightSession::check(const Scene& scene) const { material_check_.check(gbuffer_, scene.materials.size()); }
 
 // The Relighter keeps its precision, ambient, background and whether it shades the terms from
 // construction: a change of those builds a new one (which packs the G-buffer again); lights,

@@ -2,15 +2,13 @@
 // The server's only contact with the shading library: the G-buffer resident on the device
 // (phongcl::Relighter), shaded for whatever scene the page holds now (with the AOV terms when the
 // page shows one), and read back under the cursor.
-#include <atomic>
-#include <limits>
-#include <memory>
 #include <optional>
 #include <string>
 
 #include <glm/glm.hpp>
 
 #include "gbuffer/gbuffer.h"
+#include "gbuffer/material_check.h"
 #include "image/image.h"
 #include "phongcl/relighter.hpp"
 #include "scene/scene.h"
@@ -70,7 +68,7 @@ class RelightSession {
   Relighter& relighter_for(const Scene& scene, const RenderSettings& settings);
 
   GBuffer gbuffer_;
-  mutable std::atomic<std::size_t> smallest_passing_count_{std::numeric_limits<std::size_t>::max()};  // of check()
+  MaterialCheck material_check_;  // of check()
   std::optional<Image> beauty_;
   std::string device_;
   std::optional<Relighter> relighter_;

@@ -9,6 +9,7 @@
 
 #include "cl/compute_context.h"
 #include "cl/program_cache.h"
+#include "gbuffer/material_check.h"
 #include "scene/scene_check.h"
 #include "shading/phong_shader.h"
 #include "shading/recipe.h"
@@ -42,9 +43,7 @@ struct Relighter::State {
     Scene scene;
     GBuffer gbuffer;
     Recipe recipe;
-    // Material tables this long or longer pass check_materials on this G-buffer (a longer table
-    // only admits more indices), so a drag's table edits skip the scan of every pixel.
-    std::size_t passing_material_count;
+    MaterialCheck material_check;  // of new material tables against this G-buffer
   };
   Frame& frame() {
     if (!current) throw std::logic_error("phongcl::Relighter: no frame yet (set_frame before shade)");
@@ -86,7 +85,8 @@ void Relighter::set_frame(const Scene& scene, GBuffer&& gbuffer) {
   const std::lock_guard lock(state_->mutex);
   phongcl::check_materials(gbuffer, scene.materials.size());
   Recipe recipe = state_->recipe_for(scene, gbuffer);
-  state_->current = State::Frame{scene, std::move(gbuffer), std::move(recipe), scene.materials.size()};
+  state_->current = State::Frame{scene, std::move(gbuffer), std::move(recipe),
+                                 MaterialCheck(scene.materials.size())};
   state_->engine.forget_gbuffer();
   state_->engine.forget_uniforms();
 }
@@ -106,10 +106,7 @@ void Relighter::set_materials(const std::vector<Material>& materials) {
   check_material_table(materials);
   const std::lock_guard lock(state_->mutex);
   State::Frame& frame = state_->frame();
-  if (materials.size() < frame.passing_material_count) {
-    phongcl::check_materials(frame.gbuffer, materials.size());
-    frame.passing_material_count = materials.size();
-  }
+  frame.material_check.check(frame.gbuffer, materials.size());
   Scene next = frame.scene;
   next.materials = materials;
   frame.recipe = state_->recipe_for(next, frame.gbuffer);
