@@ -18,7 +18,7 @@
 #include "storage.h"
 #include "tiles.h"
 
-extern inline uint round_up_lanes(uint pixel) { return (pixel + PHONGCL_LANES - 1) / PHONGCL_LANES * PHONGCL_LANES; }
+uint round_up_lanes(uint pixel) { return (pixel + PHONGCL_LANES - 1) / PHONGCL_LANES * PHONGCL_LANES; }
 
 #define PLUS(a, b) ((a) + (b)) /* for REDUCE_LANES (phong_math.h) */
 
@@ -63,7 +63,7 @@ __kernel void tile_bounds(__global const STORAGE* restrict planes, uint plane_st
 
 /* Whether a light's bounding sphere meets a non-empty box: the squared distance from its centre to
  * the box against its radius squared. */
-extern inline bool reaches(LightBounds light, const TileBox* box) {
+bool reaches(LightBounds light, const TileBox* box) {
   if (light.radius < 0) return true;
   float distance_sq = 0;
   for (int axis = 0; axis < 3; ++axis) {

@@ -22,7 +22,7 @@
 /* 1 where the lane's material is among the light's (its LIGHT_LINKING mask words), else 0.
  * Background lanes (index -1) get bit 31 of the only word with one word, and 0 with more; either
  * way the kernel writes the background colour there. */
-extern inline realv linked(UNIFORM_SPACE const LinkWord* mask, intv index) {
+realv linked(UNIFORM_SPACE const LinkWord* mask, intv index) {
   intv bits = (intv)0;
   if (LIGHT_LINKING == 1) bits = (intv)(int)mask[0];
   else
@@ -39,7 +39,7 @@ static inline realv link_gate(UNIFORM_SPACE const LinkWord* mask, intv index) {
  * pixel, as |-l - axis|^2 / 2: no cancellation (1 - dot(-l, axis) loses a cone of 1e-3 degrees,
  * 1 - c = 4e-11, entirely: every pixel within 0.03 degrees would be lit). The cone compares it with
  * versines: c >= cos(A/2) is 1 - c <= 1 - cos(A/2), and s = (c - co) / (ci - co) the same ratio. */
-extern inline realv cone_versine(UNIFORM_SPACE const LightShape* shape, vec3 toward, realv inverse) {
+realv cone_versine(UNIFORM_SPACE const LightShape* shape, vec3 toward, realv inverse) {
   const vec3 off_axis = make_vec3(fma(-inverse, toward.x, -(realv)shape->axis[0]), fma(-inverse, toward.y, -(realv)shape->axis[1]),
                                   fma(-inverse, toward.z, -(realv)shape->axis[2]));
   return (real)0.5 * dot3(off_axis, off_axis);
@@ -47,7 +47,7 @@ extern inline realv cone_versine(UNIFORM_SPACE const LightShape* shape, vec3 tow
 
 /* F for one point or spot light; `gate` (0 or 1) is its linking. toward * inverse is l; distance and
  * inverse_distance are d and 1/d, read only with NEEDS_DISTANCE. */
-extern inline realv shape_weight(UNIFORM_SPACE const LightShape* shape, vec3 toward, realv inverse, realv distance,
+realv shape_weight(UNIFORM_SPACE const LightShape* shape, vec3 toward, realv inverse, realv distance,
                                  realv inverse_distance, realv gate) {
   realv bounded = gate; /* window * cone * link, in [0, 1] */
   if (RANGE_WINDOW) {
@@ -73,14 +73,14 @@ extern inline realv shape_weight(UNIFORM_SPACE const LightShape* shape, vec3 tow
  * reach none of its pixels. A light without a range (inverse_range 0) is never skipped. toward is
  * scaled by 1 / R before it is squared: d^2 and 1 / R^2 apart overflow float for R = 1e20 and 1e-20
  * (Inf * a tiny factor would skip lights at R / 2). */
-extern inline bool beyond_range_in_every_lane(UNIFORM_SPACE const LightShape* shape, vec3 toward) {
+bool beyond_range_in_every_lane(UNIFORM_SPACE const LightShape* shape, vec3 toward) {
   const vec3 in_ranges = scale3(toward, (realv)shape->inverse_range);
   return all_lanes(LANE_MASK(dot3(in_ranges, in_ranges) > (real)1.01));
 }
 
 /* Whether every lane is outside a spot's cone, 1 - c > versine_outer: there the cone factor, and so
  * the weight, is exactly 0 (as beyond the range above). A point light (versine_outer 3) never is. */
-extern inline bool outside_cone_in_every_lane(UNIFORM_SPACE const LightShape* shape, vec3 toward, realv inverse) {
+bool outside_cone_in_every_lane(UNIFORM_SPACE const LightShape* shape, vec3 toward, realv inverse) {
   return all_lanes(LANE_MASK(cone_versine(shape, toward, inverse) > shape->versine_outer));
 }
 

@@ -39,7 +39,7 @@ static inline void look_up_materials(MaterialLookup* lookup, UNIFORM_SPACE const
  * read through the named array it falls in (indexing past ka[4] is undefined behaviour; `field` is
  * a constant at every call, so the choice folds away). Through a function returning a private
  * value: clang 15 (PoCL 3.1) crashes on a vector literal cast straight from a __constant lvalue. */
-extern inline real material_scalar(UNIFORM_SPACE const MaterialRecord* record, int field) {
+real material_scalar(UNIFORM_SPACE const MaterialRecord* record, int field) {
   return field < MATERIAL_KD ? record->ka[field - MATERIAL_KA]
          : field < MATERIAL_KS ? record->kd[field - MATERIAL_KD]
          : field < MATERIAL_SHININESS ? record->ks[field - MATERIAL_KS]
@@ -57,7 +57,7 @@ static inline realv select_entry(UNIFORM_SPACE const MaterialRecord* table, real
  * with a variable mask, through per-work-item private memory: 7 of the 11 ms of a 1080p frame
  * without lights. Background lanes (index -1) get entry 0. Written out rather than a loop: it must
  * unroll, so that the comparisons are shared by every field, and OpenCL C 1.2 has no unroll pragma. */
-extern inline realv select_field(UNIFORM_SPACE const MaterialRecord* table, intv index, int field) {
+realv select_field(UNIFORM_SPACE const MaterialRecord* table, intv index, int field) {
   const realv lane_index = TO_REALV(index);
   realv value = (realv)material_scalar(&table[0], field);
   value = select_entry(table, lane_index, 1, field, value), value = select_entry(table, lane_index, 2, field, value);
@@ -72,7 +72,7 @@ extern inline realv select_field(UNIFORM_SPACE const MaterialRecord* table, intv
 
 /* One field of each lane's material record: a gather through private memory (no dynamic lane
  * indexing in OpenCL C). */
-extern inline realv gather_field(UNIFORM_SPACE const MaterialRecord* table, const int* entry, int field) {
+realv gather_field(UNIFORM_SPACE const MaterialRecord* table, const int* entry, int field) {
   real values[PHONGCL_LANES];
   for (int k = 0; k < PHONGCL_LANES; ++k) values[k] = material_scalar(&table[entry[k]], field);
   return VLOAD(0, values);

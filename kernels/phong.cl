@@ -75,7 +75,7 @@ static inline realv pixel_plane(const PixelPlanes* pixels, int plane) {
  * square root before it must: the loop is latency-bound, and waiting makes a point light's chain 50%
  * longer. n, v and q come by value, not as the Surface: with the struct's address passed this deep,
  * PoCL keeps a copy of it per work-item (4 KB each with double16, past the work-group's stack). */
-extern inline void add_lobes(LightSums* sums, vec3 n, vec3 v, realv shininess, vec3 toward, realv inverse,
+void add_lobes(LightSums* sums, vec3 n, vec3 v, realv shininess, vec3 toward, realv inverse,
                              UNIFORM_SPACE const float* color, realv weight) {
   const realv n_dot = dot3(n, toward);
   const realv ndl = n_dot * inverse;
@@ -119,7 +119,7 @@ static inline void add_directional_light(LightSums* sums, const Surface* surface
             link_gate(link_mask, surface->material));
 }
 
-extern inline void add_block(LightSums* sums, LightSums* compensation, const LightSums* block) {
+void add_block(LightSums* sums, LightSums* compensation, const LightSums* block) {
   kahan_add(&sums->diffuse.x, &compensation->diffuse.x, block->diffuse.x, WEIGHT_CAN_OVERFLOW);
   kahan_add(&sums->diffuse.y, &compensation->diffuse.y, block->diffuse.y, WEIGHT_CAN_OVERFLOW);
   kahan_add(&sums->diffuse.z, &compensation->diffuse.z, block->diffuse.z, WEIGHT_CAN_OVERFLOW);
@@ -188,7 +188,7 @@ static inline void shade_pixel(Terms* terms, const PixelPlanes* pixels, const Ma
 }
 
 /* Three planes of a term, unscaled. */
-extern inline void store_term(__global float* out, uint stride, size_t group, vec3 term, float a, float b) {
+void store_term(__global float* out, uint stride, size_t group, vec3 term, float a, float b) {
   store_plane(unscale(term.x, a, b), group, out);
   store_plane(unscale(term.y, a, b), group, out + stride);
   store_plane(unscale(term.z, a, b), group, out + 2 * (size_t)stride);

@@ -32,8 +32,7 @@ bool all_zero(const Planes3& planes) {
 // PoCL does not vectorise this kernel across work-items by itself, so on a CPU each work-item
 // shades one SIMD register's worth of pixels (16 floats with AVX-512: 1.6x faster than 8 here);
 // GPUs want one pixel per work-item. OpenCL vectors come in powers of two up to 16.
-// A double is two floats wide: one register holds half as many (and double16 with every light
-// shape overflowed PoCL's work-item stacks: it keeps each work-item's spilled vectors apart).
+// A double is two floats wide: one register holds half as many.
 int lanes_for(const DeviceInfo& device, Precision precision) {
   if (!device.is_cpu) return 1;
   const unsigned width = precision == Precision::double_precision ? device.preferred_float_width / 2 : device.preferred_float_width;
@@ -42,13 +41,22 @@ int lanes_for(const DeviceInfo& device, Precision precision) {
   return lanes;
 }
 
+// Doubles on a CPU: at most 8 lanes. double16 overflows PoCL's work-group stack (its context keeps
+// every work-item's spilled vectors apart); images do not depend on the lane count.
+constexpr int kMaxCpuDoubleLanes = 8;
+
 void decide_lanes(Recipe& recipe, const DeviceInfo& device, const ShadeOptions& options) {
   recipe.lanes = options.lanes > 0 ? options.lanes : lanes_for(device, options.precision);
   if (recipe.lanes > 16 || (recipe.lanes & (recipe.lanes - 1)) != 0) {
     throw std::invalid_argument("lanes must be 1, 2, 4, 8 or 16 (OpenCL vector widths), not " +
                                 std::to_string(recipe.lanes));
   }
-  const std::string why = options.lanes > 0 ? "as asked"
+  const bool capped =
+      device.is_cpu && options.precision == Precision::double_precision && recipe.lanes > kMaxCpuDoubleLanes;
+  if (capped) recipe.lanes = kMaxCpuDoubleLanes;
+  const std::string why = capped            ? std::to_string(options.lanes) + " asked; doubles on a CPU take at most " +
+                                                  std::to_string(kMaxCpuDoubleLanes) + ": double16 overflows PoCL's work-group stack"
+                          : options.lanes > 0 ? "as asked"
                           : !device.is_cpu  ? "GPU: one pixel each"
                           : options.precision == Precision::double_precision
                               ? "CPU: explicit SIMD, half the device's preferred float vector width (doubles)"
