@@ -5,7 +5,7 @@
 # (--aov), with a baseline phongcl and with build/phongcl, and `cmp`s the EXRs.
 #
 #   git worktree add /tmp/base main && (cd /tmp/base && scripts/build.sh)   # or copy a build/ aside
-#   scripts/dev/same-images.sh /tmp/base/build/phongcl [--quick] [--jobs N] [--scene NAME]...
+#   scripts/dev/same-images.sh /tmp/base/build/phongcl [--quick] [--jobs N] [--scene NAME]... [--lanes "2 4"]
 #
 # The baseline's images are kept (keyed by its binary and library) in $SAME_IMAGES_DIR (default
 # /tmp/phongcl-same-images), so later runs shade with build/phongcl only. --quick keeps lanes 1 and
@@ -21,9 +21,11 @@ base=""
 quick=0
 jobs=2
 scenes=()
+lanes_asked=""
 while [ $# -gt 0 ]; do
   case $1 in
     --quick) quick=1 ;;
+    --lanes) lanes_asked=$2; shift ;;
     --jobs) jobs=$2; shift ;;
     --scene) scenes+=("$2"); shift ;;
     -*) echo "same-images: unknown option $1" >&2; exit 2 ;;
@@ -31,7 +33,7 @@ while [ $# -gt 0 ]; do
   esac
   shift
 done
-[ -x "$base" ] || { echo "usage: $0 BASELINE_PHONGCL [--quick] [--jobs N] [--scene NAME]..." >&2; exit 2; }
+[ -x "$base" ] || { echo "usage: $0 BASELINE_PHONGCL [--quick] [--jobs N] [--scene NAME]... [--lanes LIST]" >&2; exit 2; }
 new="$repo/build/phongcl"
 [ -x "$new" ] || { echo "same-images: $new is missing (run scripts/build.sh first)" >&2; exit 2; }
 base=$(cd "$(dirname "$base")" && pwd)/$(basename "$base")
@@ -49,6 +51,7 @@ if [ ${#scenes[@]} -eq 0 ]; then
 fi
 lanes_list=(1 2 4 8 16)
 [ "$quick" = 1 ] && lanes_list=(1 16)
+[ -n "$lanes_asked" ] && read -r -a lanes_list <<< "$lanes_asked"
 
 # A scene whose G-buffer is not in the repository (scenes/large) is ray-cast once, by build/phongcl.
 gbuffer_of() {
