@@ -82,7 +82,7 @@ TEST(AtomicFile, NextWriteRemovesTemporariesOfDeadProcesses) {
   EXPECT_EQ(content(dir / "lit.exr"), "new");
 }
 
-// A kill between the PNG and the EXR of one run used to leave the new PNG beside the old EXR.
+// A kill between the PNG and the EXR of one run must not leave the new PNG beside the old EXR.
 TEST(AtomicBatch, KillBeforeCommitLeavesAllOldFiles) {
   TempDir dir;
   write_text(dir / "lit.png", "old png");

@@ -1,6 +1,7 @@
 // The stability catalogue (lab/stability), one test per case on every precision variant the
-// device runs; no NaN from finite extreme inputs in any variant; the two accuracy bars of issue 4
-// over many pixels. The catalogue's cases carry their own tolerances (lab/stability/case_builder.h).
+// device runs; no NaN from finite extreme inputs in any variant; the two accuracy bars
+// (lab/stability/accuracy_bars.h) over many pixels. The catalogue's cases carry their own
+// tolerances (lab/stability/case_builder.h).
 #include <cmath>
 #include <limits>
 #include <random>

@@ -1,6 +1,6 @@
 #pragma once
 // `phongcl serve`'s HTTP server: the page (web/, embedded) and the JSON/image API over a
-// LiveRelighter. README "Interactive relighting" lists the endpoints.
+// LiveRelighter. docs/serve.md "HTTP API" lists the endpoints.
 #include <cstddef>
 #include <filesystem>
 #include <memory>
