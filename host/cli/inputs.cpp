@@ -121,7 +121,7 @@ LoadedGBuffer SceneInputs::load_described_gbuffer(const Scene& scene, bool with_
   }
   const std::filesystem::path file = gbuffer_path(scene);
   GBufferRead read = read_gbuffer(file, options);
-  std::string description = read.description;
+  std::string& description = read.description;
   if (const auto file_camera = read_file_camera(file)) {
     if (!scene.has_camera) {
       description += ", camera from the file's worldToCamera and worldToNDC";
@@ -133,12 +133,12 @@ LoadedGBuffer SceneInputs::load_described_gbuffer(const Scene& scene, bool with_
     }
   }
   if (read.needs_positions_from_depth()) {
-    positions_from_depth(read.gbuffer, read.depth, scene.camera, read.depth_convention);
     description += std::string(", depth = ") +
                    (read.depth_convention == DepthConvention::distance ? "distance along the ray" : "view-space z") +
                    " (" + read.depth_convention_reason + "; --depth-convention overrides)";
+    positions_from_depth(read, scene.camera);
   }
-  return {std::move(read.gbuffer), description, std::move(read.warnings), read.beauty};
+  return {std::move(read.gbuffer), std::move(read.description), std::move(read.warnings), read.beauty};
 }
 
 }  // namespace phongcl::cli
