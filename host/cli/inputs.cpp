@@ -46,6 +46,13 @@ ColourSource parse_colour_source(const std::string& text) {
 
 }  // namespace
 
+std::vector<NamedFile> SceneInputs::named_files(const Scene* scene) const {
+  std::vector<NamedFile> files{{"--scene", scene_file}};
+  if (!gbuffer_file.empty()) files.push_back({"--gbuffer", gbuffer_file});
+  else if (scene != nullptr && !scene->gbuffer.empty()) files.push_back({"the scene's \"gbuffer\" entry", scene->gbuffer});
+  return files;
+}
+
 std::filesystem::path SceneInputs::gbuffer_path(const Scene& scene) const {
   if (gbuffer_file.empty() && scene.gbuffer.empty())
     throw InputError(scene.source, "no G-buffer: give --gbuffer or a \"gbuffer\" entry in the scene");
