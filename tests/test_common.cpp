@@ -1,5 +1,5 @@
-// Atomic outputs: a killed or failing writer leaves the old files and nothing else; outputs that
-// are inputs; text that must be UTF-8.
+// Atomic outputs: a killed or failing writer leaves the old files and nothing else, a failed
+// write no temporary; outputs that are inputs; text that must be UTF-8.
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/wait.h>
@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "common/atomic_file.h"
+#include "common/error.h"
 #include "common/same_file.h"
 #include "common/utf8.h"
 
@@ -212,6 +213,34 @@ TEST(SameFile, OutputsOverInputsOrOutputsAreRefused) {
             std::string::npos);
   EXPECT_EQ(refused({input, {"--scene", dir / "hard.exr"}, {"--out", dir / "other.exr", true}}), "") << "inputs may share";
   EXPECT_EQ(refused({{"--out", dir / "a.exr", true}, {"--out", dir / "a.exr", true}}), "") << "a frame listed twice";
+}
+
+TEST(AtomicWrite, ReplacesTheDestinationOnSuccess) {
+  TempDir dir;
+  std::ofstream(dir / "out.txt") << "old";
+  write_atomically(dir / "out.txt", [](const fs::path& temp) { std::ofstream(temp) << "new"; });
+  EXPECT_EQ(content(dir / "out.txt"), "new");
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir.path), fs::directory_iterator()), 1);
+}
+
+TEST(AtomicWrite, ThrowingWriterLeavesDestinationIntactAndNoTemporary) {
+  TempDir dir;
+  std::ofstream(dir / "out.txt") << "old";
+  EXPECT_THROW(write_atomically(dir / "out.txt",
+                                [](const fs::path& temp) {
+                                  std::ofstream(temp) << "half writ";
+                                  throw std::runtime_error("disk full");
+                                }),
+               std::runtime_error);
+  EXPECT_EQ(content(dir / "out.txt"), "old");
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir.path), fs::directory_iterator()), 1);
+}
+
+TEST(AtomicWrite, MissingDirectoryFailsWithoutLeftovers) {
+  TempDir dir;
+  // The writer "succeeds" without creating anything; the rename then fails.
+  EXPECT_THROW(write_atomically(dir / "missing" / "out.txt", [](const fs::path&) {}), InputError);
+  EXPECT_TRUE(fs::is_empty(dir.path));
 }
 
 }  // namespace

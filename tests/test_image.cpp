@@ -1,4 +1,4 @@
-// Images: EXR round trips, PNG display encoding, atomic writes and the error metrics.
+// Images: EXR round trips, PNG display encoding and the error metrics.
 #include <gtest/gtest.h>
 #include <png.h>
 #include <unistd.h>
@@ -26,6 +26,8 @@
 #include "image/image.h"
 
 #include "temp_dir.h"
+#include "renderer_files.h"
+#include "shading_support.h"
 
 namespace phongcl {
 namespace {
@@ -313,34 +315,6 @@ TEST(PngImage, WriteIntoMissingDirectoryLeavesNothing) {
   EXPECT_TRUE(fs::is_empty(dir.path));
 }
 
-TEST(AtomicWrite, ReplacesTheDestinationOnSuccess) {
-  TempDir dir;
-  std::ofstream(dir / "out.txt") << "old";
-  write_atomically(dir / "out.txt", [](const fs::path& temp) { std::ofstream(temp) << "new"; });
-  EXPECT_EQ(contents(dir / "out.txt"), "new");
-  EXPECT_EQ(std::distance(fs::directory_iterator(dir.path), fs::directory_iterator()), 1);
-}
-
-TEST(AtomicWrite, ThrowingWriterLeavesDestinationIntactAndNoTemporary) {
-  TempDir dir;
-  std::ofstream(dir / "out.txt") << "old";
-  EXPECT_THROW(write_atomically(dir / "out.txt",
-                                [](const fs::path& temp) {
-                                  std::ofstream(temp) << "half writ";
-                                  throw std::runtime_error("disk full");
-                                }),
-               std::runtime_error);
-  EXPECT_EQ(contents(dir / "out.txt"), "old");
-  EXPECT_EQ(std::distance(fs::directory_iterator(dir.path), fs::directory_iterator()), 1);
-}
-
-TEST(AtomicWrite, MissingDirectoryFailsWithoutLeftovers) {
-  TempDir dir;
-  // The writer "succeeds" without creating anything; the rename then fails.
-  EXPECT_THROW(write_atomically(dir / "missing" / "out.txt", [](const fs::path&) {}), InputError);
-  EXPECT_TRUE(fs::is_empty(dir.path));
-}
-
 // Sets the RGB of pixel (x, y) of a hand-made image.
 void set_rgb(Image& image, int x, int y, float r, float g, float b) {
   float* p = image.pixel(static_cast<std::size_t>(y) * image.width + x);
@@ -426,6 +400,54 @@ TEST(CompareImages, MaskSelectsPixels) {
 TEST(CompareImages, MismatchedSizesAreRejected) {
   EXPECT_THROW(compare_images(Image(2, 3), Image(3, 2), 1e-3), std::invalid_argument);
   EXPECT_THROW(compare_images(Image(2, 2), Image(2, 2), 1e-3, {true}), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace phongcl
+
+namespace phongcl {
+namespace {
+
+using testing::decode_with_openexr;
+using testing::default_scene;
+
+TEST(AovOutput, LayersSumToTheCombinedImage) {
+  PHONGCL_REQUIRE_DEVICE(shader);
+  TempDir dir;
+  const auto [scene, g] = default_scene();
+  ShadeOptions options;
+  options.write_terms = true;
+  const ShadeResult result = shader.shade(scene, g, options);
+  for (ExrPixelType type : {ExrPixelType::float32, ExrPixelType::half}) {
+    const fs::path file = dir / "aov.exr";
+    write_layered_exr({{"", &result.image, true},
+                       {"ambient", &result.terms.ambient, false},
+                       {"diffuse", &result.terms.diffuse, false},
+                       {"specular", &result.terms.specular, false}},
+                      file, type);
+    // Read back with OpenEXR's API, not ours.
+    const Imf::InputFile in(file.c_str());
+    std::vector<std::string> names;
+    for (auto it = in.header().channels().begin(); it != in.header().channels().end(); ++it) names.emplace_back(it.name());
+    EXPECT_EQ(names, (std::vector<std::string>{"A", "B", "G", "R", "ambient.B", "ambient.G", "ambient.R", "diffuse.B",
+                                               "diffuse.G", "diffuse.R", "specular.B", "specular.G", "specular.R"}));
+    EXPECT_EQ(in.header().channels().findChannel("diffuse.G")->type, type == ExrPixelType::half ? Imf::HALF : Imf::FLOAT);
+    const auto alpha = decode_with_openexr(file, "A");
+    for (const char* c : {"R", "G", "B"}) {
+      const auto combined = decode_with_openexr(file, c), ambient = decode_with_openexr(file, std::string("ambient.") + c),
+                 diffuse = decode_with_openexr(file, std::string("diffuse.") + c),
+                 specular = decode_with_openexr(file, std::string("specular.") + c);
+      for (std::size_t i = 0; i < combined.size(); ++i) {
+        if (alpha[i] == 0.0f) continue;  // background: the scene's colour, not a sum of terms
+        // The kernel adds the three terms in float (a few ulps); half storage rounds each of the
+        // four values by up to 2^-11 relative: bound by 4 * 2^-11 of the largest.
+        const double sum = static_cast<double>(ambient[i]) + diffuse[i] + specular[i];
+        const double scale = std::max({1e-6, std::abs(sum), static_cast<double>(std::abs(combined[i]))});
+        const double tolerance = (type == ExrPixelType::half ? 4.0 * std::ldexp(1.0, -11) : 1e-5) * scale;
+        ASSERT_NEAR(sum, combined[i], tolerance) << c << " at pixel " << i;
+      }
+    }
+  }
 }
 
 }  // namespace

@@ -13,6 +13,10 @@
 
 #include "raycast/raycast.h"
 #include "scene/scene.h"
+#include "common/error.h"
+#include "raycast/depth_reconstruction.h"
+#include "renderer_files.h"
+#include "temp_dir.h"
 
 namespace phongcl {
 namespace {
@@ -303,6 +307,92 @@ TEST(Raycast, ImageRowsRunDownAndColumnsRight) {
     }
   EXPECT_GT(hits_above, 0);
   EXPECT_GT(hits_right, 0);
+}
+
+}  // namespace
+}  // namespace phongcl
+
+namespace phongcl {
+namespace {
+
+using namespace testing;
+
+struct TempDir : testing::TempDir {
+  TempDir() : testing::TempDir("depth") {}
+};
+
+// Reconstructed positions against the position pass they replace. Float rounding, per coordinate:
+// the stored depth carries 2^-24 relative error (so t * 2^-24 along the ray), the written and the
+// rebuilt positions 2^-24 * |P| each; the ray itself is double. Allowing twice the sum:
+// |error| <= 2^-23 * (depth + 2 * max|P|). A wrong convention or pixel-centre offset errs by far
+// more (1/cos of the off-axis angle, or a pixel's footprint at that distance).
+void expect_positions_from_depth(const GBuffer& rebuilt, const GBuffer& truth, const Plane& depth) {
+  for (std::size_t i = 0; i < truth.pixel_count(); ++i) {
+    if (!shaded(truth, i)) continue;
+    const float largest = std::max({std::abs(truth.position[0][i]), std::abs(truth.position[1][i]), std::abs(truth.position[2][i])});
+    const double tolerance = std::ldexp(1.0, -23) * (std::abs(depth[i]) + 2.0 * largest);
+    for (int c = 0; c < 3; ++c)
+      ASSERT_LE(std::abs(rebuilt.position[c][i] - truth.position[c][i]), tolerance)
+          << "pixel " << i << " axis " << c << ": rebuilt " << rebuilt.position[c][i] << ", true " << truth.position[c][i];
+  }
+}
+
+TEST(DepthReconstruction, BothConventionsMatchThePositionPass) {
+  TempDir dir;
+  auto [scene, g] = default_scene();
+  // A crop of the camera's image: data window pixel (x, y) must still get the camera's ray (x, y).
+  GBuffer crop = g;
+  const PixelWindow window{20, 10, 80, 50};
+  crop.data_window = window;
+  crop.width = window.width();
+  crop.height = window.height();
+  const int width = g.width;  // clang 14 cannot capture a structured binding
+  const auto crop_plane = [&](const Plane& plane) {
+    Plane out;
+    for (int y = window.y_min; y <= window.y_max; ++y)
+      for (int x = window.x_min; x <= window.x_max; ++x) out.push_back(plane[static_cast<std::size_t>(y) * width + x]);
+    return out;
+  };
+  for (int c = 0; c < 3; ++c) crop.position[c] = crop_plane(g.position[c]), crop.normal[c] = crop_plane(g.normal[c]);
+  crop.material = crop_plane(g.material);
+
+  for (const GBuffer* truth : {&g, &crop}) {
+    for (auto [kind, convention] : {std::pair{DepthPass::distance, DepthConvention::distance},
+                                    std::pair{DepthPass::view_z, DepthConvention::view_z}}) {
+      SCOPED_TRACE(std::string(kind == DepthPass::distance ? "distance" : "view z") + (truth == &crop ? ", cropped" : ""));
+      write_file(dir / "d.exr", *truth, blender_channels(scene, *truth, {.position = false, .depth = kind, .colors = false}));
+      GBufferRead read = read_gbuffer(dir / "d.exr", {});
+      ASSERT_TRUE(read.needs_positions_from_depth());
+      EXPECT_NE(read.description.find("Depth"), std::string::npos) << read.description;
+      positions_from_depth(read.gbuffer, read.depth, scene.camera, convention);
+      expect_positions_from_depth(read.gbuffer, *truth, read.depth);
+      expect_same_gbuffer(read.gbuffer, *truth, 1e-5);  // normals and materials untouched
+    }
+  }
+}
+
+TEST(DepthReconstruction, TheConventionsDifferOffAxis) {
+  // Guards the test above against passing for either convention: the wrong one must fail it.
+  auto [scene, g] = default_scene();
+  GBuffer rebuilt = g;
+  positions_from_depth(rebuilt, depth_pass(scene, g, DepthPass::distance), scene.camera, DepthConvention::view_z);
+  double worst = 0.0;
+  for (std::size_t i = 0; i < g.pixel_count(); ++i)
+    if (shaded(g, i)) worst = std::max(worst, static_cast<double>(std::abs(rebuilt.position[0][i] - g.position[0][i])));
+  EXPECT_GT(worst, 1e-2);
+}
+
+TEST(DepthReconstruction, DisplayWindowMustBeTheCameraImage) {
+  auto [scene, g] = default_scene();
+  g.source = "small.exr";
+  scene.camera.width += 1;
+  try {
+    positions_from_depth(g, Plane(g.pixel_count(), 1.0f), scene.camera, DepthConvention::distance);
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("small.exr: display window is 97x61 but the scene camera is 98x61"),
+              std::string::npos) << e.what();
+  }
 }
 
 }  // namespace

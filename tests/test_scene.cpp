@@ -9,6 +9,8 @@
 
 #include "common/error.h"
 #include "scene/scene.h"
+#include "renderer_files.h"
+#include "scene/camera_space.h"
 
 namespace phongcl {
 namespace {
@@ -392,3 +394,32 @@ TEST(Scene, CameraIsOptional) {
   EXPECT_TRUE(with.has_camera);
   EXPECT_EQ(with.camera.eye, glm::dvec3(1, 2, 3));
 }
+
+namespace phongcl {
+namespace {
+
+using testing::kDefaultScene;
+
+TEST(CameraSpace, TheCameraGoesToTheOriginLookingDownMinusZ) {
+  const Scene scene = load_scene(kDefaultScene);
+  const glm::dmat4 view = world_to_camera(scene.camera);
+  const glm::dvec3 eye(view * glm::dvec4(scene.camera.eye, 1.0));
+  const glm::dvec3 target(view * glm::dvec4(scene.camera.look_at, 1.0));
+  EXPECT_NEAR(glm::length(eye), 0.0, 1e-12);
+  EXPECT_NEAR(target.x, 0.0, 1e-12);
+  EXPECT_NEAR(target.y, 0.0, 1e-12);
+  EXPECT_NEAR(target.z, -glm::length(scene.camera.look_at - scene.camera.eye), 1e-12);
+  const Scene moved = to_camera_space(scene);
+  EXPECT_EQ(moved.camera.eye, glm::dvec3(0.0));
+  EXPECT_EQ(moved.camera.look_at, glm::dvec3(0.0, 0.0, -1.0));
+  ASSERT_EQ(moved.lights.size(), scene.lights.size());
+  for (std::size_t i = 0; i < scene.lights.size(); ++i) {  // rigid: distances to the eye are kept
+    if (scene.lights[i].type == LightType::point)
+      EXPECT_NEAR(glm::length(moved.lights[i].position), glm::length(scene.lights[i].position - scene.camera.eye), 1e-12);
+    else
+      EXPECT_NEAR(glm::length(moved.lights[i].direction), glm::length(scene.lights[i].direction), 1e-12);
+  }
+}
+
+}  // namespace
+}  // namespace phongcl

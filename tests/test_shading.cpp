@@ -8,6 +8,7 @@
 #include "common/error.h"
 
 #include "shading_support.h"
+#include "renderer_files.h"
 
 namespace phongcl {
 namespace {
@@ -293,6 +294,32 @@ TEST(Shading, TermImagesSumToTheCombinedImage) {
   const ErrorStats stats = compare_images(result.image, reference_image(scene, gbuffer), kAbsoluteFloor,
                                           testing::shaded_mask(gbuffer));
   EXPECT_LE(stats.max_rel, kRelativeBound) << describe_worst(stats);
+}
+
+}  // namespace
+}  // namespace phongcl
+
+namespace phongcl {
+namespace {
+
+using testing::default_scene;
+using testing::in_camera_space;
+
+TEST(CameraSpace, ShadesLikeWorldSpace) {
+  PHONGCL_REQUIRE_DEVICE(shader);
+  const auto [scene, g] = default_scene();
+  const Image world = shader.shade(scene, g, {}).image;
+  for (const auto& [what, camera_gbuffer] :
+       {std::pair{"moved by world_to_camera", in_camera_space(g, scene.camera)},
+        std::pair{"generated from the camera-space scene", generate_gbuffer(to_camera_space(scene))}}) {
+    SCOPED_TRACE(what);
+    const Image camera = shader.shade(to_camera_space(scene), camera_gbuffer, {}).image;
+    // Same bound as the kernel-vs-reference suites: the inputs differ only by float rounding of a
+    // rigid motion (a few ulps of P and N), far below it.
+    const ErrorStats stats = compare_images(camera, world, 1e-6, testing::shaded_mask(g));
+    EXPECT_LE(stats.max_rel, 5e-4) << testing::describe_worst(stats);
+    EXPECT_EQ(stats.nonfinite_mismatches, 0u);
+  }
 }
 
 }  // namespace

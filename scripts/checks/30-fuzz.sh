@@ -5,8 +5,8 @@
 # input slower than -timeout; fuzz_http also on a 500 or an error without a JSON body. The scene
 # and G-buffer harnesses load no OpenCL and run with LeakSanitizer on; fuzz_http shades with PoCL
 # behind the server and runs with it off, as the sanitizer suite does (PoCL keeps allocations
-# until exit). FUZZ_SECONDS (default 60) sets the time per harness; docs/reliability.md says how
-# to run them longer.
+# until exit). FUZZ_SECONDS (default 60) sets the time per harness; CONTRIBUTING.md "Reliability"
+# says how to run them longer.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 source scripts/checks/lib/sanitizer_build.sh
