@@ -11,5 +11,5 @@ export POCL_CACHE_DIR="${POCL_CACHE_DIR:-$work/pocl-cache}"
 cmake --build build --target phongcl >"$work/build.log" 2>&1 || { cat "$work/build.log"; echo "55-serve-clients: FAILED: build" >&2; exit 1; }
 echo "55-serve-clients: load before: $(cat /proc/loadavg)"
 /usr/bin/python3 scripts/checks/serve_clients.py --phongcl build/phongcl --scene scenes/default/scene.json \
-  --work "$work" --puts "${SERVE_PUTS:-20}"
+  --work "$work" --puts "${SERVE_PUTS:-12}"
 echo "55-serve-clients: load after: $(cat /proc/loadavg)"
