@@ -250,30 +250,6 @@ inline void expect_same_gbuffer(const GBuffer& actual, const GBuffer& expected, 
   }
 }
 
-// Reads one channel with OpenEXR's own API: what any EXR reader decodes from the file.
-inline Plane decode_with_openexr(const fs::path& file, const std::string& name) {
-  Imf::InputFile in(file.c_str());
-  const Imath::Box2i window = in.header().dataWindow();
-  Plane plane(static_cast<std::size_t>(window.max.x - window.min.x + 1) * (window.max.y - window.min.y + 1));
-  Imf::FrameBuffer frame_buffer;
-  frame_buffer.insert(name, Imf::Slice::Make(Imf::FLOAT, plane.data(), window));
-  in.setFrameBuffer(frame_buffer);
-  in.readPixels(window.min.y, window.max.y);
-  return plane;
-}
-
-// The same G-buffer moved into camera space with world_to_camera (positions and normals).
-inline GBuffer in_camera_space(const GBuffer& g, const Camera& camera) {
-  const glm::dmat4 view = world_to_camera(camera);
-  GBuffer moved = g;
-  for (std::size_t i = 0; i < g.pixel_count(); ++i) {
-    const glm::dvec3 p(view * glm::dvec4(g.position[0][i], g.position[1][i], g.position[2][i], 1.0));
-    const glm::dvec3 n(view * glm::dvec4(g.normal[0][i], g.normal[1][i], g.normal[2][i], 0.0));
-    for (int c = 0; c < 3; ++c) moved.position[c][i] = static_cast<float>(p[c]), moved.normal[c][i] = static_cast<float>(n[c]);
-  }
-  return moved;
-}
-
 // A file's channels as OpenEXR decodes them (float), by name, without phongcl's reader.
 struct Passes {
   int width = 0, height = 0;
@@ -300,6 +276,23 @@ inline Passes read_passes(const fs::path& file, const std::vector<std::string>& 
   input.setFrameBuffer(frame);
   input.readPixels(window.min.y, window.max.y);
   return passes;
+}
+
+// One channel as OpenEXR decodes it: what any EXR reader gets from the file.
+inline Plane decode_with_openexr(const fs::path& file, const std::string& name) {
+  return read_passes(file, {name}).channels.at(name);
+}
+
+// The same G-buffer moved into camera space with world_to_camera (positions and normals).
+inline GBuffer in_camera_space(const GBuffer& g, const Camera& camera) {
+  const glm::dmat4 view = world_to_camera(camera);
+  GBuffer moved = g;
+  for (std::size_t i = 0; i < g.pixel_count(); ++i) {
+    const glm::dvec3 p(view * glm::dvec4(g.position[0][i], g.position[1][i], g.position[2][i], 1.0));
+    const glm::dvec3 n(view * glm::dvec4(g.normal[0][i], g.normal[1][i], g.normal[2][i], 0.0));
+    for (int c = 0; c < 3; ++c) moved.position[c][i] = static_cast<float>(p[c]), moved.normal[c][i] = static_cast<float>(n[c]);
+  }
+  return moved;
 }
 
 }  // namespace phongcl::testing

@@ -1,14 +1,13 @@
 // `phongcl shade` on renderers' files: every layout shades with only --scene and --gbuffer, says
 // which layout it read, and a bad layout or channel flag is a one-line error that keeps the output.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
 #include <algorithm>
-#include <cstdlib>
 #include <fstream>
 #include <string>
 #include <vector>
 
+#include "cli_runner.h"
 #include "image/image.h"
 #include "renderer_files.h"
 #include "shading_support.h"
@@ -19,25 +18,6 @@ namespace {
 
 using namespace testing;
 
-struct TempDir : testing::TempDir {
-  TempDir() : testing::TempDir("cli_layouts") {}
-};
-
-// Runs the phongcl binary; returns the exit status, stdout and stderr.
-struct CliRun {
-  int status;
-  std::string out, err;
-};
-std::string slurp(const fs::path& file) {
-  std::ifstream in(file);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-CliRun run_phongcl(const std::string& arguments, const TempDir& dir) {
-  const std::string command = std::string("\"") + PHONGCL_EXE + "\" " + arguments + " > \"" + (dir / "stdout").string() +
-                              "\" 2> \"" + (dir / "stderr").string() + "\"";
-  const int raw = std::system(command.c_str());
-  return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, slurp(dir / "stdout"), slurp(dir / "stderr")};
-}
 std::string quoted(const fs::path& path) { return "\"" + path.string() + "\""; }
 
 TEST(LayoutsCli, RendererFilesShadeWithOnlySceneAndGBuffer) {
@@ -58,8 +38,8 @@ TEST(LayoutsCli, RendererFilesShadeWithOnlySceneAndGBuffer) {
 
   const std::string scene_arg = "--scene " + quoted(kDefaultScene);
   const CliRun native = run_phongcl("shade " + scene_arg + " --gbuffer " + quoted(dir / "native.exr") + " --out " +
-                                     quoted(dir / "native_lit.exr"), dir);
-  ASSERT_EQ(native.status, 0) << native.err;
+                                    quoted(dir / "native_lit.exr"));
+  ASSERT_EQ(native.exit_code, 0) << native.err;
   EXPECT_NE(native.out.find("  layout     phongcl (P, N, material)\n"), std::string::npos) << native.out;
   const Image expected = read_exr(dir / "native_lit.exr");
 
@@ -75,15 +55,15 @@ TEST(LayoutsCli, RendererFilesShadeWithOnlySceneAndGBuffer) {
                         Case{"camera.exr", "--space camera", "space      camera"}}) {
     SCOPED_TRACE(c.file);
     const CliRun run = run_phongcl("shade " + scene_arg + " --gbuffer " + quoted(dir / c.file) + " --out " +
-                                    quoted(dir / "lit.exr") + " --aov " + quoted(dir / "aov_out.exr") + " " + c.flags, dir);
-    ASSERT_EQ(run.status, 0) << run.err;
+                                   quoted(dir / "lit.exr") + " --aov " + quoted(dir / "aov_out.exr") + " " + c.flags);
+    ASSERT_EQ(run.exit_code, 0) << run.err;
     EXPECT_NE(run.out.find(c.announced), std::string::npos) << run.out;
     EXPECT_NE(run.out.find("aov_out.exr (ambient, diffuse, specular + combined, float32)"), std::string::npos) << run.out;
-    const ErrorStats stats = compare_images(read_exr(dir / "lit.exr"), expected, 1e-6, testing::shaded_mask(g));
+    const ErrorStats stats = shading_error(read_exr(dir / "lit.exr"), expected, shaded_mask(g));
     // Per-pixel colours instead of the table, positions rebuilt from depth or moved into camera
     // space (a few ulps of P and N): well inside the kernel's own bound.
-    EXPECT_LE(stats.max_rel, 5e-4) << testing::describe_worst(stats);
-    const ErrorStats combined = compare_images(read_exr(dir / "aov_out.exr"), read_exr(dir / "lit.exr"), 1e-6);
+    EXPECT_LE(stats.max_rel, kRelativeBound) << describe_worst(stats);
+    const ErrorStats combined = shading_error(read_exr(dir / "aov_out.exr"), read_exr(dir / "lit.exr"));
     EXPECT_EQ(combined.max_abs, 0.0) << "the AOV file's R G B A is the combined image";
   }
 }
@@ -107,11 +87,11 @@ TEST(LayoutsCli, BadLayoutOrChannelIsOneLineAndKeepsTheOutput) {
                         Case{"--layout aov", {(dir / "b.exr").string(), "missing channels P.X, P.Y, P.Z"}},
                         Case{"--view-layer Missing", {"missing channels Missing.Position.X"}}}) {
     SCOPED_TRACE(c.flags);
-    const CliRun run = run_phongcl(common + " " + c.flags, dir);
-    EXPECT_NE(run.status, 0);
+    const CliRun run = run_phongcl(common + " " + c.flags);
+    EXPECT_NE(run.exit_code, 0);
     EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
     for (const auto& part : c.expected) EXPECT_NE(run.err.find(part), std::string::npos) << run.err;
-    EXPECT_EQ(slurp(dir / "lit.exr"), "previous result");
+    EXPECT_EQ(read_text(dir / "lit.exr"), "previous result");
   }
 }
 

@@ -27,9 +27,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct TempDir : testing::TempDir {
-  TempDir() : testing::TempDir("common") {}
-};
+using testing::TempDir;
 
 std::string content(const fs::path& file) {
   std::ifstream in(file, std::ios::binary);
@@ -61,7 +59,8 @@ void write_then_die(const fs::path& temp) {
   ::kill(::getpid(), SIGKILL);
 }
 
-// 17 of 19 SIGKILLs during a 1080p shade left hidden .NAME.tmpPID.exr files of up to 17 MB.
+// A writer killed mid-write (SIGKILL: no handler runs) leaves the old file and no hidden
+// .NAME.tmpPID temporary beside it.
 TEST(AtomicFile, KilledWriterLeavesOnlyTheOldFile) {
   TempDir dir;
   write_text(dir / "lit.exr", "old");
@@ -86,7 +85,7 @@ TEST(AtomicFile, NextWriteRemovesTemporariesOfDeadProcesses) {
   EXPECT_EQ(content(dir / "lit.exr"), "new");
 }
 
-// A kill between the PNG and the EXR of one run used to leave the new PNG beside the old EXR.
+// A kill between the PNG and the EXR of one run leaves both old files, not a new PNG beside an old EXR.
 TEST(AtomicBatch, KillBeforeCommitLeavesAllOldFiles) {
   TempDir dir;
   write_text(dir / "lit.png", "old png");

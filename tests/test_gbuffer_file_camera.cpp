@@ -31,9 +31,7 @@ namespace {
 namespace fs = std::filesystem;
 using testing::run_phongcl;
 
-struct TempDir : testing::TempDir {
-  TempDir() : testing::TempDir("file_camera") {}
-};
+using testing::TempDir;
 
 // OpenEXR's worldToCamera and worldToNDC for a phongcl camera, built here from their definitions
 // (ImfStandardAttributes.h): camera space left-handed, x right, y up, z forward; NDC (0, 0) at the

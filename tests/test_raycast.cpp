@@ -4,6 +4,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <optional>
 #include <random>
 #include <vector>
@@ -20,6 +21,8 @@
 
 namespace phongcl {
 namespace {
+
+using namespace testing;
 
 // The G-buffer stores floats (relative rounding 6e-8) of doubles computed in a different order
 // from the ones below (differences near 1e-15); 1e-5 of the value, or of 1 near zero, is far above
@@ -71,6 +74,31 @@ void expect_close(const glm::dvec3& actual, const glm::dvec3& expected, const ch
         << expected[axis];
 }
 
+struct AnalyticHit {
+  glm::dvec3 position, normal;
+};
+
+// Every pixel against `analytic`, the closed-form hit of the pixel's ray (or none): that hit with
+// `material`, or background where there is none. Returns how many pixels hit.
+int expect_every_pixel(const Scene& scene, const GBuffer& gbuffer, float material,
+                       const std::function<std::optional<AnalyticHit>(const TestRay&)>& analytic) {
+  int hits = 0;
+  for (int y = 0; y < gbuffer.height; ++y)
+    for (int x = 0; x < gbuffer.width; ++x) {
+      const Pixel pixel = pixel_at(gbuffer, x, y);
+      const std::optional<AnalyticHit> hit = analytic(expected_ray(scene.camera, x, y));
+      if (!hit) {
+        EXPECT_EQ(pixel.material, -1.0f) << "at pixel (" << x << ", " << y << ")";
+        continue;
+      }
+      ++hits;
+      EXPECT_EQ(pixel.material, material) << "at pixel (" << x << ", " << y << ")";
+      expect_close(pixel.position, hit->position, "P", x, y);
+      expect_close(pixel.normal, hit->normal, "N", x, y);
+    }
+  return hits;
+}
+
 Scene scene_with(std::vector<Object> objects, int materials = 3) {
   Scene scene;
   scene.camera.eye = {0.0, 0.0, 5.0};
@@ -116,25 +144,14 @@ TEST(Raycast, SphereHitsMatchTheAnalyticIntersection) {
   scene.camera.eye = {0.5, 1.0, 6.0};
   scene.camera.look_at = {0.0, 0.2, 0.0};
   const GBuffer gbuffer = generate_gbuffer(scene);
-
-  int hits = 0;
-  for (int y = 0; y < gbuffer.height; ++y)
-    for (int x = 0; x < gbuffer.width; ++x) {
-      const TestRay ray = expected_ray(scene.camera, x, y);
-      const glm::dvec3 to_origin = ray.origin - center;
-      const auto t = nearest_root(1.0, 2.0 * glm::dot(to_origin, ray.direction),
-                                  glm::dot(to_origin, to_origin) - radius * radius);
-      const Pixel pixel = pixel_at(gbuffer, x, y);
-      if (!t) {
-        EXPECT_EQ(pixel.material, -1.0f) << "at pixel (" << x << ", " << y << ")";
-        continue;
-      }
-      ++hits;
-      const glm::dvec3 hit = ray.origin + *t * ray.direction;
-      ASSERT_EQ(pixel.material, 2.0f) << "at pixel (" << x << ", " << y << ")";
-      expect_close(pixel.position, hit, "P", x, y);
-      expect_close(pixel.normal, (hit - center) / radius, "N", x, y);
-    }
+  const int hits = expect_every_pixel(scene, gbuffer, 2.0f, [&](const TestRay& ray) -> std::optional<AnalyticHit> {
+    const glm::dvec3 to_origin = ray.origin - center;
+    const auto t =
+        nearest_root(1.0, 2.0 * glm::dot(to_origin, ray.direction), glm::dot(to_origin, to_origin) - radius * radius);
+    if (!t) return std::nullopt;
+    const glm::dvec3 hit = ray.origin + *t * ray.direction;
+    return AnalyticHit{hit, (hit - center) / radius};
+  });
   EXPECT_GT(hits, 100);  // the sphere fills a good part of the image
 }
 
@@ -200,27 +217,15 @@ TEST(Raycast, TransformedSphereUsesTheInverseTransposeForNormals) {
   transform.children = {sphere({0, 0, 0}, 1.0, 1)};
   const Scene scene = scene_with({transform});
   const GBuffer gbuffer = generate_gbuffer(scene);
-
-  int hits = 0;
-  for (int y = 0; y < gbuffer.height; ++y)
-    for (int x = 0; x < gbuffer.width; ++x) {
-      // Solve sum(((o + t d - translate) / scale)^2) == 1.
-      const TestRay ray = expected_ray(scene.camera, x, y);
-      const glm::dvec3 o = (ray.origin - translate) / scale, d = ray.direction / scale;
-      const auto t = nearest_root(glm::dot(d, d), 2.0 * glm::dot(o, d), glm::dot(o, o) - 1.0);
-      const Pixel pixel = pixel_at(gbuffer, x, y);
-      if (!t) {
-        EXPECT_EQ(pixel.material, -1.0f) << "at pixel (" << x << ", " << y << ")";
-        continue;
-      }
-      ++hits;
-      const glm::dvec3 hit = ray.origin + *t * ray.direction;
-      // The gradient of the implicit function, not the scaled sphere normal M * n.
-      const glm::dvec3 gradient = (hit - translate) / (scale * scale);
-      ASSERT_EQ(pixel.material, 1.0f) << "at pixel (" << x << ", " << y << ")";
-      expect_close(pixel.position, hit, "P", x, y);
-      expect_close(pixel.normal, glm::normalize(gradient), "N", x, y);
-    }
+  const int hits = expect_every_pixel(scene, gbuffer, 1.0f, [&](const TestRay& ray) -> std::optional<AnalyticHit> {
+    // Solve sum(((o + t d - translate) / scale)^2) == 1.
+    const glm::dvec3 o = (ray.origin - translate) / scale, d = ray.direction / scale;
+    const auto t = nearest_root(glm::dot(d, d), 2.0 * glm::dot(o, d), glm::dot(o, o) - 1.0);
+    if (!t) return std::nullopt;
+    const glm::dvec3 hit = ray.origin + *t * ray.direction;
+    // The gradient of the implicit function, not the scaled sphere normal M * n.
+    return AnalyticHit{hit, glm::normalize((hit - translate) / (scale * scale))};
+  });
   EXPECT_GT(hits, 100);
 }
 
@@ -308,18 +313,6 @@ TEST(Raycast, ImageRowsRunDownAndColumnsRight) {
   EXPECT_GT(hits_above, 0);
   EXPECT_GT(hits_right, 0);
 }
-
-}  // namespace
-}  // namespace phongcl
-
-namespace phongcl {
-namespace {
-
-using namespace testing;
-
-struct TempDir : testing::TempDir {
-  TempDir() : testing::TempDir("depth") {}
-};
 
 // Reconstructed positions against the position pass they replace. Float rounding, per coordinate:
 // the stored depth carries 2^-24 relative error (so t * 2^-24 along the ray), the written and the

@@ -2,19 +2,20 @@
 // conversion of transforms to GLM's column-major matrices.
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
 
 #include "common/error.h"
-#include "scene/scene.h"
-#include "renderer_files.h"
 #include "scene/camera_space.h"
+#include "scene/scene.h"
 
 namespace phongcl {
 namespace {
 
+const std::filesystem::path kDefaultScene = PHONGCL_SOURCE_DIR "/scenes/default/scene.json";
 const std::filesystem::path kSource = "some/dir/scene.json";
 
 // A valid scene with one material, plus `extra` top-level entries; `camera` replaces the camera.
@@ -383,22 +384,14 @@ TEST(Scene, TransformPartsComposeScaleThenRotateXYZThenTranslate) {
   expect_near(moved(2, {1, 0, 0}), {0, 3, 10});   // scaled, turned to +y, lifted along z
 }
 
-}  // namespace
-}  // namespace phongcl
-
 // The camera is optional: shade may take it from the G-buffer's header (gbuffer/file_camera.h).
 TEST(Scene, CameraIsOptional) {
-  const phongcl::Scene without = phongcl::parse_scene(R"({"materials": []})", "s.json");
+  const Scene without = parse_scene(R"({"materials": []})", "s.json");
   EXPECT_FALSE(without.has_camera);
-  const phongcl::Scene with = phongcl::parse_scene(R"({"camera": {"eye": [1, 2, 3]}})", "s.json");
+  const Scene with = parse_scene(R"({"camera": {"eye": [1, 2, 3]}})", "s.json");
   EXPECT_TRUE(with.has_camera);
   EXPECT_EQ(with.camera.eye, glm::dvec3(1, 2, 3));
 }
-
-namespace phongcl {
-namespace {
-
-using testing::kDefaultScene;
 
 TEST(CameraSpace, TheCameraGoesToTheOriginLookingDownMinusZ) {
   const Scene scene = load_scene(kDefaultScene);

@@ -255,7 +255,7 @@ void ApiRoutes::send_image(const ImageRequest& wanted, const Image& image, httpl
 
 void ApiRoutes::get_stats(const httplib::Request& request, httplib::Response& response) {
   Query query(request, {});
-  const auto frame = live_.wait_for_frame(0, false, std::chrono::milliseconds(0));
+  const auto frame = live_.latest_frame();
   const RenderCounters counters = live_.counters();
   json stats{{"width", live_.session().width()},
              {"height", live_.session().height()},
