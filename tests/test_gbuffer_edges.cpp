@@ -6,6 +6,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
+#include <cctype>
 #include <cmath>
 #include <iostream>
 #include <map>
@@ -178,46 +180,32 @@ TEST(BlenderEdges, KernelAndReferenceAgreeOnPartialPixels) {
   }
 }
 
-// How a renderer layout names each of Blender's passes.
+// Blender's passes as the combinations use them, and how each renderer layout names them: vectors
+// get .X .Y .Z or .R .G .B (lower case for the custom mapping), scalars are named whole.
+const char* const kPasses[] = {"Position", "Normal", "Depth", "IndexMA", "DiffCol", "Alpha"};
+
 struct Naming {
   const char* layout;
-  std::map<std::string, std::vector<std::string>> names;  // Blender pass -> this layout's channels
-};
+  std::string prefix;
+  std::array<std::string, 6> names;  // in kPasses' order
+  bool lower_case = false;
 
-std::vector<std::string> suffixed(const std::string& base, const char* a, const char* b, const char* c) {
-  return {base + a, base + b, base + c};
-}
+  std::vector<std::string> channels(const std::string& pass) const {
+    const std::size_t k = std::find(std::begin(kPasses), std::end(kPasses), pass) - std::begin(kPasses);
+    const std::string base = prefix + names[k];
+    if (pass == "Depth" || pass == "IndexMA" || pass == "Alpha") return {base};
+    std::string axes = pass == "DiffCol" ? "RGB" : "XYZ";
+    if (lower_case) std::transform(axes.begin(), axes.end(), axes.begin(), ::tolower);
+    return {base + "." + axes[0], base + "." + axes[1], base + "." + axes[2]};
+  }
+};
 
 const std::vector<Naming>& namings() {
   static const std::vector<Naming> all = {
-      {"blender",
-       {{"Position", suffixed("ViewLayer.Position", ".X", ".Y", ".Z")},
-        {"Normal", suffixed("ViewLayer.Normal", ".X", ".Y", ".Z")},
-        {"Depth", {"ViewLayer.Depth.Z"}},
-        {"IndexMA", {"ViewLayer.IndexMA.X"}},
-        {"DiffCol", suffixed("ViewLayer.DiffCol", ".R", ".G", ".B")},
-        {"Alpha", {"ViewLayer.Combined.A"}}}},
-      {"blender File Output node",
-       {{"Position", suffixed("Position", ".X", ".Y", ".Z")},
-        {"Normal", suffixed("Normal", ".X", ".Y", ".Z")},
-        {"Depth", {"Depth.V"}},
-        {"IndexMA", {"IndexMA.V"}},
-        {"DiffCol", suffixed("DiffCol", ".R", ".G", ".B")},
-        {"Alpha", {"Alpha.V"}}}},
-      {"aov",
-       {{"Position", suffixed("P", ".X", ".Y", ".Z")},
-        {"Normal", suffixed("N", ".X", ".Y", ".Z")},
-        {"Depth", {"Z"}},
-        {"IndexMA", {"material"}},
-        {"DiffCol", suffixed("diffuse_albedo", ".R", ".G", ".B")},
-        {"Alpha", {"A"}}}},
-      {"custom (--channel)",
-       {{"Position", suffixed("pos", ".x", ".y", ".z")},
-        {"Normal", suffixed("nrm", ".x", ".y", ".z")},
-        {"Depth", {"dist"}},
-        {"IndexMA", {"matid"}},
-        {"DiffCol", suffixed("albedo", ".r", ".g", ".b")},
-        {"Alpha", {"cov"}}}},
+      {"blender", "ViewLayer.", {"Position", "Normal", "Depth.Z", "IndexMA.X", "DiffCol", "Combined.A"}},
+      {"blender File Output node", "", {"Position", "Normal", "Depth.V", "IndexMA.V", "DiffCol", "Alpha.V"}},
+      {"aov", "", {"P", "N", "Z", "material", "diffuse_albedo", "A"}},
+      {"custom (--channel)", "", {"pos", "nrm", "dist", "matid", "albedo", "cov"}, true},
   };
   return all;
 }
@@ -239,8 +227,7 @@ fs::path write_combination(const Combination& c, const Passes& cycles, const fs:
   if (c.alpha) passes.push_back("Alpha");
   std::vector<exr::WriteSlice> slices;
   for (const std::string& pass : passes) {
-    const std::vector<std::string>& names = c.naming->names.at(pass);
-    const std::vector<std::string>& from = namings().front().names.at(pass);
+    const std::vector<std::string> names = c.naming->channels(pass), from = namings().front().channels(pass);
     for (std::size_t k = 0; k < names.size(); ++k) slices.push_back({names[k], cycles.channels.at(from[k]).data()});
   }
   const PixelWindow window{0, 0, cycles.width - 1, cycles.height - 1};
@@ -255,14 +242,14 @@ ReadOptions options_for(const Combination& c) {
   // Without P (or with a material pass) an aov file is not told from others by its names alone.
   if (layout == "aov") options.layout = Layout::aov;
   if (layout.rfind("custom", 0) == 0) {
-    options.channels[Pass::normal] = c.naming->names.at("Normal");
-    options.channels[Pass::kd] = c.naming->names.at("DiffCol");
+    options.channels[Pass::normal] = c.naming->channels("Normal");
+    options.channels[Pass::kd] = c.naming->channels("DiffCol");
     // Depth in both: it tells the sky samples (a custom mapping has no no-hit depth, the position
     // pass has zeros there), so the two read the same pixels as background.
-    if (c.position) options.channels[Pass::position] = c.naming->names.at("Position");
-    options.channels[Pass::depth] = c.naming->names.at("Depth");
-    if (c.material) options.channels[Pass::material] = c.naming->names.at("IndexMA");
-    if (c.alpha) options.channels[Pass::alpha] = c.naming->names.at("Alpha");
+    if (c.position) options.channels[Pass::position] = c.naming->channels("Position");
+    options.channels[Pass::depth] = c.naming->channels("Depth");
+    if (c.material) options.channels[Pass::material] = c.naming->channels("IndexMA");
+    if (c.alpha) options.channels[Pass::alpha] = c.naming->channels("Alpha");
   }
   // Every file here holds Blender's view-space z, whatever the layout's default.
   options.depth_convention = DepthConvention::view_z;

@@ -160,22 +160,33 @@ def hostile_requests(port, scene_text):
     return len(cases)
 
 
-def slow_clients(port):
-    idle = [connect(port) for _ in range(200)]
-    stop = threading.Event()
+class SlowSenders:
+    """Connections that send a request's head one header line every `interval` seconds, never ending it."""
 
-    def slow_sender():
+    def __init__(self, port, count, interval):
+        self.stop = threading.Event()
+        self.threads = [threading.Thread(target=self.send, args=(port, interval)) for _ in range(count)]
+        for thread in self.threads:
+            thread.start()
+
+    def send(self, port, interval):
         with connect(port) as client:
             client.sendall(b"GET /api/stats HTTP/1.1\r\n")
-            while not stop.wait(2.0):
+            while not self.stop.wait(interval):
                 try:
                     client.sendall(b"X-Slow: 1\r\n")
                 except OSError:
                     return
 
-    senders = [threading.Thread(target=slow_sender) for _ in range(32)]
-    for thread in senders:
-        thread.start()
+    def end(self):
+        self.stop.set()
+        for thread in self.threads:
+            thread.join()
+
+
+def slow_clients(port):
+    idle = [connect(port) for _ in range(200)]
+    senders = SlowSenders(port, 32, 2.0)
     status, head, _ = request(port, http("GET", "/api/image?format=jpeg"), timeout=120)
     version = int(head.split("X-Frame-Version: ")[1].split("\r\n")[0])
     polls = []
@@ -197,31 +208,17 @@ def slow_clients(port):
             if status != 200:
                 fail(f"{path} answered {status} while slow clients were connected")
         time.sleep(0.1)
-    stop.set()
-    for thread in senders:
-        thread.join()
+    senders.end()
     for client in idle + polls:
         client.close()
     if max(times) > ANSWER_BOUND_S:
         fail(f"answers took up to {max(times) * 1000:.0f} ms (bound {ANSWER_BOUND_S * 1000:.0f} ms)")
-    return len(idle), len(senders), len(polls), statistics.median(times), max(times)
+    return len(idle), len(senders.threads), len(polls), statistics.median(times), max(times)
 
 
 def stop_time(serve):
     port = serve.port
-    stop = threading.Event()
-
-    def slow_sender():
-        with connect(port) as client:
-            client.sendall(b"GET /api/stats HTTP/1.1\r\n")
-            while not stop.wait(0.5):
-                try:
-                    client.sendall(b"X-Slow: 1\r\n")
-                except OSError:
-                    return
-
-    sender = threading.Thread(target=slow_sender)
-    sender.start()
+    sender = SlowSenders(port, 1, 0.5)
     not_reading = connect(port, timeout=120)
     not_reading.sendall(http("GET", "/api/image?format=exr") * 8)
     poll = connect(port, timeout=120)
@@ -234,8 +231,7 @@ def stop_time(serve):
     except subprocess.TimeoutExpired:
         fail("serve did not exit within 60 s of SIGTERM")
     elapsed = time.monotonic() - start
-    stop.set()
-    sender.join()
+    sender.end()
     not_reading.close()
     poll.close()
     if code != 0:
