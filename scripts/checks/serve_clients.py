@@ -6,8 +6,11 @@
    server allows and one more (503); meanwhile the page and /api/stats are timed.
 3. SIGTERM while such clients are connected (and one not reading a large response): time to exit.
 4. Memory: repeated 5 MB scene PUTs (60,000 materials, light linking), each shaded; RSS sampled.
+5. Kernels: scenes with a new mix of light counts each (one kernel each, more than the program cache
+   keeps in memory), each shaded, from an empty disk cache; RSS and the disk cache sampled.
 
-Prints one line of figures per part; exits 1 on the first failure. Bounded: every client has a
+Prints one line of figures per part; exits 1 on the first failure (part 5 prints figures only: the
+program cache's eviction is held by ctest's ProgramCache test, with limits small enough to see). Bounded: every client has a
 timeout and the whole run takes about a minute.
 """
 import argparse
@@ -33,11 +36,11 @@ def fail(message):
 class Serve:
     """`phongcl serve` on an ephemeral port, its output read until it prints its URL."""
 
-    def __init__(self, phongcl, scene, work):
+    def __init__(self, phongcl, scene, work, env=None):
         self.log_path = os.path.join(work, f"serve-{time.monotonic_ns()}.log")
         self.log = open(self.log_path, "w")
         self.process = subprocess.Popen([phongcl, "serve", "--scene", scene, "--port", "0"],
-                                        stdout=self.log, stderr=subprocess.STDOUT)
+                                        stdout=self.log, stderr=subprocess.STDOUT, env=env)
         deadline = time.monotonic() + 120
         while time.monotonic() < deadline:
             text = open(self.log_path).read()
@@ -271,12 +274,35 @@ def memory(serve, scene_text, puts):
     return len(body) / 1e6, samples[0], warm, steady, max(samples)
 
 
+def kernel_mixes(serve, scene_text, mixes, cache):
+    """RSS after every 8 new light mixes (points 1-8 x directionals 0-4: a kernel each), and the disk cache."""
+    scene = json.loads(scene_text)
+    samples = []
+    for mix in range(mixes):
+        points, directionals = 1 + mix % 8, mix // 8
+        scene["lights"] = ([{"type": "point", "position": [i % 7 - 3, 4, i % 5 - 2], "color": [0.1, 0.1, 0.1]}
+                            for i in range(points)] +
+                           [{"type": "directional", "direction": [i % 3 - 1, -1, -0.5], "color": [0.1, 0.1, 0.1]}
+                            for i in range(directionals)])
+        status, _, answer = request(serve.port, http("PUT", "/api/scene", json.dumps(scene).encode()), timeout=120)
+        if status != 200:
+            fail(f"a scene of {points} point and {directionals} directional lights got {status}: {answer[:200]!r}")
+        status, _, _ = request(serve.port, http("GET", "/api/image?format=png"), timeout=120)
+        if status != 200:
+            fail(f"the image of light mix {mix + 1} got {status}")
+        if (mix + 1) % 8 == 0:
+            samples.append(serve.rss_mb())
+    files = [os.path.join(cache, name) for name in os.listdir(cache)] if os.path.isdir(cache) else []
+    return samples, len(files), sum(os.path.getsize(f) for f in files) / 1e6
+
+
 def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("--phongcl", required=True)
     parser.add_argument("--scene", required=True)
     parser.add_argument("--work", required=True)
     parser.add_argument("--puts", type=int, default=30)
+    parser.add_argument("--mixes", type=int, default=40)
     args = parser.parse_args()
     scene_text = open(args.scene).read()
 
@@ -302,6 +328,16 @@ def main():
         print(f"55-serve-clients: {args.puts} PUTs of a {size:.1f} MB scene (60,000 materials, 8 linked "
               f"lights), each shaded: RSS {first:.0f} MB after the first, {warm:.0f} MB after 5, "
               f"{steady:.0f} MB steady (second half), {peak:.0f} MB peak")
+    finally:
+        serve.stop()
+
+    cache = os.path.join(args.work, "phongcl-cache")
+    serve = Serve(args.phongcl, args.scene, args.work, env={**os.environ, "PHONGCL_CACHE_DIR": cache})
+    try:
+        samples, files, megabytes = kernel_mixes(serve, scene_text, args.mixes, cache)
+        print(f"55-serve-clients: {args.mixes} light mixes (a kernel each; 32 kept in memory), each shaded: RSS "
+              f"{', '.join(f'{s:.0f}' for s in samples)} MB after every 8; disk cache {files} files, "
+              f"{megabytes:.1f} MB")
     finally:
         serve.stop()
 
