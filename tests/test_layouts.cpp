@@ -703,7 +703,7 @@ TEST(AovOutput, LayersSumToTheCombinedImage) {
                        {"ambient", &result.terms.ambient, false},
                        {"diffuse", &result.terms.diffuse, false},
                        {"specular", &result.terms.specular, false}},
-                      file, type);
+                      file, {.type = type});
     // Read back with OpenEXR's API, not ours.
     const Imf::InputFile in(file.c_str());
     std::vector<std::string> names;
@@ -717,7 +717,9 @@ TEST(AovOutput, LayersSumToTheCombinedImage) {
                  diffuse = decode_with_openexr(file, std::string("diffuse.") + c),
                  specular = decode_with_openexr(file, std::string("specular.") + c);
       for (std::size_t i = 0; i < combined.size(); ++i) {
-        if (alpha[i] == 0.0f) continue;  // background: the scene's colour, not a sum of terms
+        if (alpha[i] == 0.0f) {
+          ASSERT_EQ(combined[i], 0.0f) << c << " at background pixel " << i << ": premultiplied";
+        }
         // The kernel adds the three terms in float (a few ulps); half storage rounds each of the
         // four values by up to 2^-11 relative: bound by 4 * 2^-11 of the largest.
         const double sum = static_cast<double>(ambient[i]) + diffuse[i] + specular[i];

@@ -22,6 +22,7 @@
 #include "cli_runner.h"
 #include "gbuffer/layouts.h"
 #include "reference/reference.h"
+#include "color/display.h"
 #include "serve/relight_server.h"
 #include "temp_dir.h"
 
@@ -42,7 +43,7 @@ class RunningServer {
       : RunningServer(read_gbuffer(PHONGCL_SOURCE_DIR "/scenes/default/gbuffer.exr"), kSceneFile, save_path) {}
   RunningServer(GBuffer gbuffer, const std::filesystem::path& scene_file, const std::filesystem::path& save_path = {})
       : session_(std::move(gbuffer), ""),
-        live_(session_, file_text(scene_file), scene_file, RenderSettings{}),
+        live_(session_, file_text(scene_file), scene_file, RenderSettings{}, ColorConfig::builtin()),
         server_(live_, {"127.0.0.1", 0, save_path, "test device"}) {
     port_ = server_.bind();
     thread_ = std::thread([this] { server_.run(); });
@@ -127,12 +128,18 @@ std::vector<std::uint8_t> decode_png(const std::string& bytes, int& width, int& 
 }
 
 // The kernel against the scalar reference of the same scene: the accuracy the shading tests
-// hold it to (5e-4 relative, 1e-6 absolute near zero), on every pixel.
+// hold it to (5e-4 relative, 1e-6 absolute near zero), on every covered pixel; an EXR is black
+// where alpha is 0 (the reference leaves the scene's background colour there).
 void expect_matches_reference(const Image& served, const Scene& scene, const GBuffer& gbuffer) {
   const Image expected = reference_image(scene, gbuffer);
   ASSERT_EQ(served.width, expected.width);
   ASSERT_EQ(served.height, expected.height);
-  const ErrorStats error = compare_images(served, expected, 1e-6 / 5e-4);
+  std::vector<bool> covered(expected.pixel_count());
+  for (std::size_t i = 0; i < covered.size(); ++i) {
+    covered[i] = expected.pixel(i)[3] > 0.0f;
+    for (int c = 0; c < 4 && !covered[i]; ++c) ASSERT_EQ(served.pixel(i)[c], 0.0f) << "transparent pixel " << i << " channel " << c;
+  }
+  const ErrorStats error = compare_images(served, expected, 1e-6 / 5e-4, covered);
   EXPECT_LE(error.max_rel, 5e-4) << "worst pixel (" << error.worst_x << ", " << error.worst_y << "): served "
                                  << error.worst_test << ", reference " << error.worst_expected;
   EXPECT_EQ(error.nonfinite_mismatches, 0u);
@@ -219,14 +226,21 @@ TEST_F(Serve, HugePayloadsAreRefused) {
 TEST_F(Serve, ImagesInEveryFormatAndWidth) {
   auto client = server_->client();
   const Image exr = decode_exr(client.Get("/api/image?format=exr")->body);
-  const auto png = client.Get("/api/image?format=png&exposure=0.5&tonemap=aces");
+  const auto png = client.Get("/api/image?format=png&exposure=0.5&view=aces");
   ASSERT_EQ(png->status, 200);
   EXPECT_EQ(png->get_header_value("Content-Type"), "image/png");
   int width = 0, height = 0;
   const std::vector<std::uint8_t> rgba = decode_png(png->body, width, height);
   ASSERT_EQ(width, 640);
   ASSERT_EQ(height, 480);
-  EXPECT_EQ(rgba, display_rgba8(exr, {0.5, ToneMap::aces})) << "the PNG is the EXR's display encoding";
+  DisplaySettings display;
+  display.view = "aces";
+  display.exposure_stops = 0.5;
+  display.background = load_scene(kSceneFile).background;
+  EXPECT_EQ(rgba, DisplayTransform(ColorConfig::builtin(), display).encode(exr))
+      << "the PNG is the EXR's display encoding, over the scene's background";
+  EXPECT_EQ(decode_png(client.Get("/api/image?format=png&exposure=0.5&tonemap=aces")->body, width, height), rgba)
+      << "tonemap is view's old name";
 
   const auto jpeg = client.Get("/api/image?format=jpeg&width=320");
   ASSERT_EQ(jpeg->status, 200);
@@ -254,7 +268,11 @@ TEST_F(Serve, BadImageParametersAre400) {
       {"width=12abc", "must be an integer"},
       {"exposure=nan", "finite number"},
       {"exposure=1e9", "'exposure' must be in"},
-      {"tonemap=filmic", "clamp, reinhard or aces"},
+      {"tonemap=filmic", "has no view 'filmic' (views: reinhard, aces, clamp)"},
+      {"view=Filmic", "has no view 'Filmic' (views: reinhard, aces, clamp)"},
+      {"view=aces&tonemap=aces", "give one"},
+      {"display=XYZ", "no display 'XYZ' (displays: sRGB)"},
+      {"look=Punchy", "no look 'Punchy' (looks: none)"},
       {"aov=normal", "combined, ambient, diffuse or specular"},
       {"colour=red", "unknown parameter 'colour'"},
       {"width=100&width=200", "more than once"},
@@ -401,9 +419,12 @@ TEST(ServeBeauty, ServesTheRenderersOwnImage) {
     ASSERT_EQ(image.pixel(i)[3], 1.0f) << "pixel " << i;
   }
   int width = 0, height = 0;
-  const auto png = client.Get("/api/beauty?format=png&exposure=1&tonemap=clamp");
+  const auto png = client.Get("/api/beauty?format=png&exposure=1&view=clamp");
   ASSERT_EQ(png->status, 200);
-  EXPECT_EQ(decode_png(png->body, width, height), display_rgba8(image, {1.0, ToneMap::clamp}));
+  DisplaySettings display;
+  display.view = "clamp";
+  display.exposure_stops = 1.0;
+  EXPECT_EQ(decode_png(png->body, width, height), DisplayTransform(ColorConfig::builtin(), display).encode(image));
   const auto small = client.Get("/api/beauty?format=png&width=32");
   ASSERT_EQ(small->status, 200);
   decode_png(small->body, width, height);

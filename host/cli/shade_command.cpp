@@ -59,7 +59,9 @@ void run_shade(const ShadeArguments& args) {
     return;
   }
   const auto start = Clock::now();
-  args.outputs.check_destinations();
+  ImageOutputs outputs = args.outputs;
+  outputs.color = args.inputs.color_config();
+  outputs.check_destinations();
   args.sequence.start_exr_threads();
   // The G-buffer is read while the OpenCL platform starts: neither needs the other. OpenCL stays on
   // this thread: Oclgrind's memory checks keep per-thread state and crash on calls from another.
@@ -85,9 +87,8 @@ void run_shade(const ShadeArguments& args) {
   const Image image = options.terms ? relighter.shade(terms) : relighter.shade();
   const ShadeReport result = relighter.last_report();
   const auto write_start = Clock::now();
-  ImageOutputs outputs = args.outputs;
   outputs.compression = args.sequence.output_compression(gbuffer.compression);
-  const std::string written = outputs.write(image, {terms.ambient, terms.diffuse, terms.specular});
+  const std::string written = outputs.write(image, scene.background, {terms.ambient, terms.diffuse, terms.specular});
   const double write_ms = milliseconds_since(write_start);
 
   const ShadeTimings& t = result.timings;

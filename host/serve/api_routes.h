@@ -29,8 +29,10 @@ class ApiRoutes {
   void get_pick(const httplib::Request& request, httplib::Response& response);
   void post_save(const httplib::Request& request, httplib::Response& response);
   void get_beauty(const httplib::Request& request, httplib::Response& response);
+  void get_colors(const httplib::Request& request, httplib::Response& response);
+  void get_color(const httplib::Request& request, httplib::Response& response);
   void send_frame(const Query& query, const RenderedFrame& frame, httplib::Response& response);
-  void send_image(const Query& query, const Image& image, httplib::Response& response);
+  void send_image(const Query& query, const Image& image, const glm::dvec3& background, httplib::Response& response);
 
   LiveRelighter& live_;
   const ServeOptions& options_;

@@ -82,6 +82,9 @@ Relighter::Relighter(Relighter&&) noexcept = default;
 Relighter& Relighter::operator=(Relighter&&) noexcept = default;
 
 void Relighter::set_frame(const Scene& scene, GBuffer&& gbuffer) {
+  if (!scene.color_space.empty())
+    throw std::invalid_argument("the scene's colours are in '" + scene.color_space +
+                                "': convert them to the working space first (phongcl::convert_scene_colors)");
   const std::lock_guard lock(state_->mutex);
   phongcl::check_materials(gbuffer, scene.materials.size());
   Recipe recipe = state_->recipe_for(scene, gbuffer);

@@ -19,14 +19,16 @@ struct ReferenceArguments {
 };
 
 void run_reference(const ReferenceArguments& args) {
-  args.outputs.check_destinations();
+  ImageOutputs outputs = args.outputs;
+  outputs.color = args.inputs.color_config();
+  outputs.check_destinations();
   const Scene scene = args.inputs.load_scene();
   const GBuffer gbuffer = args.inputs.load_gbuffer(scene);
   check_materials(gbuffer, scene.materials.size());
   const auto start = std::chrono::steady_clock::now();
   const Image image = reference_image(scene, gbuffer);
   const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-  const std::string written = args.outputs.write(image);
+  const std::string written = outputs.write(image, scene.background);
   std::cout << "phongcl reference: " << scene.source.string() << " + " << gbuffer.source.string() << "\n"
             << "  image      " << gbuffer.width << " x " << gbuffer.height << ", " << with_commas(gbuffer.pixel_count())
             << " pixels, " << scene.lights.size() << " lights\n"
