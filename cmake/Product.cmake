@@ -10,8 +10,9 @@ phongcl_room(shading  DEPS phongcl_cl phongcl_scene phongcl_gbuffer phongcl_imag
 phongcl_room(raycast  DEPS phongcl_scene phongcl_gbuffer)
 phongcl_room(color    DEPS phongcl_image phongcl_scene phongcl_gbuffer PkgConfig::OCIO OpenMP::OpenMP_CXX)
 # The display transforms' AVX2 loops, chosen at run time where the CPU has AVX2 and FMA
-# (host/color/pixel_kernels.h): the rest of the product stays baseline x86-64.
-set_source_files_properties(host/color/pixel_kernels_avx2.cpp TARGET_DIRECTORY phongcl_color PROPERTIES COMPILE_OPTIONS "-mavx2;-mfma")
+# (host/color/pixel_kernels.h): the rest of the product stays baseline x86-64. Multiply-adds are fused
+# where the code says so (_mm256_fmadd_ps), not wherever the compiler may.
+set_source_files_properties(host/color/pixel_kernels_avx2.cpp TARGET_DIRECTORY phongcl_color PROPERTIES COMPILE_OPTIONS "-mavx2;-mfma;-ffp-contract=off")
 phongcl_room(sequence DEPS phongcl_shading Threads::Threads)
 
 # One shared library of every product room's objects. Its public face is include/phongcl/ (and the

@@ -22,6 +22,7 @@
 #include "cli_runner.h"
 #include "gbuffer/layouts.h"
 #include "reference/reference.h"
+#include "color/color_conversion.h"
 #include "color/display.h"
 #include "serve/relight_server.h"
 #include "temp_dir.h"
@@ -279,6 +280,42 @@ TEST_F(Serve, BadImageParametersAre400) {
   };
   for (const auto& [query, needle] : cases) expect_error(client.Get("/api/image?" + query), 400, needle);
   expect_error(client.Get("/api/frame?after=-1"), 400, "'after' must be in");
+}
+
+TEST_F(Serve, ColorsAndThePickersConversions) {
+  auto client = server_->client();
+  const json colors = body_json(client.Get("/api/colors"));
+  EXPECT_EQ(colors["working_space"], "Linear Rec.709 (sRGB)");
+  EXPECT_EQ(colors["default_display"], "sRGB");
+  ASSERT_EQ(colors["displays"].size(), 1u);
+  EXPECT_EQ(colors["displays"][0]["views"], json::array({"reinhard", "aces", "clamp"}));
+  EXPECT_EQ(colors["displays"][0]["picker_space"], "sRGB");
+  EXPECT_EQ(colors["looks"], json::array());
+  // The picker's #ff8040 (sRGB-encoded) as working-space values, and back.
+  const json working = body_json(client.Get("/api/color?rgb=1,0.5019608,0.2509804&from=sRGB&to=scene_linear"));
+  const double expected[] = {1.0, 0.2158605, 0.0512695};  // the sRGB decoding of 255, 128, 64
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(working["rgb"][c].get<double>(), expected[c], 1e-6) << c;
+  const json back = body_json(client.Get("/api/color?rgb=1,0.2158605,0.0512695&from=scene_linear&to=sRGB"));
+  EXPECT_NEAR(back["rgb"][1].get<double>(), 0.5019608, 1e-6);
+  expect_error(client.Get("/api/color?rgb=1,2&from=sRGB&to=scene_linear"), 400, "three finite numbers");
+  expect_error(client.Get("/api/color?rgb=1,2,nan&from=sRGB&to=scene_linear"), 400, "three finite numbers");
+  expect_error(client.Get("/api/color?rgb=1,2,3&from=sRGB"), 400, "are required");
+  expect_error(client.Get("/api/color?rgb=1,2,3&from=P3&to=scene_linear"), 400, "'P3': no such colour space");
+}
+
+TEST_F(Serve, SceneColoursInTheirOwnSpaceAreConverted) {
+  auto client = server_->client();
+  json scene = json::parse(client.Get("/api/scene")->body);
+  scene["color_space"] = "sRGB";
+  ASSERT_EQ(client.Put("/api/scene", scene.dump(), "application/json")->status, 200);
+  EXPECT_EQ(json::parse(client.Get("/api/scene")->body)["color_space"], "sRGB") << "the document is held as sent";
+  const Image served = decode_exr(client.Get("/api/image?format=exr")->body);
+  Scene converted = parse_scene(scene.dump(), kSceneFile);
+  convert_scene_colors(converted, ColorConfig::builtin());
+  expect_matches_reference(served, converted, server_->session().gbuffer());
+  scene["color_space"] = "ACEScg";
+  scene["lights"][0]["color"] = json::array({1, 0, 0});  // outside Rec.709: negative green and blue
+  expect_error(client.Put("/api/scene", scene.dump(), "application/json"), 400, "outside its gamut");
 }
 
 TEST_F(Serve, LongPollWaitsForANewerFrameAndTimesOutWith204) {

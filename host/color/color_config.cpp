@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <functional>
 #include <filesystem>
 #include <string_view>
 
@@ -49,7 +50,10 @@ std::vector<fs::path> blender_config_candidates() {
       std::error_code error;
       if (::access(binary.c_str(), X_OK) == 0) {
         const fs::path real = fs::canonical(binary, error);
-        if (!error) roots.push_back(real.parent_path()), roots.push_back(real.parent_path().parent_path() / "share" / "blender");
+        if (!error) {
+          roots.push_back(real.parent_path());
+          roots.push_back(real.parent_path().parent_path() / "share" / "blender");
+        }
       }
       if (colon == std::string_view::npos) break;
       rest.remove_prefix(colon + 1);
@@ -62,15 +66,6 @@ std::vector<fs::path> blender_config_candidates() {
       if (entry.is_directory(error)) add_datafiles(entry.path() / "datafiles");  // <version>/datafiles
   }
   return candidates;
-}
-
-fs::path find_blender_config() {
-  const std::vector<fs::path> candidates = blender_config_candidates();
-  for (const fs::path& candidate : candidates)
-    if (fs::is_regular_file(candidate)) return candidate;
-  throw InputError("--ocio blender: no Blender OCIO config found (looked for datafiles/colormanagement/config.ocio in "
-                   "BLENDER_SYSTEM_DATAFILES, /usr/share/blender, /usr/local/share/blender and beside blender on PATH); "
-                   "give the path of Blender's config.ocio");
 }
 
 std::shared_ptr<ColorConfig::Impl> from_file(const fs::path& file) {
@@ -114,6 +109,15 @@ std::optional<Matrix3> as_linear_matrix(const OCIO::ConstCPUProcessorRcPtr& cpu)
 
 }  // namespace
 
+fs::path ColorConfig::blender_config_file() {
+  const std::vector<fs::path> candidates = blender_config_candidates();
+  for (const fs::path& candidate : candidates)
+    if (fs::is_regular_file(candidate)) return candidate;
+  throw InputError("--ocio blender: no Blender OCIO config found (looked for datafiles/colormanagement/config.ocio in "
+                   "BLENDER_SYSTEM_DATAFILES, /usr/share/blender, /usr/local/share/blender and beside blender on PATH); "
+                   "give the path of Blender's config.ocio");
+}
+
 ColorConfig ColorConfig::builtin() {
   auto impl = std::make_shared<Impl>();
   impl->ocio = make_builtin_config();
@@ -123,7 +127,7 @@ ColorConfig ColorConfig::builtin() {
 
 ColorConfig ColorConfig::load(const std::string& which) {
   if (which == "builtin") return builtin();
-  if (which == "blender") return ColorConfig(from_file(find_blender_config()));
+  if (which == "blender") return ColorConfig(from_file(blender_config_file()));
   if (!which.empty()) return ColorConfig(from_file(which));
   const char* environment = std::getenv("OCIO");
   if (environment == nullptr || *environment == '\0') return builtin();

@@ -5,6 +5,7 @@
 // (color/display.h). Cheap to copy: copies share the loaded config and its compiled views.
 //
 // Installed with the public API: OpenColorIO stays behind the pointer.
+#include <filesystem>
 #include <memory>
 #include <optional>
 #include <string>
@@ -22,6 +23,8 @@ class ColorConfig {
   // file (or the variable) and OpenColorIO's complaint when it cannot be loaded.
   static ColorConfig load(const std::string& which = "");
   static ColorConfig builtin();
+  // The config.ocio of an installed Blender ("blender" above); InputError saying where it looked.
+  static std::filesystem::path blender_config_file();
 
   std::string description() const;  // "built-in" or the file, and the config's name
   std::string working_space() const;
