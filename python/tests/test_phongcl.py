@@ -164,3 +164,88 @@ def test_scene_from_dict_reads_the_files_form():
     assert scene.camera.eye == [0, 1, 6]
     assert scene.lights[0].type == "directional" and scene.lights[0].color == [0.5, 0.5, 0.5]
     assert scene.materials[0].name == "red" and scene.materials[0].shininess == 32
+
+
+def read_png_rgba(path):
+    """8-bit RGBA PNG (libpng's simplified writer: filter 0 rows) back as (H, W, 4) uint8."""
+    import struct
+    import zlib
+    data = pathlib.Path(path).read_bytes()
+    width, height = struct.unpack(">II", data[16:24])
+    idat, at = b"", 8
+    while at < len(data):
+        length, tag = struct.unpack(">I4s", data[at:at + 8])
+        if tag == b"IDAT":
+            idat += data[at + 8:at + 8 + length]
+        at += 12 + length
+    rows = np.frombuffer(zlib.decompress(idat), dtype=np.uint8).reshape(height, 1 + 4 * width)
+    out = np.zeros((height, 4 * width), dtype=np.int32)
+    previous = np.zeros(4 * width, dtype=np.int32)
+    for y in range(height):  # undo the row filters (libpng picks per row)
+        kind, line = rows[y, 0], rows[y, 1:].astype(np.int32)
+        if kind == 0:
+            current = line
+        elif kind == 2:
+            current = (line + previous) & 255
+        else:
+            current = np.zeros_like(line)
+            for i in range(len(line)):
+                a = current[i - 4] if i >= 4 else 0
+                b, c = previous[i], previous[i - 4] if i >= 4 else 0
+                predictor = {1: a, 3: (a + b) // 2}.get(kind)
+                if kind == 4:
+                    p = a + b - c
+                    predictor = a if abs(p - a) <= abs(p - b) and abs(p - a) <= abs(p - c) else b if abs(p - b) <= abs(p - c) else c
+                current[i] = (line[i] + predictor) & 255
+        out[y], previous = current, current
+    return out.reshape(height, width, 4).astype(np.uint8)
+
+
+def srgb_byte(linear):
+    encoded = 12.92 * linear if linear <= 0.0031308 else 1.055 * linear ** (1 / 2.4) - 0.055
+    return int(encoded * 255 + 0.5)
+
+
+def test_write_png_through_a_view_over_a_background(tmp_path):
+    image = np.zeros((2, 3, 4), dtype=np.float32)
+    image[0, 0] = [0.2, 0.2, 0.2, 1.0]    # opaque
+    image[0, 1] = [9.0, 9.0, 9.0, 0.0]    # transparent: the background shows, whatever the colour
+    image[0, 2] = [0.1, 0.1, 0.1, 0.5]    # half covered: 0.1 + 0.5 * background
+    phongcl.write_png(str(tmp_path / "a.png"), image, view="clamp", background=(0.1, 0.1, 0.1), exposure=1.0)
+    pixels = read_png_rgba(tmp_path / "a.png")
+    assert pixels.shape == (2, 3, 4)
+    assert list(pixels[0, 0]) == [srgb_byte(0.4)] * 3 + [255]   # 0.2, one stop up
+    assert list(pixels[0, 1]) == [srgb_byte(0.2)] * 3 + [255]   # the background, one stop up
+    assert list(pixels[0, 2]) == [srgb_byte(0.3)] * 3 + [255]   # 0.1 + 0.5 * 0.1, one stop up
+    assert list(pixels[1, 0]) == [srgb_byte(0.2)] * 3 + [255]
+    with pytest.raises(phongcl.InputError, match="has no view 'Filmic'"):
+        phongcl.write_png(str(tmp_path / "b.png"), image, view="Filmic")
+    assert not (tmp_path / "b.png").exists()
+
+
+def test_colors_lists_the_config():
+    colors = phongcl.colors()
+    assert colors["working_space"] == "Linear Rec.709 (sRGB)"
+    assert colors["displays"] == {"sRGB": ["reinhard", "aces", "clamp"]}
+    assert "ACEScg" in colors["color_spaces"]
+    with pytest.raises(phongcl.InputError, match="cannot read the OCIO config"):
+        phongcl.colors(ocio="/nonexistent/config.ocio")
+
+
+def test_write_exr_is_black_where_transparent_unless_asked(tmp_path):
+    image = np.full((1, 2, 4), 0.25, dtype=np.float32)
+    image[0, 1, 3] = 0.0
+    phongcl.write_exr(str(tmp_path / "a.exr"), image)
+    phongcl.write_exr(str(tmp_path / "b.exr"), image, keep_color_where_transparent=True)
+    assert list(phongcl.read_exr(str(tmp_path / "a.exr"))[0, 1]) == [0, 0, 0, 0]
+    assert list(phongcl.read_exr(str(tmp_path / "b.exr"))[0, 1]) == [0.25, 0.25, 0.25, 0]
+
+
+def test_scene_colours_in_a_named_space_arrive_in_the_working_space():
+    scene = phongcl.Scene.from_dict({"color_space": "sRGB", "ambient": [0.5, 0.5, 0.5],
+                                     "lights": [{"type": "point", "position": [0, 1, 0], "color": [1, 0.5, 0]}]})
+    decoded = ((0.5 + 0.055) / 1.055) ** 2.4
+    assert scene.ambient == pytest.approx([decoded] * 3, rel=1e-6)
+    assert scene.lights[0].color == pytest.approx([1, decoded, 0], rel=1e-6)
+    with pytest.raises(phongcl.InputError, match="no such colour space"):
+        phongcl.Scene.from_dict({"color_space": "Rec.2020"})
