@@ -12,6 +12,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <limits>
 #include <random>
 #include <sstream>
@@ -41,9 +42,7 @@ constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 constexpr float kInf = std::numeric_limits<float>::infinity();
 const fs::path kFixtures = PHONGCL_SOURCE_DIR "/tests/fixtures/colour";
 
-struct TempDir : testing::TempDir {
-  TempDir() : testing::TempDir("color") {}
-};
+using testing::TempDir;
 
 // ---- Oracles, written out apart from the product ----
 
@@ -221,6 +220,47 @@ TEST(BuiltinConfig, KnownPointsThroughAPngFile) {
     ASSERT_EQ(bytes.size(), 3u);
     for (int ch = 0; ch < 3; ++ch) EXPECT_EQ(bytes[ch], c.byte) << "value " << c.value << " " << c.view << ": " << c.why;
   }
+}
+
+std::string contents(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+TEST(PngFile, SizeRowOrderAndTheSrgbTag) {
+  TempDir dir;
+  Image image(3, 2);
+  for (std::size_t i = 0; i < image.pixel_count(); ++i) image.pixel(i)[3] = 1.0f;
+  image.pixel(3)[0] = 1.0f;  // red marks the first pixel of the second row
+  write_png(dir / "out.png", image, settings_of("clamp"));
+  EXPECT_NE(contents(dir / "out.png").find("sRGB"), std::string::npos) << "the sRGB chunk tags the encoding";
+  int width = 0, height = 0;
+  const auto bytes = read_png_rgb(dir / "out.png", width, height);
+  EXPECT_EQ(width, 3);
+  EXPECT_EQ(height, 2);
+  EXPECT_EQ(bytes[3 * 3], 255);
+  EXPECT_EQ(bytes[0], 0);
+}
+
+TEST(PngFile, FailedWriteKeepsTheExistingFile) {
+  TempDir dir;
+  write_png(dir / "out.png", gray_row({0.5f, 0.25f}));
+  const std::string before = contents(dir / "out.png");
+  // libpng refuses a zero-size image after the file is opened: the temporary must go away too.
+  try {
+    write_png(dir / "out.png", Image(0, 0));
+    ADD_FAILURE() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("out.png: cannot write PNG"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(contents(dir / "out.png"), before);
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir.path), fs::directory_iterator()), 1);
+}
+
+TEST(PngFile, WriteIntoMissingDirectoryLeavesNothing) {
+  TempDir dir;
+  EXPECT_THROW(write_png(dir / "missing" / "out.png", gray_row({0.5f})), InputError);
+  EXPECT_TRUE(fs::is_empty(dir.path));
 }
 
 TEST(BuiltinConfig, IsTheDefaultWithoutTheOcioVariable) {
