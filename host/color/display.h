@@ -26,6 +26,7 @@
 
 namespace phongcl {
 
+class ByteSteps;
 class ViewPipeline;
 
 struct DisplaySettings {
@@ -58,8 +59,13 @@ class DisplayTransform {
   std::string pipeline() const;
 
  private:
+  void encode_by_steps(const Image& image, std::size_t first, std::size_t end, std::uint8_t* out) const;
+
   std::string display_, view_, look_;
   std::shared_ptr<const ViewPipeline> pipeline_;
+  // A view that is one monotone curve per channel: its bytes by the floats where they step up
+  // (color/byte_steps.h), exposure folded in; empty otherwise.
+  std::shared_ptr<const ByteSteps> steps_[3];
   float scale_;
   float background_[3];
 };

@@ -15,7 +15,8 @@ struct PixelKernels {
   void (*flatten)(const float* rgba, std::size_t n, const float background[3], float scale, float* const planes[3]);
   // Each plane through its table: bucket bits >> 16 of the float, linear in the low 16 bits.
   void (*separable)(const float* const tables[3], float* const planes[3], std::size_t n);
-  // A 3D LUT over [0, 1]^3 (inputs clamped, NaN as 0), data[((b * size + g) * size + r) * 3 + c].
+  // A 3D LUT over [0, 1]^3 (inputs clamped, NaN as 0), data[((b * size + g) * size + r) * 3 + c],
+  // followed by one float of padding (the AVX2 loop loads a node's RGB as four floats).
   void (*lut3d)(const float* data, int size, bool tetrahedral, float* const planes[3], std::size_t n);
   void (*matrix)(const float m[3][3], const float offset[3], float* const planes[3], std::size_t n);
   // Display values into RGBA bytes, alpha 255: round half up (as Blender), clamped, NaN as 0.

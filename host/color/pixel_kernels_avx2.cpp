@@ -48,13 +48,22 @@ void flatten(const float* rgba, std::size_t n, const float background[3], float 
   if (i < n) scalar_pixel_kernels().flatten(rgba + 4 * i, n - i, background, scale, Tail(planes, i).planes);
 }
 
+// color/display_math.h's table_lookup: bucket bits >> 16, linear in the low 16 bits. A cell's two
+// ends are adjacent floats, gathered as one 64-bit element (two gathers of four, 10-15% faster than
+// two of eight floats).
 __m256 lookup(const float* table, __m256 value) {
   const __m256i bits = _mm256_castps_si256(value);
   const __m256i index = _mm256_srli_epi32(bits, 16);
   const __m256 fraction = _mm256_mul_ps(_mm256_cvtepi32_ps(_mm256_and_si256(bits, _mm256_set1_epi32(0xffff))),
                                         _mm256_set1_ps(1.0f / 65536.0f));
-  const __m256 start = _mm256_i32gather_ps(table, index, 4);
-  const __m256 end = _mm256_i32gather_ps(table + 1, index, 4);
+  const auto* base = reinterpret_cast<const long long*>(table);
+  const __m256 low = _mm256_castsi256_ps(_mm256_i32gather_epi64(base, _mm256_castsi256_si128(index), 4));
+  const __m256 high = _mm256_castsi256_ps(_mm256_i32gather_epi64(base, _mm256_extracti128_si256(index, 1), 4));
+  // low = s0 e0 s1 e1 | s2 e2 s3 e3, high = s4 e4 s5 e5 | s6 e6 s7 e7
+  const __m256 starts = _mm256_shuffle_ps(low, high, 0x88);  // s0 s1 s4 s5 | s2 s3 s6 s7
+  const __m256 ends = _mm256_shuffle_ps(low, high, 0xdd);
+  const __m256i order = _mm256_setr_epi32(0, 1, 4, 5, 2, 3, 6, 7);
+  const __m256 start = _mm256_permutevar8x32_ps(starts, order), end = _mm256_permutevar8x32_ps(ends, order);
   return _mm256_fmadd_ps(_mm256_sub_ps(end, start), fraction, start);
 }
 
@@ -73,70 +82,99 @@ __m256i select(__m256 mask, __m256i if_set, __m256i otherwise) {
   return _mm256_castps_si256(_mm256_blendv_ps(_mm256_castsi256_ps(otherwise), _mm256_castsi256_ps(if_set), mask));
 }
 
+// Eight pixels' cells of a 3D LUT: the offset (in floats) of each cell's origin node, the steps
+// (in floats) along r, g and b, and the fractions within the cell.
+struct Cells {
+  __m256i origin, step_r, step_g, step_b;
+  __m256 fx, fy, fz;
+  Cells(const float* const planes[3], std::size_t i, int size)
+      : step_r(_mm256_set1_epi32(3)), step_g(_mm256_set1_epi32(3 * size)), step_b(_mm256_set1_epi32(3 * size * size)) {
+    const __m256 last = _mm256_set1_ps(static_cast<float>(size - 1));
+    const __m256i highest_cell = _mm256_set1_epi32(size - 2);
+    __m256 f[3];
+    __m256i cell[3];
+    for (int c = 0; c < 3; ++c) {
+      const __m256 at = grid_coordinate(_mm256_loadu_ps(planes[c] + i), last);
+      cell[c] = _mm256_min_epi32(_mm256_cvttps_epi32(at), highest_cell);
+      f[c] = _mm256_sub_ps(at, _mm256_cvtepi32_ps(cell[c]));
+    }
+    fx = f[0], fy = f[1], fz = f[2];
+    origin = _mm256_add_epi32(_mm256_add_epi32(_mm256_mullo_epi32(cell[0], step_r), _mm256_mullo_epi32(cell[1], step_g)),
+                              _mm256_mullo_epi32(cell[2], step_b));
+  }
+};
+
+// Eight nodes' R, G, B (at float offsets `index`) as three planes: a 16-byte load per node (its RGB
+// and one float beyond, inside the table's padding), then a 4x4 transpose of each 128-bit half.
+// Faster than gathering each channel (12 gathers of eight for a tetrahedron's 4 corners).
+void load_nodes(const float* data, __m256i index, __m256 rgb[3]) {
+  alignas(32) int at[8];
+  _mm256_store_si256(reinterpret_cast<__m256i*>(at), index);
+  const auto pair = [&](int low, int high) {
+    return _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(data + at[low])), _mm_loadu_ps(data + at[high]), 1);
+  };
+  const __m256 p04 = pair(0, 4), p15 = pair(1, 5), p26 = pair(2, 6), p37 = pair(3, 7);
+  const __m256 u0 = _mm256_unpacklo_ps(p04, p15), u1 = _mm256_unpackhi_ps(p04, p15);
+  const __m256 u2 = _mm256_unpacklo_ps(p26, p37), u3 = _mm256_unpackhi_ps(p26, p37);
+  rgb[0] = _mm256_shuffle_ps(u0, u2, 0x44);
+  rgb[1] = _mm256_shuffle_ps(u0, u2, 0xee);
+  rgb[2] = _mm256_shuffle_ps(u1, u3, 0x44);
+}
+
+// The scalar loop's tetrahedral interpolation without its branches: the tetrahedron's second
+// corner is the cube's origin stepped along the axis of the largest fraction, its third the far
+// corner stepped back along the axis of the smallest; the weights are the sorted fractions'
+// differences.
+void tetrahedral(const Cells& cell, const float* data, __m256 out[3]) {
+  const __m256 xy = _mm256_cmp_ps(cell.fx, cell.fy, _CMP_GT_OQ), yz = _mm256_cmp_ps(cell.fy, cell.fz, _CMP_GT_OQ),
+               xz = _mm256_cmp_ps(cell.fx, cell.fz, _CMP_GT_OQ);
+  // largest: x if x > y and x > z, y if y >= x and y > z, else z; smallest: x if y >= x and z >= x,
+  // y if x > y and z >= y, else z (never the largest's axis unless all are equal, where the
+  // weights of both corners are 0)
+  const __m256i largest = select(_mm256_and_ps(xy, xz), cell.step_r, select(_mm256_andnot_ps(xy, yz), cell.step_g, cell.step_b));
+  const __m256 neither = _mm256_andnot_ps(_mm256_or_ps(xy, xz), _mm256_castsi256_ps(_mm256_set1_epi32(-1)));
+  const __m256i smallest = select(neither, cell.step_r, select(_mm256_andnot_ps(yz, xy), cell.step_g, cell.step_b));
+  const __m256i far = _mm256_add_epi32(cell.origin, _mm256_add_epi32(cell.step_r, _mm256_add_epi32(cell.step_g, cell.step_b)));
+  const __m256 f_max = _mm256_max_ps(cell.fx, _mm256_max_ps(cell.fy, cell.fz));
+  const __m256 f_min = _mm256_min_ps(cell.fx, _mm256_min_ps(cell.fy, cell.fz));
+  const __m256 f_mid = _mm256_max_ps(_mm256_min_ps(cell.fx, cell.fy), _mm256_min_ps(_mm256_max_ps(cell.fx, cell.fy), cell.fz));
+  const __m256 weight[4] = {_mm256_sub_ps(_mm256_set1_ps(1.0f), f_max), _mm256_sub_ps(f_max, f_mid),
+                            _mm256_sub_ps(f_mid, f_min), f_min};
+  const __m256i corner[4] = {cell.origin, _mm256_add_epi32(cell.origin, largest), _mm256_sub_epi32(far, smallest), far};
+  for (int c = 0; c < 3; ++c) out[c] = _mm256_setzero_ps();
+  for (int k = 0; k < 4; ++k) {
+    __m256 rgb[3];
+    load_nodes(data, corner[k], rgb);
+    for (int c = 0; c < 3; ++c) out[c] = _mm256_fmadd_ps(weight[k], rgb[c], out[c]);
+  }
+}
+
 __m256 gather(const float* data, __m256i index, int channel) { return _mm256_i32gather_ps(data + channel, index, 4); }
 
-// The scalar loop's interpolation without its branches: the tetrahedron's second corner is the
-// cube's origin stepped along the axis of the largest fraction, its third the far corner stepped
-// back along the axis of the smallest; the weights are the sorted fractions' differences.
-void lut3d(const float* data, int size, bool tetrahedral, float* const planes[3], std::size_t n) {
-  const __m256 last = _mm256_set1_ps(static_cast<float>(size - 1));
-  const __m256i highest_cell = _mm256_set1_epi32(size - 2);
-  const int step_r = 3, step_g = 3 * size, step_b = 3 * size * size;
-  const __m256i sr = _mm256_set1_epi32(step_r), sg = _mm256_set1_epi32(step_g), sb = _mm256_set1_epi32(step_b);
-  const __m256i s_all = _mm256_set1_epi32(step_r + step_g + step_b);
-  const __m256 one = _mm256_set1_ps(1.0f);
+void trilinear(const Cells& cell, const float* data, __m256 out[3]) {
+  const __m256i n100 = _mm256_add_epi32(cell.origin, cell.step_r), n010 = _mm256_add_epi32(cell.origin, cell.step_g);
+  const __m256i n110 = _mm256_add_epi32(n100, cell.step_g), n001 = _mm256_add_epi32(cell.origin, cell.step_b);
+  const __m256i n101 = _mm256_add_epi32(n100, cell.step_b), n011 = _mm256_add_epi32(n010, cell.step_b);
+  const __m256i n111 = _mm256_add_epi32(n110, cell.step_b);
+  const auto lerp = [](__m256 a, __m256 b, __m256 t) { return _mm256_fmadd_ps(t, _mm256_sub_ps(b, a), a); };
+  for (int c = 0; c < 3; ++c) {
+    const __m256 a = lerp(gather(data, cell.origin, c), gather(data, n100, c), cell.fx);
+    const __m256 b = lerp(gather(data, n010, c), gather(data, n110, c), cell.fx);
+    const __m256 d = lerp(gather(data, n001, c), gather(data, n101, c), cell.fx);
+    const __m256 e = lerp(gather(data, n011, c), gather(data, n111, c), cell.fx);
+    out[c] = lerp(lerp(a, b, cell.fy), lerp(d, e, cell.fy), cell.fz);
+  }
+}
+
+void lut3d(const float* data, int size, bool tetrahedral_interpolation, float* const planes[3], std::size_t n) {
   std::size_t i = 0;
   for (; i + kLanes <= n; i += kLanes) {
-    const __m256 x = grid_coordinate(_mm256_loadu_ps(planes[0] + i), last);
-    const __m256 y = grid_coordinate(_mm256_loadu_ps(planes[1] + i), last);
-    const __m256 z = grid_coordinate(_mm256_loadu_ps(planes[2] + i), last);
-    const __m256i x0 = _mm256_min_epi32(_mm256_cvttps_epi32(x), highest_cell);
-    const __m256i y0 = _mm256_min_epi32(_mm256_cvttps_epi32(y), highest_cell);
-    const __m256i z0 = _mm256_min_epi32(_mm256_cvttps_epi32(z), highest_cell);
-    const __m256 fx = _mm256_sub_ps(x, _mm256_cvtepi32_ps(x0));
-    const __m256 fy = _mm256_sub_ps(y, _mm256_cvtepi32_ps(y0));
-    const __m256 fz = _mm256_sub_ps(z, _mm256_cvtepi32_ps(z0));
-    const __m256i origin = _mm256_add_epi32(_mm256_add_epi32(_mm256_mullo_epi32(x0, sr), _mm256_mullo_epi32(y0, sg)),
-                                            _mm256_mullo_epi32(z0, sb));
+    const Cells cell(planes, i, size);
     __m256 out[3];
-    if (tetrahedral) {
-      const __m256 xy = _mm256_cmp_ps(fx, fy, _CMP_GT_OQ), yz = _mm256_cmp_ps(fy, fz, _CMP_GT_OQ),
-                   xz = _mm256_cmp_ps(fx, fz, _CMP_GT_OQ);
-      // largest: x if x > y and x > z, y if y >= x and y > z, else z; smallest: x if y >= x and
-      // z >= x, y if x > y and z >= y, else z (never the largest's axis unless all are equal,
-      // where the weights of both corners are 0)
-      const __m256i largest = select(_mm256_and_ps(xy, xz), sr, select(_mm256_andnot_ps(xy, yz), sg, sb));
-      const __m256i smallest =
-          select(_mm256_andnot_ps(_mm256_or_ps(xy, xz), _mm256_castsi256_ps(_mm256_set1_epi32(-1))), sr,
-                 select(_mm256_andnot_ps(yz, xy), sg, sb));
-      const __m256i corner1 = _mm256_add_epi32(origin, largest);
-      const __m256i corner2 = _mm256_sub_epi32(_mm256_add_epi32(origin, s_all), smallest);
-      const __m256i corner3 = _mm256_add_epi32(origin, s_all);
-      const __m256 f_max = _mm256_max_ps(fx, _mm256_max_ps(fy, fz)), f_min = _mm256_min_ps(fx, _mm256_min_ps(fy, fz));
-      const __m256 f_mid = _mm256_max_ps(_mm256_min_ps(fx, fy), _mm256_min_ps(_mm256_max_ps(fx, fy), fz));
-      const __m256 w0 = _mm256_sub_ps(one, f_max), w1 = _mm256_sub_ps(f_max, f_mid), w2 = _mm256_sub_ps(f_mid, f_min);
-      for (int c = 0; c < 3; ++c) {
-        __m256 v = _mm256_mul_ps(w0, gather(data, origin, c));
-        v = _mm256_fmadd_ps(w1, gather(data, corner1, c), v);
-        v = _mm256_fmadd_ps(w2, gather(data, corner2, c), v);
-        out[c] = _mm256_fmadd_ps(f_min, gather(data, corner3, c), v);
-      }
-    } else {
-      const __m256i n100 = _mm256_add_epi32(origin, sr), n010 = _mm256_add_epi32(origin, sg);
-      const __m256i n110 = _mm256_add_epi32(n100, sg), n001 = _mm256_add_epi32(origin, sb);
-      const __m256i n101 = _mm256_add_epi32(n100, sb), n011 = _mm256_add_epi32(n010, sb), n111 = _mm256_add_epi32(n110, sb);
-      const auto lerp = [](__m256 a, __m256 b, __m256 t) { return _mm256_fmadd_ps(t, _mm256_sub_ps(b, a), a); };
-      for (int c = 0; c < 3; ++c) {
-        const __m256 a = lerp(gather(data, origin, c), gather(data, n100, c), fx);
-        const __m256 b = lerp(gather(data, n010, c), gather(data, n110, c), fx);
-        const __m256 d = lerp(gather(data, n001, c), gather(data, n101, c), fx);
-        const __m256 e = lerp(gather(data, n011, c), gather(data, n111, c), fx);
-        out[c] = lerp(lerp(a, b, fy), lerp(d, e, fy), fz);
-      }
-    }
+    (tetrahedral_interpolation ? tetrahedral : trilinear)(cell, data, out);
     for (int c = 0; c < 3; ++c) _mm256_storeu_ps(planes[c] + i, out[c]);
   }
-  if (i < n) scalar_pixel_kernels().lut3d(data, size, tetrahedral, Tail(planes, i).planes, n - i);
+  if (i < n) scalar_pixel_kernels().lut3d(data, size, tetrahedral_interpolation, Tail(planes, i).planes, n - i);
 }
 
 void matrix(const float m[3][3], const float offset[3], float* const planes[3], std::size_t n) {
@@ -173,6 +211,7 @@ void to_bytes(const float* const planes[3], std::size_t n, std::uint8_t* rgba) {
 }
 
 }  // namespace
+
 
 const PixelKernels* avx2_pixel_kernels() {
   static const PixelKernels kernels{flatten, separable, lut3d, matrix, to_bytes};

@@ -1,10 +1,10 @@
 // The per-pixel loops in plain C++ (color/pixel_kernels.h): the reference for the AVX2 ones, and
 // what CPUs without AVX2 run.
 #include <algorithm>
-#include <bit>
 #include <cmath>
 #include <limits>
 
+#include "color/display_math.h"
 #include "color/pixel_kernels.h"
 
 namespace phongcl {
@@ -28,11 +28,7 @@ void separable(const float* const tables[3], float* const planes[3], std::size_t
   for (int c = 0; c < 3; ++c) {
     const float* table = tables[c];
     float* plane = planes[c];
-    for (std::size_t i = 0; i < n; ++i) {
-      const std::uint32_t bits = std::bit_cast<std::uint32_t>(plane[i]);
-      const float* cell = table + (bits >> 16);
-      plane[i] = cell[0] + (cell[1] - cell[0]) * (static_cast<float>(bits & 0xffffu) * (1.0f / 65536.0f));
-    }
+    for (std::size_t i = 0; i < n; ++i) plane[i] = table_lookup(table, plane[i]);
   }
 }
 
@@ -94,10 +90,7 @@ void matrix(const float m[3][3], const float offset[3], float* const planes[3], 
 
 void to_bytes(const float* const planes[3], std::size_t n, std::uint8_t* rgba) {
   for (std::size_t i = 0; i < n; ++i) {
-    for (int c = 0; c < 3; ++c) {
-      const float t = planes[c][i] * 255.0f + 0.5f;
-      rgba[4 * i + c] = static_cast<std::uint8_t>(t > 0.0f ? (t < 255.0f ? t : 255.0f) : 0.0f);  // NaN -> 0
-    }
+    for (int c = 0; c < 3; ++c) rgba[4 * i + c] = display_byte(planes[c][i]);
     rgba[4 * i + 3] = 255;
   }
 }

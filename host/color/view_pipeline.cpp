@@ -9,6 +9,7 @@
 #include <random>
 #include <sstream>
 
+#include "color/display_math.h"
 #include "color/pixel_kernels.h"
 
 namespace phongcl {
@@ -17,28 +18,20 @@ namespace OCIO = OCIO_NAMESPACE;
 
 namespace {
 
-constexpr std::uint32_t kBuckets = 1u << (32 - ViewPipeline::Separable::kTableShift);
-constexpr std::uint32_t kLowMask = (1u << ViewPipeline::Separable::kTableShift) - 1;
-constexpr float kLowScale = 1.0f / static_cast<float>(1u << ViewPipeline::Separable::kTableShift);
+constexpr std::uint32_t kBuckets = 1u << (32 - kTableShift);
 constexpr double kTableTolerance = 0.25 / 255;     // a table that ends in display values
 constexpr double kRelativeTolerance = 5e-4;         // a table that feeds another stage
 constexpr double kPipelineTolerance = 0.5 / 255;    // the whole pipeline, in display values
 
 bool is_nan_bucket(std::uint32_t bucket) { return (bucket & 0x7fffu) > 0x7f80u; }
 
-float bucket_start(std::uint32_t bucket) { return std::bit_cast<float>(bucket << ViewPipeline::Separable::kTableShift); }
+float bucket_start(std::uint32_t bucket) { return std::bit_cast<float>(bucket << kTableShift); }
 
 double unit(double v) { return v > 0.0 ? std::min(v, 1.0) : 0.0; }  // NaN -> 0
 
-float interpolate(const std::vector<float>& table, float x) {
-  const std::uint32_t bits = std::bit_cast<std::uint32_t>(x);
-  const float* cell = table.data() + (bits >> ViewPipeline::Separable::kTableShift);
-  return cell[0] + (cell[1] - cell[0]) * (static_cast<float>(bits & kLowMask) * kLowScale);
-}
-
 void apply_stage(const PixelKernels& kernels, const ViewPipeline::Stage& stage, float* const planes[3], std::size_t n) {
   if (const auto* s = std::get_if<ViewPipeline::Separable>(&stage)) {
-    const float* tables[3] = {s->table[0].data(), s->table[1].data(), s->table[2].data()};
+    const float* tables[3] = {s->table[0]->data(), s->table[1]->data(), s->table[2]->data()};
     return kernels.separable(tables, planes, n);
   }
   if (const auto* l = std::get_if<ViewPipeline::Lut3d>(&stage)) return kernels.lut3d(l->rgb.data(), l->size, l->tetrahedral, planes, n);
@@ -105,23 +98,25 @@ std::optional<ViewPipeline::Separable> tabulate(const OCIO::GroupTransformRcPtr&
   apply_cpu(cpu, outputs.data(), kBuckets);
   ViewPipeline::Separable stage;
   for (int c = 0; c < 3; ++c) {
-    stage.table[c].resize(kBuckets + 1);
+    std::vector<float> table(kBuckets + 1);
     for (std::uint32_t b = 0; b < kBuckets; ++b) {
       const float v = outputs.plane[c][b];
-      stage.table[c][b] = std::isnan(v) ? 0.0f : std::clamp(v, -kMax, kMax);  // finite: interpolation multiplies by 0
+      table[b] = std::isnan(v) ? 0.0f : std::clamp(v, -kMax, kMax);  // finite: interpolation multiplies by 0
     }
-    stage.table[c][kBuckets] = stage.table[c][kBuckets - 1];
+    table[kBuckets] = table[kBuckets - 1];
+    const auto same = std::find_if(stage.table, stage.table + c, [&](const auto& other) { return *other == table; });
+    stage.table[c] = same != stage.table + c ? *same : std::make_shared<const std::vector<float>>(std::move(table));
   }
   std::vector<float> middles;
   for (std::uint32_t b = 0; b < kBuckets; ++b)
     if ((b & 0x7fffu) < 0x7f80u) {  // finite buckets
-      const float x = std::bit_cast<float>((b << ViewPipeline::Separable::kTableShift) | (1u << 15));
+      const float x = std::bit_cast<float>((b << kTableShift) | (1u << 15));
       middles.insert(middles.end(), {x, x, x});
     }
   Planes exact(middles);
   apply_cpu(cpu, exact.data(), exact.size());
   for (std::size_t i = 0; i < middles.size(); ++i) {
-    const double table = interpolate(stage.table[i % 3], middles[i]), ops = exact.plane[i % 3][i / 3];
+    const double table = table_lookup(stage.table[i % 3]->data(), middles[i]), ops = exact.plane[i % 3][i / 3];
     if (std::isnan(ops)) continue;
     const double error = ends_in_display ? std::abs(unit(table) - unit(ops)) : std::abs(table - ops) / std::max(1.0, std::abs(ops));
     if (error > (ends_in_display ? kTableTolerance : kRelativeTolerance)) {
@@ -143,7 +138,7 @@ std::optional<ViewPipeline::Stage> lut3d_stage(const OCIO::ConstLut3DTransformRc
   else return std::nullopt;
   stage.size = static_cast<int>(lut->getGridSize());
   if (stage.size < 2) return std::nullopt;
-  stage.rgb.resize(3 * static_cast<std::size_t>(stage.size) * stage.size * stage.size);
+  stage.rgb.resize(3 * static_cast<std::size_t>(stage.size) * stage.size * stage.size + 1);  // + padding (pixel_kernels.h)
   std::size_t i = 0;
   for (int b = 0; b < stage.size; ++b)
     for (int g = 0; g < stage.size; ++g)

@@ -34,21 +34,26 @@ class ViewPipeline {
   bool compiled() const { return !stages_.empty(); }
   std::string description() const { return description_; }
 
-  // One table per channel, indexed by the float's bits >> kTableShift.
+  // One table per channel (color/display_math.h's table_lookup); channels with the same function
+  // share one (a view's curve is usually the same for R, G and B: a third of the cache).
   struct Separable {
-    static constexpr int kTableShift = 16;
-    std::vector<float> table[3];  // 65536 + 1 entries
+    std::shared_ptr<const std::vector<float>> table[3];  // 65536 + 1 entries
   };
   struct Lut3d {
     int size = 0;
     bool tetrahedral = true;
-    std::vector<float> rgb;  // ((b * size + g) * size + r) * 3 + channel
+    std::vector<float> rgb;  // ((b * size + g) * size + r) * 3 + channel, and a float of padding
   };
   struct Matrix {
     float m[3][3];
     float offset[3];
   };
   using Stage = std::variant<Separable, Lut3d, Matrix>;
+
+  // The one stage, when the whole view is one table per channel; else nullptr.
+  const Separable* only_table() const {
+    return stages_.size() == 1 ? std::get_if<Separable>(&stages_.front()) : nullptr;
+  }
 
  private:
   OCIO_NAMESPACE::ConstCPUProcessorRcPtr fallback_;
