@@ -23,8 +23,11 @@
 #include <phongcl/relighter.hpp>
 
 #include "cli_runner.h"
+#include "color/builtin_config.h"
+#include "color/byte_steps.h"
 #include "color/color_conversion.h"
 #include "color/display.h"
+#include "color/display_math.h"
 #include "color/display_processor.h"
 #include "color/pixel_kernels.h"
 #include "common/error.h"
@@ -301,6 +304,39 @@ TEST(DisplayTransform, FlattensThePremultipliedImageOverTheBackground) {
       EXPECT_NEAR(bytes[ch], 255.0 * srgb_encode(c.expected[ch]), 0.5 + 1e-3) << c.why << ", channel " << ch;
     EXPECT_EQ(bytes[3], 255) << c.why << ": previews are opaque";
   }
+  // The same through a view of per-pixel stages (a 3D LUT), against OpenColorIO on the flattened values.
+  const std::optional<ColorConfig> blender = blender_config();
+  if (!blender) GTEST_SKIP() << "Blender's OCIO config is not installed (scripts/setup.sh blender)";
+  DisplaySettings filmic = settings_of("Filmic");
+  filmic.background = settings.background;
+  const DisplayTransform display(*blender, filmic);
+  ASSERT_EQ(display.pipeline().find("exact byte steps"), std::string::npos) << display.pipeline();
+  const auto ocio = display_processor(*blender, display.display(), display.view(), display.look())->getDefaultCPUProcessor();
+  for (const Case& c : cases) {
+    Image image(1, 1);
+    std::copy(c.rgba, c.rgba + 4, image.pixel(0));
+    const std::vector<std::uint8_t> bytes = display.encode(image);
+    float expected[3] = {static_cast<float>(c.expected[0]), static_cast<float>(c.expected[1]), static_cast<float>(c.expected[2])};
+    ocio->applyRGB(expected);
+    for (int ch = 0; ch < 3; ++ch) EXPECT_LE(std::abs(bytes[ch] - byte_of(expected[ch])), 1) << c.why << ", Filmic, channel " << ch;
+  }
+}
+
+TEST(ByteSteps, EqualTheCurveTheyStep) {
+  // sRGB of x / (1 + x) at one stop of exposure: each float near a step, and a sweep.
+  const auto curve = [](float v) { return display_byte(static_cast<float>(srgb_encode(reinhard_curve(2.0 * v)))); };
+  const std::optional<ByteSteps> steps = ByteSteps::make(curve);
+  ASSERT_TRUE(steps);
+  std::vector<float> values = {0.0f, -0.0f, -1.0f, kNaN, kInf, std::numeric_limits<float>::max(), std::numeric_limits<float>::denorm_min()};
+  for (double x = std::exp2(-30.0); x < std::exp2(30.0); x *= 1.001) {
+    const float v = static_cast<float>(x);
+    values.push_back(v);
+    if (curve(v) != curve(std::nextafter(v, 0.0f)))
+      for (float near = std::nextafter(v, 0.0f), k = 0; k < 4; ++k, near = std::nextafter(near, 0.0f)) values.push_back(near);
+  }
+  for (const float v : values) ASSERT_EQ((*steps)(v), std::isnan(v) || v < 0.0f ? curve(0.0f) : curve(v)) << "value " << v;
+  // A curve that climbs from 0 to 255 within one bucket of the table (0.8% of the value) is refused.
+  EXPECT_FALSE(ByteSteps::make([](float v) { return display_byte(std::clamp((v - 1.0f) * 1000.0f, 0.0f, 1.0f)); }));
 }
 
 TEST(DisplayTransform, ExposureScalesTheWorkingValuesBeforeTheView) {
