@@ -7,14 +7,8 @@
 # and at least 99.9% of the pixels must agree within 1/255. Prints the figures per case.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
-build="${PHONGCL_BUILD_DIR:-build}"
-phongcl="$build/phongcl"
-[ -x "$phongcl" ] || { echo "63-blender-colour: no $phongcl (build first)" >&2; exit 1; }
-command -v blender >/dev/null || { echo "63-blender-colour: blender is not installed (scripts/setup.sh blender)" >&2; exit 1; }
-
-work="$(mktemp -d)"
-trap 'rm -rf "$work"' EXIT
-export POCL_CACHE_DIR="${POCL_CACHE_DIR:-$work/pocl-cache}"
+check=63-blender-colour
+source scripts/checks/lib/blender_check.sh
 cases=tests/fixtures/colour/cases.txt
 fail() { echo "63-blender-colour: FAILED: $*" >&2; exit 1; }
 
