@@ -20,6 +20,7 @@
 #include "color/display.h"
 #include "color/display_processor.h"
 #include "common/error.h"
+#include "peers/machine_limits.h"  // load_average
 #include "raycast/raycast.h"
 #include "report/statistics.h"
 #include "scene/json_reader.h"  // format_number
@@ -59,13 +60,6 @@ double thread_cpu_ms() {
 }
 
 double elapsed_ms(Clock::time_point start) { return std::chrono::duration<double, std::milli>(Clock::now() - start).count(); }
-
-std::string load_average() {
-  std::ifstream in("/proc/loadavg");
-  std::string one, five, fifteen;
-  in >> one >> five >> fifteen;
-  return one + " " + five + " " + fifteen;
-}
 
 std::vector<Case> cases(const glm::dvec3& background) {
   const auto make = [&](const std::string& config, const std::string& view, const std::string& look, double exposure) {
