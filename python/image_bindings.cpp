@@ -66,13 +66,14 @@ void bind_images(py::module_& module) {
       "write_png",
       [](const std::filesystem::path& path, const FloatArray& image, double exposure, const std::string& view,
          const std::string& display, const std::string& look, std::array<double, 3> background, const std::string& ocio) {
+        check_exposure(exposure);  // before the image is converted
         DisplaySettings settings{display, view, look, exposure, to_vec3(background)};
         write_png(image_from(image), path, DisplayTransform(color_config(ocio), settings));
       },
       py::arg("path"), py::arg("image"), py::arg("exposure") = 0.0, py::arg("view") = "", py::arg("display") = "",
       py::arg("look") = "", py::arg("background") = std::array<double, 3>{0, 0, 0}, py::arg("ocio") = "",
       "Writes an 8-bit PNG, atomically: the image (premultiplied; colour where alpha is 0 is not drawn) over "
-      "`background`, scaled by 2**exposure, through `look` and the `view` of `display` of the OCIO config `ocio` "
+      "`background`, scaled by 2**exposure (a finite number of stops in [-40, 40]), through `look` and the `view` of `display` of the OCIO config `ocio` "
       "(as --ocio: a config file, 'blender', 'builtin'; default $OCIO, else built-in, whose views are 'reinhard' "
       "(default), 'aces' and 'clamp'). phongcl.colors() lists the names.");
   module.def(

@@ -11,6 +11,7 @@
 #include <CLI/CLI.hpp>
 
 #include "color/color_config.h"
+#include "common/same_file.h"
 #include "gbuffer/gbuffer.h"
 #include "gbuffer/layouts.h"
 #include "scene/scene.h"
@@ -42,6 +43,9 @@ struct SceneInputs {
   // inputs share it.
   std::shared_ptr<const ColorConfig> color_config() const;
   bool camera_space() const { return space == "camera"; }
+  // The files read, for refuse_shared_files: --scene and --gbuffer; given the parsed scene and no
+  // --gbuffer, its "gbuffer" entry.
+  std::vector<NamedFile> named_files(const Scene* scene = nullptr) const;
   // --gbuffer, else the scene's "gbuffer" entry (InputError when neither names a file).
   std::filesystem::path gbuffer_path(const Scene& scene) const;
   // The scene file with its colours in the working space; without a "camera", the G-buffer

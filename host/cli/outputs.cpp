@@ -2,9 +2,13 @@
 
 #include <unistd.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <stdexcept>
+#include <system_error>
+#include <utility>
 
+#include "cli/inputs.h"
 #include "common/atomic_file.h"
 #include "common/error.h"
 
@@ -14,30 +18,39 @@ namespace {
 
 std::string pixel_type_name(bool half) { return half ? " (half)" : " (float32)"; }
 
-// Fails before any work is done when an output could not be written: a missing or read-only
-// directory, or a directory where the file should be.
-void check_destination(const std::string& file) {
-  if (file.empty()) return;
-  namespace fs = std::filesystem;
-  const fs::path path(file);
-  const fs::path directory = path.parent_path().empty() ? fs::path(".") : path.parent_path();
-  if (fs::is_directory(path)) throw InputError(path, "cannot write: it is a directory");
-  if (!fs::is_directory(directory)) throw InputError(path, "cannot write: directory " + directory.string() + " does not exist");
-  if (::access(directory.c_str(), W_OK) != 0) throw InputError(path, "cannot write: directory " + directory.string() + " is not writable");
-}
-
 std::string display_name(const DisplayTransform& display) {
   return display.display() + ", " + display.view() + (display.look().empty() ? "" : ", " + display.look());
 }
 
 }  // namespace
 
+void check_destination(const std::filesystem::path& path) {
+  namespace fs = std::filesystem;
+  const fs::path directory = path.parent_path().empty() ? fs::path(".") : path.parent_path();
+  std::error_code ec;
+  if (!fs::is_directory(directory, ec)) throw InputError(path, "cannot write: directory " + directory.string() + " does not exist");
+  if (::access(directory.c_str(), W_OK) != 0) throw InputError(path, "cannot write: directory " + directory.string() + " is not writable");
+  const long name_max = ::pathconf(directory.c_str(), _PC_NAME_MAX);
+  if (name_max > 0 && path.filename().native().size() > static_cast<std::size_t>(name_max))
+    throw InputError(path, "cannot write: the file name is " + std::to_string(path.filename().native().size()) +
+                               " bytes, longer than the " + std::to_string(name_max) + " its file system allows");
+  if (fs::is_directory(path, ec)) throw InputError(path, "cannot write: it is a directory");
+}
+
 void ImageOutputs::check_destinations() const {
   if (exr_file.empty() && png_file.empty() && aov_file.empty()) {
     throw std::invalid_argument("nothing to write: give --out, --png or --aov");
   }
-  for (const std::string* file : {&exr_file, &png_file, &aov_file}) check_destination(*file);
+  for (const std::string* file : {&exr_file, &png_file, &aov_file})
+    if (!file->empty()) check_destination(*file);
   if (!png_file.empty()) display_transform(glm::dvec3(0.0));  // names in the config, finite exposure
+}
+
+std::vector<NamedFile> ImageOutputs::named_files() const {
+  std::vector<NamedFile> files;
+  for (const auto& [option, file] : {std::pair{"--out", &exr_file}, std::pair{"--png", &png_file}, std::pair{"--aov", &aov_file}})
+    if (!file->empty()) files.push_back({option, *file, true});
+  return files;
 }
 
 void add_display_options(CLI::App& command, DisplaySettings& settings, std::string& tone_map) {
@@ -45,8 +58,23 @@ void add_display_options(CLI::App& command, DisplaySettings& settings, std::stri
   command.add_option("--view", settings.view, "PNG view of the display (default: the display's; the built-in config's: "
                                               "reinhard, aces, clamp; Blender's: Filmic, Standard, ...)");
   command.add_option("--look", settings.look, "PNG look of the OCIO config, before the view (default: none)");
-  command.add_option("--exposure", settings.exposure_stops,
-                     "PNG exposure in stops: working-space values are scaled by 2^exposure before the look and view (default 0)");
+  command
+      .add_option("--exposure", settings.exposure_stops,
+                  "PNG exposure in stops: working-space values are scaled by 2^exposure before the look and view "
+                  "(default 0, within +-40)")
+      ->check(CLI::Validator(
+          [](std::string& text) {
+            char* end = nullptr;
+            const double stops = std::strtod(text.c_str(), &end);  // "nan", "inf", "1e400" (as inf) too
+            if (end == text.c_str() || *end != '\0') return std::string();  // not a number: CLI11 says so
+            try {
+              check_exposure(stops);
+            } catch (const std::invalid_argument& error) {
+              return std::string(error.what());
+            }
+            return std::string();
+          },
+          "STOPS"));
   command.add_option("--tonemap", tone_map, "The same as --view (its name before OCIO)")->excludes("--view");
 }
 
@@ -123,6 +151,12 @@ std::string ImageOutputs::write_images(const Image& image, const glm::dvec3& bac
   if (exr_file.empty()) return png_written;
   write_exr(image, exr_file, exr_options());
   return exr_file + pixel_type_name(half) + (png_written.empty() ? "" : ", " + png_written);
+}
+
+void refuse_outputs_over_inputs(const SceneInputs& inputs, const ImageOutputs& outputs, const Scene* scene) {
+  std::vector<NamedFile> files = inputs.named_files(scene);
+  for (NamedFile& file : outputs.named_files()) files.push_back(std::move(file));
+  refuse_shared_files(files);
 }
 
 }  // namespace phongcl::cli

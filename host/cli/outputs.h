@@ -2,15 +2,22 @@
 // The --out/--half/--png options that shade and reference share, the display options of the PNG
 // (--display, --view, --look, --exposure), and shade's --aov (the ambient, diffuse and specular
 // terms as layers of one EXR).
+#include <filesystem>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 #include <glm/glm.hpp>
 
 #include "color/color_config.h"
 #include "color/display.h"
+#include "common/same_file.h"
 #include "image/image.h"
+
+namespace phongcl {
+struct Scene;
+}
 
 namespace phongcl::cli {
 
@@ -18,6 +25,12 @@ namespace phongcl::cli {
 void add_display_options(CLI::App& command, DisplaySettings& settings, std::string& tone_map);
 // The settings with --tonemap applied.
 DisplaySettings with_tone_map(DisplaySettings settings, const std::string& tone_map);
+
+struct SceneInputs;
+
+// Fails before any work is done when `file` could not be written: a missing or read-only
+// directory, a directory where the file should be, a name longer than its file system allows.
+void check_destination(const std::filesystem::path& file);
 
 // The terms of the combined image, for --aov.
 struct TermLayers {
@@ -41,6 +54,8 @@ struct ImageOutputs {
   // Throws (naming the file, or the display, view or look) when an output could not be written,
   // before any work is done.
   void check_destinations() const;
+  // The files written (--out, --png, --aov), for refuse_shared_files.
+  std::vector<NamedFile> named_files() const;
   // The files are replaced together (all new or all old, even if killed); returns
   // "lit.exr (float32), lit.png (sRGB, Filmic)". `background`: the scene's, under the PNG.
   std::string write(const Image& image, const glm::dvec3& background) const;
@@ -52,5 +67,9 @@ struct ImageOutputs {
   ExrWriteOptions exr_options() const;
   std::string write_images(const Image& image, const glm::dvec3& background) const;  // --out and --png, inside the caller's batch
 };
+
+// Refuses (refuse_shared_files) a run whose output is one of its inputs or another output: the
+// options' files, and with `scene` (parsed, no --gbuffer) the scene's "gbuffer" entry.
+void refuse_outputs_over_inputs(const SceneInputs& inputs, const ImageOutputs& outputs, const Scene* scene = nullptr);
 
 }  // namespace phongcl::cli

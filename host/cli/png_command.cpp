@@ -7,7 +7,7 @@
 #include "cli/commands.h"
 #include "cli/outputs.h"
 #include "color/display.h"
-#include "common/error.h"
+#include "common/same_file.h"
 
 namespace phongcl::cli {
 
@@ -20,9 +20,8 @@ struct PngArguments {
 };
 
 void run_png(const PngArguments& args) {
-  std::error_code same_error;
-  if (std::filesystem::equivalent(args.input, args.output, same_error))
-    throw InputError(args.output, "is the input: refusing to overwrite it");
+  refuse_shared_files({{"input", args.input, false, {}}, {"output", args.output, true, {}}});
+  check_destination(args.output);
   const ColorConfig config = ColorConfig::load(args.ocio);
   DisplaySettings settings = with_tone_map(args.display, args.tone_map);
   settings.background = {args.background[0], args.background[1], args.background[2]};

@@ -1,7 +1,9 @@
 #include "color/display.h"
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <fstream>
 #include <limits>
 #include <stdexcept>
@@ -14,6 +16,7 @@
 #include "color/view_pipeline.h"
 #include "common/atomic_file.h"
 #include "common/error.h"
+#include "image/image.h"  // check_exposure
 
 namespace phongcl {
 
@@ -21,8 +24,7 @@ namespace OCIO = OCIO_NAMESPACE;
 
 namespace {
 
-constexpr double kMaxExposureStops = 64.0;  // 2^64 scales float's range into itself
-constexpr std::size_t kBlockPixels = 256;   // stages run over blocks that stay in L1
+constexpr std::size_t kBlockPixels = 256;  // stages run over blocks that stay in L1
 constexpr int kRowsPerTask = 16;
 
 std::string joined(const std::vector<std::string>& names) {
@@ -72,8 +74,7 @@ std::shared_ptr<const ByteSteps> byte_steps(const std::vector<float>& table, flo
 }  // namespace
 
 DisplayTransform::DisplayTransform(const ColorConfig& config, const DisplaySettings& settings) {
-  if (!std::isfinite(settings.exposure_stops) || std::abs(settings.exposure_stops) > kMaxExposureStops)
-    throw std::invalid_argument("exposure must be a finite number of stops in [-64, 64]");
+  check_exposure(settings.exposure_stops);
   for (int c = 0; c < 3; ++c)
     if (!std::isfinite(settings.background[c])) throw std::invalid_argument("the background colour must be finite");
   display_ = settings.display.empty() ? config.default_display() : settings.display;
@@ -157,7 +158,7 @@ void write_png(const Image& image, const std::filesystem::path& file, const Disp
     std::ofstream stream(temp, std::ios::binary);
     stream.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
     stream.close();
-    if (!stream) throw InputError(file, "cannot write PNG");
+    if (!stream) throw InputError(temp, std::string("cannot write PNG: ") + std::strerror(errno));
   });
 }
 

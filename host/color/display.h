@@ -41,7 +41,7 @@ class DisplayTransform {
  public:
   // InputError naming the config for a display, view or look it does not have (the message lists
   // those it has); std::invalid_argument for a non-finite exposure or background, or an exposure
-  // outside [-64, 64] stops.
+  // beyond check_exposure's +-40 stops (image/image.h).
   DisplayTransform(const ColorConfig& config, const DisplaySettings& settings);
 
   // 8-bit RGBA (alpha 255: the background is flattened in) of rows [first_row, first_row + rows)

@@ -62,6 +62,12 @@ void write_layered_exr(const std::vector<ExrLayer>& layers, const std::filesyste
 // Reads R G B (and A if present, else 1) from an EXR. Throws InputError on a bad file.
 Image read_exr(const std::filesystem::path& file);
 
+// Exposure within +-40 stops (a factor of 1e12 either way): beyond it the 8-bit steps of a
+// display curve fall outside float's range, and no image needs it.
+inline constexpr double kMaxExposureStops = 40.0;
+// Throws std::invalid_argument "exposure must be a finite number of stops in [-40, 40] (got nan)";
+// every front end checks its exposure with it before shading.
+void check_exposure(double stops);
 // A PNG (tagged sRGB, fast zlib settings) of 8-bit RGBA bytes (a display transform's,
 // color/display.h), in memory. Throws std::runtime_error with libpng's message when it refuses
 // (e.g. an empty image).

@@ -21,8 +21,10 @@ struct ReferenceArguments {
 void run_reference(const ReferenceArguments& args) {
   ImageOutputs outputs = args.outputs;
   outputs.color = args.inputs.color_config();
+  refuse_outputs_over_inputs(args.inputs, outputs);
   outputs.check_destinations();
   const Scene scene = args.inputs.load_scene();
+  if (args.inputs.gbuffer_file.empty()) refuse_outputs_over_inputs(args.inputs, outputs, &scene);
   const GBuffer gbuffer = args.inputs.load_gbuffer(scene);
   check_materials(gbuffer, scene.materials.size());
   const auto start = std::chrono::steady_clock::now();
