@@ -3,6 +3,7 @@
 // channels into float memory, write named float channels. The exr room: both the gbuffer and the
 // image rooms read and write through it.
 #include <ImfChannelList.h>
+#include <ImfStandardAttributes.h>
 #include <ImfCompression.h>
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
@@ -25,6 +26,7 @@
 #include <iterator>
 #include <map>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
@@ -447,10 +449,12 @@ class InputExr {
   exr_context_t core_ = nullptr;  // the core library's last message
 };
 
-// Writes the slices as one scanline EXR, atomically (temp file, then rename).
+// Writes the slices as one scanline EXR, atomically (temp file, then rename), with the
+// chromaticities attribute when they are given.
 inline void write_channels(const std::filesystem::path& file, const PixelWindow& data_window,
                            const PixelWindow& display_window, ExrPixelType type,
-                           const std::vector<WriteSlice>& slices, ExrCompression compression = ExrCompression::zip) {
+                           const std::vector<WriteSlice>& slices, ExrCompression compression = ExrCompression::zip,
+                           const std::optional<Chromaticities>& chromaticities = std::nullopt) {
   const Imf::PixelType pixel_type = type == ExrPixelType::half ? Imf::HALF : Imf::FLOAT;
   const Imath::Box2i window = to_box(data_window);
   const std::size_t pixel_count = static_cast<std::size_t>(data_window.width()) * data_window.height();
@@ -470,6 +474,11 @@ inline void write_channels(const std::filesystem::path& file, const PixelWindow&
     translate_errors(file, "cannot write EXR", [&] {
       Imf::Header header(to_box(display_window), window);
       header.compression() = to_imf(compression);
+      if (chromaticities) {
+        const Chromaticities& c = *chromaticities;
+        Imf::addChromaticities(header, Imf::Chromaticities({c.red[0], c.red[1]}, {c.green[0], c.green[1]},
+                                                           {c.blue[0], c.blue[1]}, {c.white[0], c.white[1]}));
+      }
       for (const auto& slice : slices) header.channels().insert(slice.name, Imf::Channel(pixel_type));
       Imf::OutputFile output(temp.c_str(), header);
       output.setFrameBuffer(frame_buffer);
