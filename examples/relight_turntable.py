@@ -57,7 +57,7 @@ def main():
         relighter.shade(out=image)
         shading += time.perf_counter() - frame_start
         if not args.no_png:
-            phongcl.write_png(str(out_dir / f"frame_{step:02d}.png"), image)
+            phongcl.write_png(str(out_dir / f"frame_{step:02d}.png"), image, background=scene.background)
     elapsed = time.perf_counter() - start
     print(f"relight_turntable: {args.steps} frames of {gb.width}x{gb.height} on {relighter.device}")
     print(f"  relight + shade  {args.steps / shading:.1f} frames/s ({1000 * shading / args.steps:.2f} ms a frame)")

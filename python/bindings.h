@@ -8,6 +8,7 @@
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 
+#include "color/color_config.h"
 #include "scene/scene.h"
 
 namespace phongcl::python {
@@ -30,6 +31,10 @@ inline glm::dvec3 to_vec3(const std::array<double, 3>& a) { return {a[0], a[1], 
 // Light or Material objects, or dicts in the scene file's form (InputError names the bad entry).
 std::vector<Light> lights_from_python(const py::handle& lights);
 std::vector<Material> materials_from_python(const py::handle& materials);
+
+// The config `--ocio WHICH` would load (color/color_config.h), loaded once per process: views
+// compiled for one image are ready for the next.
+const ColorConfig& color_config(const std::string& which);
 
 void bind_scene(py::module_& module);
 void bind_gbuffer(py::module_& module);

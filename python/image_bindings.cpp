@@ -1,10 +1,23 @@
-// Images as NumPy arrays (H, W, 4) float32, RGBA: to and from EXR, to PNG.
+// Images as NumPy arrays (H, W, 4) float32, RGBA: to and from EXR, to PNG through an OCIO display.
+#include <map>
+#include <mutex>
+
+#include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
 #include "bindings.h"
+#include "color/display.h"
 #include "image/image.h"
 
 namespace phongcl::python {
+
+const ColorConfig& color_config(const std::string& which) {
+  static std::mutex mutex;
+  static std::map<std::string, ColorConfig> loaded;
+  std::lock_guard lock(mutex);
+  if (const auto found = loaded.find(which); found != loaded.end()) return found->second;
+  return loaded.emplace(which, ColorConfig::load(which)).first->second;
+}
 
 namespace {
 
@@ -21,11 +34,17 @@ Image image_from(const FloatArray& pixels) {
   return image;
 }
 
-ToneMap parse_tone_map(const std::string& name) {
-  if (name == "clamp") return ToneMap::clamp;
-  if (name == "reinhard") return ToneMap::reinhard;
-  if (name == "aces") return ToneMap::aces;
-  throw py::value_error("tonemap must be 'clamp', 'reinhard' or 'aces', not '" + name + "'");
+py::dict describe(const ColorConfig& config) {
+  py::dict displays;
+  for (const std::string& display : config.displays()) displays[py::str(display)] = config.views(display);
+  py::dict result;
+  result["config"] = config.description();
+  result["working_space"] = config.working_space();
+  result["default_display"] = config.default_display();
+  result["displays"] = displays;
+  result["looks"] = config.looks();
+  result["color_spaces"] = config.color_spaces();
+  return result;
 }
 
 }  // namespace
@@ -33,21 +52,33 @@ ToneMap parse_tone_map(const std::string& name) {
 void bind_images(py::module_& module) {
   module.def(
       "write_exr",
-      [](const std::filesystem::path& path, const FloatArray& image, bool half) {
-        write_exr(path, image_from(image), half ? ExrPixelType::half : ExrPixelType::float32);
+      [](const std::filesystem::path& path, const FloatArray& image, bool half, bool keep_color_where_transparent) {
+        ExrWriteOptions options;
+        options.type = half ? ExrPixelType::half : ExrPixelType::float32;
+        options.keep_color_where_transparent = keep_color_where_transparent;
+        write_exr(image_from(image), path, options);
       },
-      py::arg("path"), py::arg("image"), py::arg("half") = false,
-      "Writes an (H, W, 4) RGBA (or (H, W, 3) RGB) array as an EXR with channels R G B A, float32 or "
-      "half, atomically (a temporary file, then a rename).");
+      py::arg("path"), py::arg("image"), py::arg("half") = false, py::arg("keep_color_where_transparent") = false,
+      "Writes an (H, W, 4) RGBA (or (H, W, 3) RGB) array as an EXR with channels R G B A, float32 or half, "
+      "atomically (a temporary file, then a rename). Premultiplied, as OpenEXR's convention has it: RGB is written "
+      "as 0 where alpha is 0 (the shader leaves the background colour there) unless keep_color_where_transparent.");
   module.def(
       "write_png",
-      [](const std::filesystem::path& path, const FloatArray& image, double exposure, const std::string& tonemap) {
+      [](const std::filesystem::path& path, const FloatArray& image, double exposure, const std::string& view,
+         const std::string& display, const std::string& look, std::array<double, 3> background, const std::string& ocio) {
         check_exposure(exposure);  // before the image is converted
-        write_png(path, image_from(image), DisplaySettings{exposure, parse_tone_map(tonemap)});
+        DisplaySettings settings{display, view, look, exposure, to_vec3(background)};
+        write_png(image_from(image), path, DisplayTransform(color_config(ocio), settings));
       },
-      py::arg("path"), py::arg("image"), py::arg("exposure") = 0.0, py::arg("tonemap") = "reinhard",
-      "Writes an 8-bit sRGB PNG: scaled by 2**exposure (a finite number of stops in [-40, 40]), tone mapped "
-      "('clamp', 'reinhard', 'aces'), atomically.");
+      py::arg("path"), py::arg("image"), py::arg("exposure") = 0.0, py::arg("view") = "", py::arg("display") = "",
+      py::arg("look") = "", py::arg("background") = std::array<double, 3>{0, 0, 0}, py::arg("ocio") = "",
+      "Writes an 8-bit PNG, atomically: the image (premultiplied; colour where alpha is 0 is not drawn) over "
+      "`background`, scaled by 2**exposure (a finite number of stops in [-40, 40]), through `look` and the `view` of `display` of the OCIO config `ocio` "
+      "(as --ocio: a config file, 'blender', 'builtin'; default $OCIO, else built-in, whose views are 'reinhard' "
+      "(default), 'aces' and 'clamp'). phongcl.colors() lists the names.");
+  module.def(
+      "colors", [](const std::string& ocio) { return describe(color_config(ocio)); }, py::arg("ocio") = "",
+      "The OCIO config's displays (with their views), looks, colour spaces and working space, as a dict.");
   module.def(
       "read_exr",
       [](const std::filesystem::path& path) {

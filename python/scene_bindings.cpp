@@ -3,12 +3,18 @@
 #include <pybind11/stl/filesystem.h>
 
 #include "bindings.h"
+#include "color/color_conversion.h"
 #include "scene/scene.h"
 #include "scene/scene_check.h"
 
 namespace phongcl::python {
 
 namespace {
+
+Scene in_working_space(Scene scene, const std::string& ocio) {
+  if (!scene.color_space.empty()) convert_scene_colors(scene, color_config(ocio));
+  return scene;
+}
 
 // The scene file's nesting limit (scene/json_reader.h), for self-referencing lists too.
 constexpr int kMaxDepth = 256;
@@ -113,9 +119,13 @@ void bind_scene(py::module_& module) {
   scene.def(py::init<>())
       .def_static(
           "from_dict",
-          [](const py::dict& description) { return read_scene(json_of(description), "<dict>"); },
-          py::arg("description"),
-          "A scene from a dict in the scene file's JSON form; raises InputError naming the bad entry.")
+          [](const py::dict& description, const std::string& ocio) {
+            return in_working_space(read_scene(json_of(description), "<dict>"), ocio);
+          },
+          py::arg("description"), py::arg("ocio") = "",
+          "A scene from a dict in the scene file's JSON form, its colours in the working space of the OCIO config "
+          "`ocio` (as --ocio: a file, 'blender', 'builtin'; default $OCIO, else built-in) when it names a "
+          "\"color_space\"; raises InputError naming the bad entry.")
       .def_readwrite("camera", &Scene::camera)
       .def_readwrite("lights", &Scene::lights)
       .def_readwrite("materials", &Scene::materials)
@@ -123,8 +133,11 @@ void bind_scene(py::module_& module) {
   vec3_property(scene, "ambient", &Scene::ambient, "Ambient light La, RGB.");
   vec3_property(scene, "background", &Scene::background, "Colour of background pixels, RGB.");
 
-  module.def("load_scene", &load_scene, py::arg("path"),
-             "Reads and validates a scene file (JSON); raises InputError naming the file and the problem.");
+  module.def(
+      "load_scene", [](const std::filesystem::path& path, const std::string& ocio) { return in_working_space(load_scene(path), ocio); },
+      py::arg("path"), py::arg("ocio") = "",
+      "Reads and validates a scene file (JSON), its colours in the working space of the OCIO config `ocio` when it "
+      "names a \"color_space\"; raises InputError naming the file and the problem.");
 }
 
 }  // namespace phongcl::python

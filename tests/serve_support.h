@@ -8,6 +8,7 @@
 #include <thread>
 
 #include "cli_runner.h"
+#include "color/color_config.h"
 #include "gbuffer/gbuffer.h"
 #include "serve/relight_server.h"
 
@@ -22,7 +23,7 @@ class RunningServer {
   RunningServer(GBuffer gbuffer, const std::filesystem::path& scene_file, const std::filesystem::path& save_path = {},
                 const HttpLimits& limits = {})
       : session_(std::move(gbuffer), ""),
-        live_(session_, read_text(scene_file), scene_file, RenderSettings{}),
+        live_(session_, read_text(scene_file), scene_file, RenderSettings{}, ColorConfig::builtin()),
         server_(live_, {"127.0.0.1", 0, save_path, "test device", limits}) {
     port_ = server_.bind();
     thread_ = std::thread([this] { server_.run(); });

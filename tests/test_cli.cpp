@@ -8,9 +8,16 @@
 #include <limits>
 #include <sstream>
 
+#include <ImfInputFile.h>
+#include <ImfStandardAttributes.h>
+#include <png.h>
+
+#include <cstring>
+
 #include "accuracy_bound.h"
 #include "cli_runner.h"
 #include "gbuffer/gbuffer.h"
+#include "image/image.h"
 
 namespace phongcl {
 namespace {
@@ -245,6 +252,133 @@ TEST_F(Cli, NonFinitePixelsAreCountedNotFatal) {
   ASSERT_EQ(run.exit_code, 0) << run.err;
   EXPECT_NE(run.out.find("3 pixels had non-finite normals and were left unshaded"), std::string::npos) << run.out;
   EXPECT_TRUE(fs::exists(path("lit.exr")));
+}
+
+// ---- Colour: OCIO configs, display options, what EXRs and PNGs hold ----
+
+std::vector<std::uint8_t> png_rgba(const std::string& file) {
+  png_image png;
+  std::memset(&png, 0, sizeof png);
+  png.version = PNG_IMAGE_VERSION;
+  if (!png_image_begin_read_from_file(&png, file.c_str())) return {};
+  png.format = PNG_FORMAT_RGBA;
+  std::vector<std::uint8_t> bytes(PNG_IMAGE_SIZE(png));
+  if (!png_image_finish_read(&png, nullptr, bytes.data(), 0, nullptr)) return {};
+  return bytes;
+}
+
+TEST_F(Cli, ColorsListsWhatAConfigOffers) {
+  const CliRun run = run_phongcl("colors");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  for (const char* expected : {"built-in", "Linear Rec.709 (sRGB) (scene_linear)", "R (0.6400, 0.3300)",
+                               "sRGB (default): views reinhard, aces, clamp (default reinhard)", "looks      none",
+                               "ACEScg", "pipeline   reinhard: compiled: per-channel table"}) {
+    EXPECT_NE(run.out.find(expected), std::string::npos) << "missing '" << expected << "' in:\n" << run.out;
+  }
+  const std::string out = existing_output();
+  const CliRun bad = run_phongcl("colors --ocio " + path("absent.ocio"));
+  EXPECT_NE(bad.exit_code, 0);
+  EXPECT_NE(bad.err.find("absent.ocio: cannot read the OCIO config"), std::string::npos) << bad.err;
+}
+
+TEST_F(Cli, DisplayNamesAreCheckedBeforeShading) {
+  const std::string out = existing_output();
+  const std::string shade = std::string("shade --scene ") + kDefaultScene + " --out " + out + " --png " + path("lit.png");
+  expect_clean_failure(run_phongcl(shade + " --view Filmic"), "has no view 'Filmic' (views: reinhard, aces, clamp)", out);
+  expect_clean_failure(run_phongcl(shade + " --look 'High Contrast'"), "no look 'High Contrast'", out);
+  expect_clean_failure(run_phongcl(shade + " --tonemap aces --view aces"), "--tonemap", out);
+  expect_clean_failure(run_phongcl(shade + " --ocio " + path("absent.ocio")), "absent.ocio", out);
+  EXPECT_FALSE(fs::exists(path("lit.png")));
+}
+
+TEST_F(Cli, ExrsAreBlackWhereTransparentUnlessAsked) {
+  if (!testing::have_opencl_device()) GTEST_SKIP() << "no OpenCL device";
+  const std::string shade = std::string("shade --scene ") + kDefaultScene;
+  ASSERT_EQ(run_phongcl(shade + " --out " + path("lit.exr") + " --png " + path("lit.png")).exit_code, 0);
+  ASSERT_EQ(run_phongcl(shade + " --out " + path("old.exr") + " --exr-background").exit_code, 0);
+  const Image lit = read_exr(path("lit.exr")), old = read_exr(path("old.exr"));
+  const std::vector<std::uint8_t> png = png_rgba(path("lit.png"));
+  ASSERT_EQ(png.size(), 4 * lit.pixel_count());
+  std::size_t sky = 0;
+  for (std::size_t i = 0; i < lit.pixel_count(); ++i) {
+    if (lit.pixel(i)[3] != 0.0f) continue;
+    ++sky;
+    const float expected_old[] = {0.05f, 0.06f, 0.1f};  // scenes/default's background
+    for (int c = 0; c < 3; ++c) {
+      ASSERT_EQ(lit.pixel(i)[c], 0.0f) << "pixel " << i << ": premultiplied, nothing to add to the plate";
+      ASSERT_EQ(old.pixel(i)[c], expected_old[c]) << "pixel " << i << ": --exr-background keeps the old colour";
+    }
+    // The preview shows the background there (reinhard of 0.05, 0.06, 0.1 in sRGB), opaque.
+    ASSERT_EQ(png[4 * i], 62);  // 61.64
+    ASSERT_EQ(png[4 * i + 1], 67);  // 67.29
+    ASSERT_EQ(png[4 * i + 2], 85);  // 85.03
+    ASSERT_EQ(png[4 * i + 3], 255);
+  }
+  EXPECT_GT(sky, 10000u);
+  const Imf::Header header = Imf::InputFile(path("lit.exr").c_str()).header();
+  ASSERT_TRUE(Imf::hasChromaticities(header)) << "the working space's primaries";
+  EXPECT_NEAR(Imf::chromaticities(header).red.x, 0.64f, 1e-4);
+}
+
+TEST_F(Cli, PngOfAnExrIsShadesOwnPreview) {
+  if (!testing::have_opencl_device()) GTEST_SKIP() << "no OpenCL device";
+  ASSERT_EQ(run_phongcl(std::string("shade --scene ") + kDefaultScene + " --out " + path("lit.exr") + " --png " +
+                        path("shade.png") + " --view aces --exposure 0.5")
+                .exit_code,
+            0);
+  const CliRun png = run_phongcl("png " + path("lit.exr") + " " + path("png.png") +
+                                 " --tonemap aces --exposure 0.5 --background 0.05 0.06 0.1");
+  ASSERT_EQ(png.exit_code, 0) << png.err;
+  EXPECT_NE(png.out.find("640 x 480, sRGB, aces"), std::string::npos) << png.out;
+  EXPECT_EQ(png_rgba(path("png.png")), png_rgba(path("shade.png")));
+  const std::string exr = read_text(path("lit.exr"));
+  const CliRun onto_itself = run_phongcl("png " + path("lit.exr") + " " + path("lit.exr"));
+  EXPECT_NE(onto_itself.exit_code, 0);
+  EXPECT_NE(onto_itself.err.find("output '" + path("lit.exr") + "' and input '" + path("lit.exr") + "' are the same file"),
+            std::string::npos)
+      << onto_itself.err;
+  EXPECT_EQ(read_text(path("lit.exr")), exr);
+}
+
+TEST_F(Cli, GbufferSpaceConvertsTheColourPasses) {
+  if (!testing::have_opencl_device()) GTEST_SKIP() << "no OpenCL device";
+  const std::string shade = "shade --scene tests/fixtures/blender/scene.json --gbuffer tests/fixtures/blender/cycles.exr";
+  ASSERT_EQ(run_phongcl(shade + " --out " + path("linear.exr")).exit_code, 0);
+  const CliRun run = run_phongcl(shade + " --out " + path("srgb.exr") + " --gbuffer-space sRGB");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(run.out.find("colour passes from sRGB to Linear Rec.709 (sRGB)"), std::string::npos) << run.out;
+  // DiffCol read as sRGB-encoded is darker in linear terms: kd (and the diffuse light) drops.
+  const Image linear = read_exr(path("linear.exr")), srgb = read_exr(path("srgb.exr"));
+  double linear_sum = 0, srgb_sum = 0;
+  for (std::size_t i = 0; i < linear.rgba.size(); ++i) linear_sum += linear.rgba[i], srgb_sum += srgb.rgba[i];
+  EXPECT_LT(srgb_sum, 0.9 * linear_sum);
+  const std::string out = existing_output();
+  expect_clean_failure(run_phongcl(shade + " --out " + out + " --gbuffer-space Rec.2020"),
+                       "--gbuffer-space 'Rec.2020': no such colour space", out);
+}
+
+TEST_F(Cli, SceneColoursNameTheirSpace) {
+  if (!testing::have_opencl_device()) GTEST_SKIP() << "no OpenCL device";
+  // The same scene twice: colours as sRGB-encoded values, and the same colours decoded by hand.
+  const std::string gbuffer = " --gbuffer scenes/default/gbuffer.exr";
+  const std::string encoded = write("encoded.json", R"({"color_space": "sRGB", "camera": {"eye": [0, 2, 8], "look_at": [0, 0.7, 0]},
+    "lights": [{"type": "point", "position": [4, 6, 5], "color": [1, 0.5, 0.25]}],
+    "materials": [{"kd": [0.5, 0.5, 0.5], "ks": [0, 0, 0]}, {"kd": [0.8, 0.1, 0.1], "ks": [0, 0, 0]}, {"kd": [0.2, 0.6, 0.2]},
+                  {"kd": [0.1, 0.2, 0.8]}, {"kd": [0.7, 0.6, 0.2]}]})");
+  const auto decode = [](double v) { return v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4); };
+  std::string decoded_text = R"({"camera": {"eye": [0, 2, 8], "look_at": [0, 0.7, 0]},
+    "lights": [{"type": "point", "position": [4, 6, 5], "color": [1, L5, L25]}],
+    "materials": [{"kd": [M5, M5, M5], "ks": [0, 0, 0]}, {"kd": [M8, M1, M1], "ks": [0, 0, 0]}, {"kd": [M2, M6, M2]},
+                  {"kd": [M1, M2, M8]}, {"kd": [M7, M6, M2]}]})";
+  for (const auto& [key, v] : std::vector<std::pair<std::string, double>>{
+           {"L25", 0.25}, {"L5", 0.5}, {"M5", 0.5}, {"M8", 0.8}, {"M1", 0.1}, {"M2", 0.2}, {"M6", 0.6}, {"M7", 0.7}})
+    for (std::size_t at; (at = decoded_text.find(key)) != std::string::npos;) decoded_text.replace(at, key.size(), std::to_string(decode(v)));
+  const std::string decoded = write("decoded.json", decoded_text);
+  ASSERT_EQ(run_phongcl("shade --scene " + encoded + gbuffer + " --out " + path("a.exr")).exit_code, 0);
+  ASSERT_EQ(run_phongcl("shade --scene " + decoded + gbuffer + " --out " + path("b.exr")).exit_code, 0);
+  const Image a = read_exr(path("a.exr")), b = read_exr(path("b.exr"));
+  for (std::size_t i = 0; i < a.rgba.size(); ++i)
+    ASSERT_NEAR(a.rgba[i], b.rgba[i], 1e-5 + 1e-5 * std::abs(b.rgba[i])) << "value " << i;  // std::to_string's 6 decimals
 }
 
 // An output that names an input, or another output, is refused before anything is read: one line

@@ -1,12 +1,12 @@
-// Images: EXR round trips, PNG display encoding and the error metrics.
+// Images: EXR round trips and what they carry, and the error metrics (PNGs: test_color.cpp).
 #include <gtest/gtest.h>
-#include <png.h>
 
 #include <ImfChannelList.h>
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
 #include <ImfInputFile.h>
 #include <ImfOutputFile.h>
+#include <ImfStandardAttributes.h>
 
 #include <cmath>
 #include <cstdint>
@@ -81,7 +81,7 @@ TEST(ExrImage, FloatRoundTripKeepsValuesAndWindows) {
 TEST(ExrImage, HalfRoundTripWithinHalfPrecision) {
   TempDir dir;
   const Image written = ramp(6, 4);
-  write_exr(written, dir / "out.exr", ExrPixelType::half);
+  write_exr(written, dir / "out.exr", {.type = ExrPixelType::half});
   EXPECT_EQ(Imf::InputFile((dir / "out.exr").c_str()).header().channels().findChannel("A")->type, Imf::HALF);
   const Image read = read_exr(dir / "out.exr");
   ASSERT_EQ(read.rgba.size(), written.rgba.size());
@@ -108,7 +108,7 @@ TEST(ExrImage, LayeredExrNamesEachLayersChannels) {
   EXPECT_EQ(read_exr(dir / "layers.exr").rgba, combined.rgba);
 
   // As half (`shade --aov --half`): every layer's channels, each value rounded to half's 11 bits.
-  write_layered_exr({{"", &combined, true}, {"diffuse", &diffuse, false}}, dir / "half.exr", ExrPixelType::half);
+  write_layered_exr({{"", &combined, true}, {"diffuse", &diffuse, false}}, dir / "half.exr", {.type = ExrPixelType::half});
   const Imf::InputFile half_file((dir / "half.exr").c_str());
   for (auto it = half_file.header().channels().begin(); it != half_file.header().channels().end(); ++it)
     EXPECT_EQ(it.channel().type, Imf::HALF) << it.name();
@@ -177,137 +177,62 @@ TEST(ExrImage, BadFilesAreInputErrors) {
   EXPECT_THROW(read_exr(dir / "cut.exr"), InputError);
 }
 
+// Premultiplied RGBA: colour where alpha is 0 is light a compositor's `over` adds to the plate.
+Image with_background_colour() {
+  Image image = ramp(3, 2);
+  float* sky = image.pixel(4);
+  sky[0] = 0.05f, sky[1] = 0.06f, sky[2] = 0.1f, sky[3] = 0.0f;  // what the shader leaves there
+  image.pixel(1)[3] = 0.5f;                                         // a partly covered edge keeps its colour
+  return image;
+}
+
+TEST(ExrImage, TransparentPixelsAreWrittenWithoutColour) {
+  TempDir dir;
+  const Image written = with_background_colour();
+  write_exr(written, dir / "out.exr");
+  const Image read = read_exr(dir / "out.exr");
+  for (std::size_t i = 0; i < written.pixel_count(); ++i)
+    for (int c = 0; c < 4; ++c)
+      EXPECT_EQ(read.pixel(i)[c], i == 4 && c < 3 ? 0.0f : written.pixel(i)[c]) << "pixel " << i << " channel " << c;
+  EXPECT_EQ(written.pixel(4)[0], 0.05f) << "the caller's image is left as it was";
+}
+
+TEST(ExrImage, TransparentColourIsKeptOnRequest) {
+  TempDir dir;
+  const Image written = with_background_colour();
+  write_exr(written, dir / "out.exr", {.keep_color_where_transparent = true});
+  EXPECT_EQ(read_exr(dir / "out.exr").rgba, written.rgba);
+}
+
+TEST(ExrImage, LayersLoseColourWhereTheirAlphaIsZero) {
+  TempDir dir;
+  const Image combined = with_background_colour();
+  Image diffuse = combined;  // terms carry the combined image's alpha
+  diffuse.pixel(4)[1] = 7.0f;
+  write_layered_exr({{"", &combined, true}, {"diffuse", &diffuse, false}}, dir / "layers.exr");
+  const Plane green = decode_with_openexr(dir / "layers.exr", "diffuse.G");
+  EXPECT_EQ(green[4], 0.0f);
+  EXPECT_EQ(green[1], diffuse.pixel(1)[1]);
+}
+
+TEST(ExrImage, ChromaticitiesAreTheStandardAttribute) {
+  TempDir dir;
+  write_exr(ramp(2, 2), dir / "plain.exr");
+  EXPECT_FALSE(Imf::hasChromaticities(Imf::InputFile((dir / "plain.exr").c_str()).header()));
+  const Chromaticities p3{{0.68f, 0.32f}, {0.265f, 0.69f}, {0.15f, 0.06f}, {0.3127f, 0.329f}};
+  write_exr(ramp(2, 2), dir / "p3.exr", {.chromaticities = p3});
+  const Imf::Header header = Imf::InputFile((dir / "p3.exr").c_str()).header();
+  ASSERT_TRUE(Imf::hasChromaticities(header));
+  const Imf::Chromaticities& c = Imf::chromaticities(header);
+  EXPECT_EQ(c.red.x, 0.68f);
+  EXPECT_EQ(c.green.y, 0.69f);
+  EXPECT_EQ(c.blue.x, 0.15f);
+  EXPECT_EQ(c.white.y, 0.329f);
+}
+
 TEST(ExrImage, WriteIntoMissingDirectoryLeavesNothing) {
   TempDir dir;
   EXPECT_THROW(write_exr(ramp(2, 2), dir / "missing" / "out.exr"), InputError);
-  EXPECT_TRUE(fs::is_empty(dir.path));
-}
-
-// Reads a PNG back as 8-bit RGBA through libpng's simplified API.
-std::vector<std::uint8_t> read_png(const fs::path& file, png_uint_32& width, png_uint_32& height) {
-  png_image png;
-  std::memset(&png, 0, sizeof png);
-  png.version = PNG_IMAGE_VERSION;
-  if (!png_image_begin_read_from_file(&png, file.c_str())) throw std::runtime_error(png.message);
-  png.format = PNG_FORMAT_RGBA;
-  std::vector<std::uint8_t> bytes(PNG_IMAGE_SIZE(png));
-  if (!png_image_finish_read(&png, nullptr, bytes.data(), 0, nullptr)) throw std::runtime_error(png.message);
-  width = png.width;
-  height = png.height;
-  return bytes;
-}
-
-struct DisplayCase {
-  float value;
-  DisplaySettings display;
-  int expected_byte;
-  const char* why;
-};
-
-TEST(PngImage, ToneMapsAndSrgbEncodingAtKnownPoints) {
-  // Expected bytes from the formulas by hand, each at least 0.08 away from a rounding boundary.
-  const DisplayCase cases[] = {
-      {1.0f, {0.0, ToneMap::reinhard}, 188, "1/(1+1) = 0.5, sRGB 0.7354 (a 2.2 gamma would give 186)"},
-      {3.0f, {0.0, ToneMap::reinhard}, 225, "0.75 -> sRGB 0.8808"},
-      {0.5f, {1.0, ToneMap::reinhard}, 188, "one stop up makes it 1"},
-      {0.2f, {0.0, ToneMap::clamp}, 124, "sRGB(0.2) = 0.4845"},
-      {0.002f, {0.0, ToneMap::clamp}, 7, "linear segment: 12.92 * 0.002"},
-      {2.0f, {0.0, ToneMap::clamp}, 255, "clamped to 1"},
-      {1.0f, {0.0, ToneMap::aces}, 232, "2.54/3.16 = 0.8038 -> sRGB 0.9082"},
-      {0.18f, {0.0, ToneMap::aces}, 141, "0.2669 -> sRGB 0.5535"},
-      {-1.0f, {0.0, ToneMap::reinhard}, 0, "negative displays as black"},
-      {kNaN, {0.0, ToneMap::aces}, 0, "NaN displays as black"},
-      {kInf, {0.0, ToneMap::reinhard}, 255, "+Inf displays as white"},
-      {kInf, {0.0, ToneMap::aces}, 255, "+Inf displays as white"},
-  };
-  TempDir dir;
-  for (const auto& c : cases) {
-    Image image(1, 1);
-    for (int ch = 0; ch < 3; ++ch) image.pixel(0)[ch] = c.value;
-    image.pixel(0)[3] = 1.0f;
-    write_png(image, dir / "out.png", c.display);
-    png_uint_32 width = 0, height = 0;
-    const auto bytes = read_png(dir / "out.png", width, height);
-    ASSERT_EQ(bytes.size(), 4u);
-    for (int ch = 0; ch < 3; ++ch)
-      EXPECT_EQ(bytes[ch], c.expected_byte) << "value " << c.value << ": " << c.why;
-  }
-}
-
-// display_rgba8 reads bytes from tables; the formula written out here is the oracle. Values on
-// a geometric sweep over 2^-20..2^20, 1e-4 apart, so that every byte boundary of every curve is
-// crossed with values on both sides close to it, at exposures that move the boundaries off the
-// sweep's points; and each float next to a boundary the sweep found.
-TEST(PngImage, DisplayTableEqualsTheFormulaEverywhere) {
-  auto formula = [](float value, ToneMap map, double exposure) -> int {
-    const double x = value * std::exp2(exposure);
-    if (std::isnan(x) || x <= 0.0) return 0;
-    if (std::isinf(x)) return 255;
-    double t = map == ToneMap::clamp ? std::min(x, 1.0) : map == ToneMap::reinhard ? x / (1.0 + x)
-             : std::clamp((x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14), 0.0, 1.0);
-    const double s = t <= 0.0031308 ? 12.92 * t : 1.055 * std::pow(t, 1.0 / 2.4) - 0.055;
-    return static_cast<int>(std::lround(std::clamp(s, 0.0, 1.0) * 255.0));
-  };
-  std::vector<float> sweep;
-  for (double x = std::exp2(-20.0); x < std::exp2(20.0); x *= 1.0001) sweep.push_back(static_cast<float>(x));
-  for (const double exposure : {0.0, -3.7, 2.3, -40.0, 40.0}) {  // and the API's limits
-    for (ToneMap map : {ToneMap::clamp, ToneMap::reinhard, ToneMap::aces}) {
-      std::vector<float> values = sweep;
-      for (std::size_t i = 1; i < sweep.size(); ++i)
-        if (formula(sweep[i], map, exposure) != formula(sweep[i - 1], map, exposure))
-          for (float v = sweep[i - 1]; v <= sweep[i] && values.size() < 2 * sweep.size(); v = std::nextafter(v, 2 * v))
-            values.push_back(v);
-      Image image(static_cast<int>(values.size()), 1);
-      for (std::size_t i = 0; i < values.size(); ++i)
-        for (int c = 0; c < 4; ++c) image.pixel(i)[c] = values[i];
-      const std::vector<std::uint8_t> bytes = display_rgba8(image, {exposure, map});
-      int mismatches = 0;
-      for (std::size_t i = 0; i < values.size(); ++i)
-        if (bytes[4 * i] != formula(values[i], map, exposure) && mismatches++ < 5)
-          ADD_FAILURE() << "value " << values[i] << " curve " << static_cast<int>(map) << " exposure " << exposure
-                        << ": table " << int(bytes[4 * i]) << ", formula " << formula(values[i], map, exposure);
-      EXPECT_EQ(mismatches, 0);
-    }
-  }
-}
-
-TEST(PngImage, SizeRowOrderAndAlpha) {
-  TempDir dir;
-  Image image(3, 2);
-  const float alphas[] = {0.5f, 2.0f, -1.0f, kNaN, 1.0f, 0.0f};
-  for (std::size_t i = 0; i < image.pixel_count(); ++i) image.pixel(i)[3] = alphas[i];
-  image.pixel(3)[0] = 1.0f;  // red marks the first pixel of the second row
-  write_png(image, dir / "out.png", {0.0, ToneMap::clamp});
-  EXPECT_EQ(contents(dir / "out.png").substr(1, 3), "PNG");
-  EXPECT_NE(contents(dir / "out.png").find("sRGB"), std::string::npos) << "the sRGB chunk tags the encoding";
-  png_uint_32 width = 0, height = 0;
-  const auto bytes = read_png(dir / "out.png", width, height);
-  EXPECT_EQ(width, 3u);
-  EXPECT_EQ(height, 2u);
-  const int expected_alpha[] = {128, 255, 0, 0, 255, 0};  // 127.5 rounds up; clamped; NaN -> 0
-  for (int i = 0; i < 6; ++i) EXPECT_EQ(bytes[4 * i + 3], expected_alpha[i]) << "pixel " << i;
-  EXPECT_EQ(bytes[4 * 3 + 0], 255);
-  EXPECT_EQ(bytes[4 * 0 + 0], 0);
-}
-
-TEST(PngImage, FailedWriteKeepsTheExistingFile) {
-  TempDir dir;
-  write_png(ramp(2, 2), dir / "out.png");
-  const std::string before = contents(dir / "out.png");
-  // libpng refuses a zero-size image after the file is opened: the temporary must go away too.
-  try {
-    write_png(Image(0, 0), dir / "out.png");
-    ADD_FAILURE() << "expected InputError";
-  } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("out.png: cannot write PNG"), std::string::npos) << e.what();
-  }
-  EXPECT_EQ(contents(dir / "out.png"), before);
-  EXPECT_EQ(std::distance(fs::directory_iterator(dir.path), fs::directory_iterator()), 1);
-}
-
-TEST(PngImage, WriteIntoMissingDirectoryLeavesNothing) {
-  TempDir dir;
-  EXPECT_THROW(write_png(ramp(2, 2), dir / "missing" / "out.png"), InputError);
   EXPECT_TRUE(fs::is_empty(dir.path));
 }
 

@@ -23,6 +23,8 @@
 #include "cli_runner.h"
 #include "gbuffer/layouts.h"
 #include "reference/reference.h"
+#include "color/color_conversion.h"
+#include "color/display.h"
 #include "serve/relight_server.h"
 #include "serve_support.h"
 #include "temp_dir.h"
@@ -108,12 +110,18 @@ std::vector<std::uint8_t> decode_png(const std::string& bytes, int& width, int& 
   return rgba;
 }
 
-// The kernel against the scalar reference of the same scene: the product's bound, on every pixel.
+// The kernel against the scalar reference of the same scene: the product's bound, on every covered
+// pixel; an EXR is black where alpha is 0 (the reference leaves the scene's background colour there).
 void expect_matches_reference(const Image& served, const Scene& scene, const GBuffer& gbuffer) {
   const Image expected = reference_image(scene, gbuffer);
   ASSERT_EQ(served.width, expected.width);
   ASSERT_EQ(served.height, expected.height);
-  const ErrorStats error = testing::shading_error(served, expected);
+  std::vector<bool> covered(expected.pixel_count());
+  for (std::size_t i = 0; i < covered.size(); ++i) {
+    covered[i] = expected.pixel(i)[3] > 0.0f;
+    for (int c = 0; c < 4 && !covered[i]; ++c) ASSERT_EQ(served.pixel(i)[c], 0.0f) << "transparent pixel " << i << " channel " << c;
+  }
+  const ErrorStats error = testing::shading_error(served, expected, covered);
   EXPECT_LE(error.max_rel, testing::kRelativeBound) << "worst pixel (" << error.worst_x << ", " << error.worst_y
                                                     << "): served " << error.worst_test << ", reference "
                                                     << error.worst_expected;
@@ -201,14 +209,21 @@ TEST_F(Serve, HugePayloadsAreRefused) {
 TEST_F(Serve, ImagesInEveryFormatAndWidth) {
   auto client = server_->client();
   const Image exr = decode_exr(client.Get("/api/image?format=exr")->body);
-  const auto png = client.Get("/api/image?format=png&exposure=0.5&tonemap=aces");
+  const auto png = client.Get("/api/image?format=png&exposure=0.5&view=aces");
   ASSERT_EQ(png->status, 200);
   EXPECT_EQ(png->get_header_value("Content-Type"), "image/png");
   int width = 0, height = 0;
   const std::vector<std::uint8_t> rgba = decode_png(png->body, width, height);
   ASSERT_EQ(width, 640);
   ASSERT_EQ(height, 480);
-  EXPECT_EQ(rgba, display_rgba8(exr, {0.5, ToneMap::aces})) << "the PNG is the EXR's display encoding";
+  DisplaySettings display;
+  display.view = "aces";
+  display.exposure_stops = 0.5;
+  display.background = load_scene(kSceneFile).background;
+  EXPECT_EQ(rgba, DisplayTransform(ColorConfig::builtin(), display).encode(exr))
+      << "the PNG is the EXR's display encoding, over the scene's background";
+  EXPECT_EQ(decode_png(client.Get("/api/image?format=png&exposure=0.5&tonemap=aces")->body, width, height), rgba)
+      << "tonemap is view's old name";
 
   const auto jpeg = client.Get("/api/image?format=jpeg&width=320");
   ASSERT_EQ(jpeg->status, 200);
@@ -236,13 +251,53 @@ TEST_F(Serve, BadImageParametersAre400) {
       {"width=12abc", "must be an integer"},
       {"exposure=nan", "finite number"},
       {"exposure=1e9", "'exposure' must be in"},
-      {"tonemap=filmic", "clamp, reinhard or aces"},
+      {"tonemap=filmic", "has no view 'filmic' (views: reinhard, aces, clamp)"},
+      {"view=Filmic", "has no view 'Filmic' (views: reinhard, aces, clamp)"},
+      {"view=aces&tonemap=aces", "give one"},
+      {"display=XYZ", "no display 'XYZ' (displays: sRGB)"},
+      {"look=Punchy", "no look 'Punchy' (looks: none)"},
       {"aov=normal", "combined, ambient, diffuse or specular"},
       {"colour=red", "unknown parameter 'colour'"},
       {"width=100&width=200", "more than once"},
   };
   for (const auto& [query, needle] : cases) expect_error(client.Get("/api/image?" + query), 400, needle);
   expect_error(client.Get("/api/frame?after=-1"), 400, "'after' must be in");
+}
+
+TEST_F(Serve, ColorsAndThePickersConversions) {
+  auto client = server_->client();
+  const json colors = body_json(client.Get("/api/colors"));
+  EXPECT_EQ(colors["working_space"], "Linear Rec.709 (sRGB)");
+  EXPECT_EQ(colors["default_display"], "sRGB");
+  ASSERT_EQ(colors["displays"].size(), 1u);
+  EXPECT_EQ(colors["displays"][0]["views"], json::array({"reinhard", "aces", "clamp"}));
+  EXPECT_EQ(colors["displays"][0]["picker_space"], "sRGB");
+  EXPECT_EQ(colors["looks"], json::array());
+  // The picker's #ff8040 (sRGB-encoded) as working-space values, and back.
+  const json working = body_json(client.Get("/api/color?rgb=1,0.5019608,0.2509804&from=sRGB&to=scene_linear"));
+  const double expected[] = {1.0, 0.2158605, 0.0512695};  // the sRGB decoding of 255, 128, 64
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(working["rgb"][c].get<double>(), expected[c], 1e-6) << c;
+  const json back = body_json(client.Get("/api/color?rgb=1,0.2158605,0.0512695&from=scene_linear&to=sRGB"));
+  EXPECT_NEAR(back["rgb"][1].get<double>(), 0.5019608, 1e-6);
+  expect_error(client.Get("/api/color?rgb=1,2&from=sRGB&to=scene_linear"), 400, "three finite numbers");
+  expect_error(client.Get("/api/color?rgb=1,2,nan&from=sRGB&to=scene_linear"), 400, "three finite numbers");
+  expect_error(client.Get("/api/color?rgb=1,2,3&from=sRGB"), 400, "are required");
+  expect_error(client.Get("/api/color?rgb=1,2,3&from=P3&to=scene_linear"), 400, "'P3': no such colour space");
+}
+
+TEST_F(Serve, SceneColoursInTheirOwnSpaceAreConverted) {
+  auto client = server_->client();
+  json scene = json::parse(client.Get("/api/scene")->body);
+  scene["color_space"] = "sRGB";
+  ASSERT_EQ(client.Put("/api/scene", scene.dump(), "application/json")->status, 200);
+  EXPECT_EQ(json::parse(client.Get("/api/scene")->body)["color_space"], "sRGB") << "the document is held as sent";
+  const Image served = decode_exr(client.Get("/api/image?format=exr")->body);
+  Scene converted = parse_scene(scene.dump(), kSceneFile);
+  convert_scene_colors(converted, ColorConfig::builtin());
+  expect_matches_reference(served, converted, server_->session().gbuffer());
+  scene["color_space"] = "ACEScg";
+  scene["lights"][0]["color"] = json::array({1, 0, 0});  // outside Rec.709: negative green and blue
+  expect_error(client.Put("/api/scene", scene.dump(), "application/json"), 400, "outside its gamut");
 }
 
 TEST_F(Serve, LongPollWaitsForANewerFrameAndTimesOutWith204) {
@@ -387,9 +442,12 @@ TEST(ServeBeauty, ServesTheRenderersOwnImage) {
     ASSERT_EQ(image.pixel(i)[3], 1.0f) << "pixel " << i;
   }
   int width = 0, height = 0;
-  const auto png = client.Get("/api/beauty?format=png&exposure=1&tonemap=clamp");
+  const auto png = client.Get("/api/beauty?format=png&exposure=1&view=clamp");
   ASSERT_EQ(png->status, 200);
-  EXPECT_EQ(decode_png(png->body, width, height), display_rgba8(image, {1.0, ToneMap::clamp}));
+  DisplaySettings display;
+  display.view = "clamp";
+  display.exposure_stops = 1.0;
+  EXPECT_EQ(decode_png(png->body, width, height), DisplayTransform(ColorConfig::builtin(), display).encode(image));
   const auto small = client.Get("/api/beauty?format=png&width=32");
   ASSERT_EQ(small->status, 200);
   decode_png(small->body, width, height);

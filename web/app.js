@@ -89,8 +89,7 @@ function streamWidth() {
 }
 
 function viewQuery() {
-  return `format=${$('format').value}&exposure=${$('exposure').value}&tonemap=${$('tonemap').value}` +
-         `&aov=${$('aov').value}${streamWidth()}`;
+  return `format=${$('format').value}&${colorManagement.query()}&aov=${$('aov').value}${streamWidth()}`;
 }
 
 let pollAbort = null;
@@ -173,7 +172,7 @@ function drawView() {
 // The beauty pass with the view's display settings, fetched again when they change.
 async function loadBeauty() {
   if (!state.hasBeauty) return;
-  const query = `format=png&exposure=${$('exposure').value}&tonemap=${$('tonemap').value}${streamWidth()}`;
+  const query = `format=png&${colorManagement.query()}${streamWidth()}`;
   if (query === state.beautyQuery) return;
   state.beautyQuery = query;
   const response = await fetch(`api/beauty?${query}`);
@@ -246,19 +245,31 @@ function el(tag, attributes = {}, children = []) {
 
 const hex = (v) => Math.round(Math.min(1, Math.max(0, v)) * 255).toString(16).padStart(2, '0');
 
-// An RGB value of any non-negative size as a colour picker and an intensity (its largest component).
+// An RGB value of any non-negative size as a colour picker (display space, color.js) and an
+// intensity (the largest working-space component). Edits apply in order: a conversion that
+// finishes after a newer edit's is dropped.
 function colorInput(rgb, onChange, label) {
-  const intensity = Math.max(rgb[0], rgb[1], rgb[2]);
-  const unit = intensity > 0 ? rgb.map((c) => c / intensity) : [1, 1, 1];
-  const picker = el('input', { type: 'color', value: `#${unit.map(hex).join('')}`, title: `${label} colour` });
-  const scale = el('input', { type: 'number', value: +intensity.toFixed(4), min: 0, step: 0.05, title: `${label} intensity` });
+  const picker = el('input', { type: 'color', value: '#ffffff', title: `${label} colour`, disabled: true });
+  const scale = el('input', { type: 'number', value: 1, min: 0, step: 0.05, title: `${label} intensity` });
   picker.dataset.role = `${label}-color`;
   scale.dataset.role = `${label}-intensity`;
-  const update = () => {
+  const space = () => state.scene.color_space || 'scene_linear';
+  let edits = 0;
+  colorManagement.toPicker(rgb, space()).then(({ unit, intensity }) => {
+    if (edits > 0) return;  // already edited: keep what the user set
+    picker.value = `#${unit.map(hex).join('')}`;
+    scale.value = +intensity.toFixed(4);
+  }).catch((error) => setStatus(`${label} colour: ${error.message}`, true)).finally(() => { picker.disabled = false; });
+  const update = async () => {
+    const edit = ++edits;
     const v = picker.value;
-    const c = [1, 3, 5].map((i) => parseInt(v.slice(i, i + 2), 16) / 255);
-    const s = Number(scale.value);
-    onChange(c.map((x) => x * s));
+    const unit = [1, 3, 5].map((i) => parseInt(v.slice(i, i + 2), 16) / 255);
+    try {
+      const value = await colorManagement.fromPicker(unit, Number(scale.value), space());
+      if (edit === edits) onChange(value);
+    } catch (error) {
+      setStatus(`${label} colour: ${error.message}`, true);
+    }
   };
   picker.addEventListener('input', update);
   scale.addEventListener('input', update);
@@ -552,7 +563,8 @@ async function start() {
   $('add-point').addEventListener('click', () => addLight('point'));
   $('add-directional').addEventListener('click', () => addLight('directional'));
   $('add-spot').addEventListener('click', () => addLight('spot'));
-  for (const id of ['tonemap', 'aov', 'format', 'fit']) $(id).addEventListener('change', viewChanged);
+  for (const id of ['aov', 'format', 'fit']) $(id).addEventListener('change', viewChanged);
+  await colorManagement.load(viewChanged);
   window.addEventListener('resize', viewChanged);
   $('exposure').addEventListener('input', () => { $('exposure-value').textContent = $('exposure').value; viewChanged(); });
   $('split').addEventListener('input', () => { $('split-value').textContent = `${$('split').value}%`; drawView(); });

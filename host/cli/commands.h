@@ -9,5 +9,7 @@ void add_gbuffer_command(CLI::App& app);
 void add_shade_command(CLI::App& app);
 void add_devices_command(CLI::App& app);
 void add_serve_command(CLI::App& app);
+void add_colors_command(CLI::App& app);
+void add_png_command(CLI::App& app);
 
 }  // namespace phongcl::cli

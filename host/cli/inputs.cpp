@@ -5,6 +5,7 @@
 #include <string>
 #include <tuple>
 
+#include "color/color_conversion.h"
 #include "common/error.h"
 #include "gbuffer/file_camera.h"
 #include "gbuffer/layouts.h"
@@ -34,6 +35,17 @@ void SceneInputs::add_options(CLI::App& command) {
   command.add_option("--max-pixels", max_pixels,
                      "Refuse G-buffers whose data window has more pixels, before allocating (default 268435456 = 16384^2)")
       ->check(CLI::PositiveNumber);
+  command.add_option("--ocio", ocio,
+                     "OpenColorIO config: a config file, blender (an installed Blender's) or builtin (default: the OCIO "
+                     "environment variable's, else builtin; phongcl colors lists what one holds)");
+  command.add_option("--gbuffer-space", gbuffer_space,
+                     "Colour space of the G-buffer's colour passes (DiffCol, GlossCol, per-pixel ka/kd/ks, the beauty pass), "
+                     "converted to the working space (default: already in it)");
+}
+
+std::shared_ptr<const ColorConfig> SceneInputs::color_config() const {
+  if (!color_) color_ = std::make_shared<const ColorConfig>(ColorConfig::load(ocio));
+  return color_;
 }
 
 namespace {
@@ -109,6 +121,7 @@ Scene SceneInputs::load_scene() const {
       throw InputError(scene.source, "no \"camera\", and the G-buffer's header states none (worldToCamera and worldToNDC)");
     scene.camera = to_camera(*file_camera);
   }
+  convert_scene_colors(scene, *color_config());
   return camera_space() ? to_camera_space(scene) : scene;
 }
 
@@ -129,6 +142,10 @@ LoadedGBuffer SceneInputs::load_described_gbuffer(const Scene& scene, bool with_
   const std::filesystem::path file = gbuffer_path(scene);
   GBufferRead read = read_gbuffer(file, options);
   std::string& description = read.description;
+  if (!gbuffer_space.empty()) {
+    convert_gbuffer_colors(read.gbuffer, *color_config(), gbuffer_space);
+    description += ", colour passes from " + gbuffer_space + " to " + color_config()->working_space();
+  }
   if (const auto file_camera = read_file_camera(file)) {
     if (!scene.has_camera) {
       description += ", camera from the file's worldToCamera and worldToNDC";

@@ -13,5 +13,7 @@ int main(int argc, char** argv) {
   phongcl::cli::add_shade_command(app);
   phongcl::cli::add_devices_command(app);
   phongcl::cli::add_serve_command(app);
+  phongcl::cli::add_colors_command(app);
+  phongcl::cli::add_png_command(app);
   return phongcl::cli::run_app(app, argc, argv);
 }

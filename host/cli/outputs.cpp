@@ -4,7 +4,6 @@
 
 #include <cstdlib>
 #include <filesystem>
-#include <map>
 #include <stdexcept>
 #include <system_error>
 #include <utility>
@@ -16,9 +15,12 @@
 namespace phongcl::cli {
 
 namespace {
-const std::map<std::string, ToneMap> kToneMaps{{"clamp", ToneMap::clamp}, {"reinhard", ToneMap::reinhard}, {"aces", ToneMap::aces}};
 
 std::string pixel_type_name(bool half) { return half ? " (half)" : " (float32)"; }
+
+std::string display_name(const DisplayTransform& display) {
+  return display.display() + ", " + display.view() + (display.look().empty() ? "" : ", " + display.look());
+}
 
 }  // namespace
 
@@ -41,6 +43,7 @@ void ImageOutputs::check_destinations() const {
   }
   for (const std::string* file : {&exr_file, &png_file, &aov_file})
     if (!file->empty()) check_destination(*file);
+  if (!png_file.empty()) display_transform(glm::dvec3(0.0));  // names in the config, finite exposure
 }
 
 std::vector<NamedFile> ImageOutputs::named_files() const {
@@ -50,11 +53,15 @@ std::vector<NamedFile> ImageOutputs::named_files() const {
   return files;
 }
 
-void ImageOutputs::add_options(CLI::App& command) {
-  command.add_option("--out", exr_file, "Output EXR (R G B A)");
-  command.add_flag("--half", half, "Write EXRs as half instead of float32");
-  command.add_option("--png", png_file, "Also write an 8-bit sRGB PNG preview");
-  command.add_option("--exposure", exposure, "PNG exposure in stops: values are scaled by 2^exposure (default 0, within +-40)")
+void add_display_options(CLI::App& command, DisplaySettings& settings, std::string& tone_map) {
+  command.add_option("--display", settings.display, "PNG display of the OCIO config (default: the config's; phongcl colors lists them)");
+  command.add_option("--view", settings.view, "PNG view of the display (default: the display's; the built-in config's: "
+                                              "reinhard, aces, clamp; Blender's: Filmic, Standard, ...)");
+  command.add_option("--look", settings.look, "PNG look of the OCIO config, before the view (default: none)");
+  command
+      .add_option("--exposure", settings.exposure_stops,
+                  "PNG exposure in stops: working-space values are scaled by 2^exposure before the look and view "
+                  "(default 0, within +-40)")
       ->check(CLI::Validator(
           [](std::string& text) {
             char* end = nullptr;
@@ -68,9 +75,23 @@ void ImageOutputs::add_options(CLI::App& command) {
             return std::string();
           },
           "STOPS"));
-  command.add_option("--tonemap", tone_map,
-                     "PNG tone map: clamp, reinhard (x/(1+x), default) or aces (Narkowicz's fit of the ACES filmic curve)")
-      ->check(CLI::IsMember({"clamp", "reinhard", "aces"}));
+  command.add_option("--tonemap", tone_map, "The same as --view (its name before OCIO)")->excludes("--view");
+}
+
+DisplaySettings with_tone_map(DisplaySettings settings, const std::string& tone_map) {
+  if (!tone_map.empty()) settings.view = tone_map;
+  return settings;
+}
+
+void ImageOutputs::add_options(CLI::App& command) {
+  command.add_option("--out", exr_file, "Output EXR (R G B A, premultiplied: RGB 0 where alpha is 0)");
+  command.add_flag("--half", half, "Write EXRs as half instead of float32");
+  command.add_flag("--exr-background", exr_background,
+                   "Keep the scene's background colour where alpha is 0 in EXRs (as phongcl wrote them before; "
+                   "a compositor's over adds it to the plate)");
+  command.add_option("--png", png_file, "Also write an 8-bit PNG preview: the image over the scene's background, "
+                                        "through the config's display and view");
+  add_display_options(command, display, tone_map);
 }
 
 void ImageOutputs::add_aov_option(CLI::App& command) {
@@ -78,39 +99,57 @@ void ImageOutputs::add_aov_option(CLI::App& command) {
                      "Also write a multilayer EXR: ambient.RGB, diffuse.RGB, specular.RGB and the combined R G B A");
 }
 
+DisplayTransform ImageOutputs::display_transform(const glm::dvec3& background) const {
+  if (!color) throw std::logic_error("ImageOutputs: no colour config set");
+  DisplaySettings settings = with_tone_map(display, tone_map);
+  settings.background = background;
+  return DisplayTransform(*color, settings);
+}
+
+ExrWriteOptions ImageOutputs::exr_options() const {
+  ExrWriteOptions options;
+  options.type = half ? ExrPixelType::half : ExrPixelType::float32;
+  options.compression = compression;
+  options.keep_color_where_transparent = exr_background;
+  if (color) options.chromaticities = color->working_chromaticities();
+  return options;
+}
+
 // Every output is written to a temporary first and all are renamed together (AtomicBatch), so a
 // failure or a kill leaves either all the old files or all the new ones, never a mix.
-std::string ImageOutputs::write(const Image& image) const {
+std::string ImageOutputs::write(const Image& image, const glm::dvec3& background) const {
   AtomicBatch batch;
-  const std::string written = write_images(image);
+  const std::string written = write_images(image, background);
   batch.commit();
   return written;
 }
 
-std::string ImageOutputs::write(const Image& image, const TermLayers& terms) const {
-  if (aov_file.empty()) return write(image);
+std::string ImageOutputs::write(const Image& image, const glm::dvec3& background, const TermLayers& terms) const {
+  if (aov_file.empty()) return write(image, background);
   AtomicBatch batch;
   write_layered_exr({{"", &image, true},
                      {"ambient", &terms.ambient, false},
                      {"diffuse", &terms.diffuse, false},
                      {"specular", &terms.specular, false}},
-                    aov_file, half ? ExrPixelType::half : ExrPixelType::float32, compression);
+                    aov_file, exr_options());
   const std::string aov_written =
       aov_file + " (ambient, diffuse, specular + combined, " + (half ? "half" : "float32") + ")";
-  const std::string written = exr_file.empty() && png_file.empty() ? aov_written : write_images(image) + ", " + aov_written;
+  const std::string written =
+      exr_file.empty() && png_file.empty() ? aov_written : write_images(image, background) + ", " + aov_written;
   batch.commit();
   return written;
 }
 
-std::string ImageOutputs::write_images(const Image& image) const {
+std::string ImageOutputs::write_images(const Image& image, const glm::dvec3& background) const {
   if (exr_file.empty() && png_file.empty()) throw std::invalid_argument("nothing to write: give --out and/or --png");
   std::string png_written;
   if (!png_file.empty()) {
-    write_png(image, png_file, DisplaySettings{exposure, kToneMaps.at(tone_map)});
-    png_written = png_file + " (sRGB, " + tone_map + ")";
+    const DisplayTransform transform = display_transform(background);
+    write_png(image, png_file, transform);
+    png_written = png_file + " (" + display_name(transform) + ")";
   }
   if (exr_file.empty()) return png_written;
-  write_exr(image, exr_file, half ? ExrPixelType::half : ExrPixelType::float32, compression);
+  write_exr(image, exr_file, exr_options());
   return exr_file + pixel_type_name(half) + (png_written.empty() ? "" : ", " + png_written);
 }
 

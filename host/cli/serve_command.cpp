@@ -71,7 +71,7 @@ void run_serve(const ServeArguments& args) {
   const std::string device = session.device_description();
   RenderSettings settings;
   settings.precision = parse_precision(args.precision);
-  LiveRelighter live(session, scene_text, scene.source, settings);
+  LiveRelighter live(session, scene_text, scene.source, settings, *args.inputs.color_config());
   RelightServer server(live, {args.host, args.port, args.save, device});
 
   const std::string host = args.host.find(':') != std::string::npos ? "[" + args.host + "]" : args.host;
@@ -79,6 +79,8 @@ void run_serve(const ServeArguments& args) {
             << "  layout     " << loaded.layout << "\n"
             << "  image      " << session.width() << " x " << session.height() << "\n"
             << "  device     " << device << "\n"
+            << "  colour     " << args.inputs.color_config()->description() << ", working space "
+            << args.inputs.color_config()->working_space() << "\n"
             << (loaded.beauty.empty() ? "" : "  beauty     " + loaded.beauty + " (GET /api/beauty, the page's before/after split)\n")
             << (args.save.empty() ? "" : "  save       " + args.save + " (POST /api/save, the page's Save button)\n");
   if (!is_loopback(args.host))

@@ -61,8 +61,10 @@ void run_shade(const ShadeArguments& args) {
     return;
   }
   const auto start = Clock::now();
-  refuse_outputs_over_inputs(args.inputs, args.outputs);
-  args.outputs.check_destinations();
+  ImageOutputs outputs = args.outputs;
+  outputs.color = args.inputs.color_config();
+  refuse_outputs_over_inputs(args.inputs, outputs);
+  outputs.check_destinations();
   args.sequence.start_exr_threads();
   // The G-buffer is read while the OpenCL platform starts: neither needs the other. OpenCL stays on
   // this thread: Oclgrind's memory checks keep per-thread state and crash on calls from another.
@@ -73,7 +75,7 @@ void run_shade(const ShadeArguments& args) {
   };
   std::future<Inputs> reading = std::async(std::launch::async, [&] {
     Scene scene = args.inputs.load_scene();
-    if (args.inputs.gbuffer_file.empty()) refuse_outputs_over_inputs(args.inputs, args.outputs, &scene);
+    if (args.inputs.gbuffer_file.empty()) refuse_outputs_over_inputs(args.inputs, outputs, &scene);
     LoadedGBuffer loaded = args.inputs.load_described_gbuffer(scene);
     return Inputs{std::move(scene), std::move(loaded), milliseconds_since(start)};
   });
@@ -88,9 +90,8 @@ void run_shade(const ShadeArguments& args) {
   const Image image = options.terms ? relighter.shade(terms) : relighter.shade();
   const ShadeReport result = relighter.last_report();
   const auto write_start = Clock::now();
-  ImageOutputs outputs = args.outputs;
   outputs.compression = args.sequence.output_compression(gbuffer.compression);
-  const std::string written = outputs.write(image, {terms.ambient, terms.diffuse, terms.specular});
+  const std::string written = outputs.write(image, scene.background, {terms.ambient, terms.diffuse, terms.specular});
   const double write_ms = milliseconds_since(write_start);
 
   const ShadeTimings& t = result.timings;

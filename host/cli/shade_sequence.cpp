@@ -143,9 +143,11 @@ ExrCompression SequenceOptions::output_compression(ExrCompression input) const {
   return compression.empty() ? input : exr::parse_compression(compression);
 }
 
-void run_shade_sequence(const SceneInputs& inputs, const ImageOutputs& outputs, const RelighterOptions& options,
+void run_shade_sequence(const SceneInputs& inputs, const ImageOutputs& given_outputs, const RelighterOptions& options,
                         const SequenceOptions& sequence) {
   const auto start = Clock::now();
+  ImageOutputs outputs = given_outputs;
+  outputs.color = inputs.color_config();  // loaded before the pipeline's threads share it
   const SequenceFiles files(inputs, outputs);
   const std::vector<int> requested = requested_frames(sequence, files);
   refuse_shared_files(files.named_files(inputs, outputs, requested));
@@ -201,7 +203,7 @@ void run_shade_sequence(const SceneInputs& inputs, const ImageOutputs& outputs, 
   stages.write = [&](FrameWork& work) {
     ImageOutputs framed = files.outputs_of(outputs, work.frame);
     framed.compression = sequence.output_compression(work.compression);
-    work.written = framed.write(work.image, {work.terms.ambient, work.terms.diffuse, work.terms.specular});
+    work.written = framed.write(work.image, work.scene.background, {work.terms.ambient, work.terms.diffuse, work.terms.specular});
   };
 
   SequenceProgress progress(to_shade.size(), ::isatty(STDOUT_FILENO) == 1);

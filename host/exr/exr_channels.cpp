@@ -6,6 +6,7 @@
 #include <ImfChannelList.h>
 #include <ImfCompression.h>
 #include <ImfFrameBuffer.h>
+#include <ImfStandardAttributes.h>
 #include <ImfInputPart.h>
 #include <ImfMultiPartInputFile.h>
 #include <ImfOutputFile.h>
@@ -427,7 +428,8 @@ bool InputExr::has_channel(const std::string& name) const { return reader_->has_
 void InputExr::read(const std::vector<ReadSlice>& slices) { reader_->read(slices); }
 
 void write_channels(const std::filesystem::path& file, const PixelWindow& data_window, const PixelWindow& display_window,
-                    ExrPixelType type, const std::vector<WriteSlice>& slices, ExrCompression compression) {
+                    ExrPixelType type, const std::vector<WriteSlice>& slices, ExrCompression compression,
+                    const std::optional<Chromaticities>& chromaticities) {
   const Imf::PixelType pixel_type = type == ExrPixelType::half ? Imf::HALF : Imf::FLOAT;
   const Imath::Box2i window = to_box(data_window);
   const std::size_t pixel_count = static_cast<std::size_t>(data_window.width()) * data_window.height();
@@ -447,6 +449,11 @@ void write_channels(const std::filesystem::path& file, const PixelWindow& data_w
     translate_errors(file, "cannot write EXR", [&] {
       Imf::Header header(to_box(display_window), window);
       header.compression() = to_imf(compression);
+      if (chromaticities) {
+        const Chromaticities& c = *chromaticities;
+        Imf::addChromaticities(header, Imf::Chromaticities({c.red[0], c.red[1]}, {c.green[0], c.green[1]},
+                                                           {c.blue[0], c.blue[1]}, {c.white[0], c.white[1]}));
+      }
       for (const auto& slice : slices) header.channels().insert(slice.name, Imf::Channel(pixel_type));
       Imf::OutputFile output(temp.c_str(), header);
       output.setFrameBuffer(frame_buffer);

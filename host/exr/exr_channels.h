@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -78,9 +79,11 @@ class InputExr {
   std::unique_ptr<Reader> reader_;
 };
 
-// Writes the slices as one scanline EXR, atomically (temp file, then rename).
+// Writes the slices as one scanline EXR, atomically (temp file, then rename), with the
+// chromaticities attribute when they are given.
 void write_channels(const std::filesystem::path& file, const PixelWindow& data_window,
                     const PixelWindow& display_window, ExrPixelType type, const std::vector<WriteSlice>& slices,
-                    ExrCompression compression = ExrCompression::zip);
+                    ExrCompression compression = ExrCompression::zip,
+                    const std::optional<Chromaticities>& chromaticities = std::nullopt);
 
 }  // namespace phongcl::exr

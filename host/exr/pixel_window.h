@@ -1,6 +1,7 @@
 #pragma once
-// What EXR files say about pixels that G-buffers and images share: windows, the stored type and
-// the compression.
+// What EXR files say about pixels that G-buffers and images share: windows, the stored type, the
+// compression and the colour primaries.
+#include <array>
 
 namespace phongcl {
 
@@ -17,5 +18,10 @@ enum class ExrPixelType { half, float32 };
 
 // OpenEXR's compression methods, in its own order (exr/exr_channels.h converts and names them).
 enum class ExrCompression { none, rle, zips, zip, piz, pxr24, b44, b44a, dwaa, dwab };
+
+// CIE xy of the RGB primaries and the white point: OpenEXR's standard `chromaticities` attribute.
+struct Chromaticities {
+  std::array<float, 2> red, green, blue, white;
+};
 
 }  // namespace phongcl

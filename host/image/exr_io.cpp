@@ -13,15 +13,39 @@ namespace {
 
 constexpr const char* kChannelNames[4] = {"R", "G", "B", "A"};
 
-}  // namespace
-
-void write_exr(const Image& image, const std::filesystem::path& file, ExrPixelType type, ExrCompression compression) {
-  write_layered_exr({{"", &image, true}}, file, type, compression);
+bool has_color_where_transparent(const Image& image) {
+  for (std::size_t i = 0; i < image.pixel_count(); ++i) {
+    const float* p = image.pixel(i);
+    if (p[3] == 0.0f && (p[0] != 0.0f || p[1] != 0.0f || p[2] != 0.0f)) return true;
+  }
+  return false;
 }
 
-void write_layered_exr(const std::vector<ExrLayer>& layers, const std::filesystem::path& file, ExrPixelType type,
-                       ExrCompression compression) {
-  if (layers.empty()) throw std::invalid_argument("write_layered_exr: no layers");
+Image without_color_where_transparent(const Image& image) {
+  Image result = image;
+  for (std::size_t i = 0; i < result.pixel_count(); ++i) {
+    float* p = result.pixel(i);
+    if (p[3] == 0.0f) p[0] = p[1] = p[2] = 0.0f;
+  }
+  return result;
+}
+
+}  // namespace
+
+void write_exr(const Image& image, const std::filesystem::path& file, const ExrWriteOptions& options) {
+  write_layered_exr({{"", &image, true}}, file, options);
+}
+
+void write_layered_exr(const std::vector<ExrLayer>& given, const std::filesystem::path& file,
+                       const ExrWriteOptions& options) {
+  if (given.empty()) throw std::invalid_argument("write_layered_exr: no layers");
+  std::vector<ExrLayer> layers = given;
+  std::vector<Image> cleared;  // copies with RGB 0 where alpha is 0 (the callers' images are const)
+  cleared.reserve(layers.size());
+  if (!options.keep_color_where_transparent)
+    for (auto& layer : layers)
+      if (layer.image->rgba.size() == 4 * layer.image->pixel_count() && has_color_where_transparent(*layer.image))
+        layer.image = &cleared.emplace_back(without_color_where_transparent(*layer.image));
   const Image& first = *layers.front().image;
   const PixelWindow data_window = exr::data_window_for(first.data_window, first.width, first.height);
   std::vector<exr::WriteSlice> slices;
@@ -38,8 +62,8 @@ void write_layered_exr(const std::vector<ExrLayer>& layers, const std::filesyste
       slices.push_back({layer.name.empty() ? kChannelNames[c] : layer.name + "." + kChannelNames[c],
                         image.rgba.data() + c, 4});
   }
-  exr::write_channels(file, data_window, exr::display_window_for(first.display_window, data_window), type, slices,
-                    compression);
+  exr::write_channels(file, data_window, exr::display_window_for(first.display_window, data_window), options.type, slices,
+                      options.compression, options.chromaticities);
 }
 
 Image read_exr(const std::filesystem::path& file) {

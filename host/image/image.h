@@ -3,6 +3,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -29,12 +30,22 @@ struct Image {
 // An image with the same size and windows as the G-buffer it shades, all zero.
 Image image_like(const GBuffer& gbuffer);
 
-// Writes channels R G B A (float32 or half), same data/display window as the image; atomic.
-void write_exr(const Image& image, const std::filesystem::path& file, ExrPixelType type = ExrPixelType::float32,
-               ExrCompression compression = ExrCompression::zip);
+// What an image's EXR holds besides its pixels.
+struct ExrWriteOptions {
+  ExrPixelType type = ExrPixelType::float32;
+  ExrCompression compression = ExrCompression::zip;
+  // Images are premultiplied RGBA, as OpenEXR's convention has it: colour where alpha is 0 is light
+  // that a compositor's `over` adds to the plate. false: RGB 0 there (the shader's background
+  // colour is for previews, color/display.h); true: as the image holds it.
+  bool keep_color_where_transparent = false;
+  std::optional<Chromaticities> chromaticities{};  // the RGB primaries, as OpenEXR's standard attribute
+};
+
+// Writes channels R G B A, same data/display window as the image; atomic.
+void write_exr(const Image& image, const std::filesystem::path& file, const ExrWriteOptions& options = {});
 // The same with the file first, as the public API (include/phongcl/phongcl.hpp) writes it.
 inline void write_exr(const std::filesystem::path& file, const Image& image, ExrPixelType type = ExrPixelType::float32) {
-  write_exr(image, file, type);
+  write_exr(image, file, ExrWriteOptions{.type = type});
 }
 // One layer of a multilayer EXR: channels "<name>.R .G .B" (and ".A" with alpha), or plain
 // "R G B A" for the unnamed layer compositors show by default.
@@ -43,36 +54,24 @@ struct ExrLayer {
   const Image* image;
   bool with_alpha;
 };
-// Writes every layer into one EXR (float32 or half), atomically. The images must share size and
-// windows (std::invalid_argument otherwise); the file takes the first one's windows.
+// Writes every layer into one EXR, atomically. The images must share size and windows
+// (std::invalid_argument otherwise); the file takes the first one's windows. Each layer's RGB is 0
+// where its image's alpha is 0 unless the options keep it (with_alpha only says whether A is written).
 void write_layered_exr(const std::vector<ExrLayer>& layers, const std::filesystem::path& file,
-                       ExrPixelType type = ExrPixelType::float32, ExrCompression compression = ExrCompression::zip);
+                       const ExrWriteOptions& options = {});
 // Reads R G B (and A if present, else 1) from an EXR. Throws InputError on a bad file.
 Image read_exr(const std::filesystem::path& file);
 
-// Display encoding for looking at HDR values: scale by 2^exposure, tone map, sRGB-encode, 8 bits.
-enum class ToneMap { clamp, reinhard, aces };
-struct DisplaySettings {
-  double exposure_stops = 0.0;
-  ToneMap tone_map = ToneMap::reinhard;
-};
-// Exposure within +-40 stops (a factor of 1e12 either way): beyond it the 8-bit steps of the
+// Exposure within +-40 stops (a factor of 1e12 either way): beyond it the 8-bit steps of a
 // display curve fall outside float's range, and no image needs it.
 inline constexpr double kMaxExposureStops = 40.0;
 // Throws std::invalid_argument "exposure must be a finite number of stops in [-40, 40] (got nan)";
 // every front end checks its exposure with it before shading.
 void check_exposure(double stops);
-// 8-bit sRGB RGBA of the whole image (image/display_encoder.h: of rows, for many frames). NaN
-// displays as 0, +Inf as white.
-std::vector<std::uint8_t> display_rgba8(const Image& image, const DisplaySettings& display);
-// A PNG (tagged sRGB, fast zlib settings) of display_rgba8's bytes, in memory. Throws
-// std::runtime_error with libpng's message when it refuses (e.g. an empty image).
+// A PNG (tagged sRGB, fast zlib settings) of 8-bit RGBA bytes (a display transform's,
+// color/display.h), in memory. Throws std::runtime_error with libpng's message when it refuses
+// (e.g. an empty image).
 std::string encode_png(const std::vector<std::uint8_t>& rgba, int width, int height);
-// Writes display_rgba8 as a PNG, atomically.
-void write_png(const Image& image, const std::filesystem::path& file, const DisplaySettings& display = {});
-inline void write_png(const std::filesystem::path& file, const Image& image, const DisplaySettings& display = {}) {
-  write_png(image, file, display);
-}
 
 // Per-pixel error of `test` against `expected` over the pixels where `mask` is true (all if empty),
 // on the R, G, B channels. Relative error is |t - e| / max(|e|, abs_floor).

@@ -67,6 +67,10 @@ struct Scene {
   std::vector<Light> lights;
   std::vector<Material> materials;
   std::vector<Object> objects;
+  // "color_space": the OCIO colour space the colours above are in (lights, materials, ambient,
+  // background); empty: the working space. Front ends convert them (color/color_conversion.h) and
+  // empty it; the Relighter refuses a scene whose colours are not converted yet.
+  std::string color_space;
   std::filesystem::path gbuffer;  // optional "gbuffer" entry, resolved relative to the scene file; empty if absent
   std::filesystem::path source;   // the scene file, for messages
 };

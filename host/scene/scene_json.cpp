@@ -159,7 +159,7 @@ Scene parse_scene(std::string_view json_text, const std::filesystem::path& sourc
 
 Scene read_scene(const nlohmann::json& document, const std::filesystem::path& source) {
   const JsonObject top = JsonValue(document, "", source).object();
-  top.expect_keys({"camera", "background", "ambient", "lights", "materials", "objects", "gbuffer"});
+  top.expect_keys({"camera", "background", "ambient", "lights", "materials", "objects", "gbuffer", "color_space"});
   Scene scene;
   scene.source = source;
   if (auto value = top.find("camera")) scene.camera = read_camera(value->object());
@@ -173,6 +173,10 @@ Scene read_scene(const nlohmann::json& document, const std::filesystem::path& so
     for (const JsonValue& light : value->elements()) scene.lights.push_back(read_light(light, scene.materials.size()));
   if (auto value = top.find("objects")) scene.objects = read_objects(*value, scene.materials.size());
   if (auto value = top.find("gbuffer")) scene.gbuffer = read_gbuffer_path(*value, source);
+  if (auto value = top.find("color_space")) {
+    scene.color_space = value->string();
+    if (scene.color_space.empty()) value->fail("must name a colour space (leave it out for the working space)");
+  }
   return scene;
 }
 

@@ -2,11 +2,15 @@
 
 #include <cerrno>
 #include <chrono>
+#include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <optional>
 
 #include <nlohmann/json.hpp>
 
+#include "color/color_conversion.h"
 #include "common/atomic_file.h"
 #include "common/error.h"
 #include "scene/json_reader.h"
@@ -33,13 +37,6 @@ void send_json(httplib::Response& response, const json& body, int status = 200) 
   response.set_content(json_text(body), "application/json");
 }
 
-ToneMap parse_tone_map(const std::string& name) {
-  if (name == "clamp") return ToneMap::clamp;
-  if (name == "reinhard") return ToneMap::reinhard;
-  if (name == "aces") return ToneMap::aces;
-  throw BadRequest("parameter 'tonemap' must be clamp, reinhard or aces (got '" + name + "')");
-}
-
 // Which image of a frame a request shows.
 enum class Term { combined, ambient, diffuse, specular };
 Term parse_term(const std::string& name) {
@@ -60,9 +57,11 @@ const Image& term_image(const Frame& frame, Term term) {
   return frame.image;
 }
 
-const std::vector<std::string_view> kBeautyParameters{"format", "width", "exposure", "tonemap"};
-const std::vector<std::string_view> kImageParameters{"format", "width", "exposure", "tonemap", "aov"};
-const std::vector<std::string_view> kPollParameters{"format", "width", "exposure", "tonemap", "aov", "after", "timeout_ms"};
+// The display parameters (color/display.h); tonemap is view's name from before OCIO.
+const std::vector<std::string_view> kBeautyParameters{"format", "width", "exposure", "display", "view", "look", "tonemap"};
+const std::vector<std::string_view> kImageParameters{"format", "width", "exposure", "display", "view", "look", "tonemap", "aov"};
+const std::vector<std::string_view> kPollParameters{"format", "width", "exposure", "display", "view", "look", "tonemap",
+                                                    "aov", "after", "timeout_ms"};
 
 }  // namespace
 
@@ -77,7 +76,9 @@ struct ImageRequest {
 
 namespace {
 
-ImageRequest image_request(const Query& query, int image_width) {
+// The names are checked against `color` here (a 400 listing what the config has), before the
+// request waits for a frame; the background is each frame's.
+ImageRequest image_request(const Query& query, int image_width, const ColorConfig& color) {
   ImageRequest wanted;
   wanted.format_name = query.text("format").value_or("png");
   try {
@@ -85,8 +86,16 @@ ImageRequest image_request(const Query& query, int image_width) {
   } catch (const std::invalid_argument& error) {
     throw BadRequest(std::string("parameter 'format': ") + error.what());
   }
-  wanted.display.exposure_stops = query.number("exposure", -kMaxExposureStops, kMaxExposureStops, 0.0);
-  wanted.display.tone_map = parse_tone_map(query.text("tonemap").value_or("reinhard"));
+  DisplaySettings& display = wanted.display;
+  display.exposure_stops = query.number("exposure", -kMaxExposureStops, kMaxExposureStops, 0.0);
+  display.display = query.text("display").value_or("");
+  display.view = query.text("view").value_or("");
+  if (const auto tonemap = query.text("tonemap")) {
+    if (!display.view.empty()) throw BadRequest("parameters 'view' and 'tonemap' (its old name) name the same thing: give one");
+    display.view = *tonemap;
+  }
+  display.look = query.text("look").value_or("");
+  DisplayTransform(color, display);  // for EXR too: a name the config lacks is an error whatever the format
   wanted.width = static_cast<int>(query.integer("width", 1, image_width, image_width));
   wanted.term = parse_term(query.text("aov").value_or("combined"));
   return wanted;
@@ -97,6 +106,22 @@ json timings_json(const FrameTimings& t) {
 }
 
 json vec3_json(const glm::dvec3& v) { return json::array({v.x, v.y, v.z}); }
+
+// "r,g,b": three finite numbers.
+glm::dvec3 parse_rgb(const std::string& text) {
+  glm::dvec3 rgb;
+  std::size_t at = 0;
+  for (int c = 0; c < 3; ++c) {
+    const std::size_t end = c < 2 ? text.find(',', at) : text.size();
+    const std::string part = end == std::string::npos ? "" : text.substr(at, end - at);
+    char* stop = nullptr;
+    rgb[c] = std::strtod(part.c_str(), &stop);
+    if (part.empty() || *stop != '\0' || !std::isfinite(rgb[c]))
+      throw BadRequest("parameter 'rgb' must be three finite numbers r,g,b (got '" + text + "')");
+    at = end + 1;
+  }
+  return rgb;
+}
 
 RenderSettings parse_settings(const std::string& body, RenderSettings settings) {
   const std::filesystem::path source = "settings";
@@ -157,6 +182,8 @@ void ApiRoutes::add_to(httplib::Server& server) {
   server.Get("/api/pick", route(&ApiRoutes::get_pick));
   server.Post("/api/save", route(&ApiRoutes::post_save));
   server.Get("/api/beauty", route(&ApiRoutes::get_beauty));
+  server.Get("/api/colors", route(&ApiRoutes::get_colors));
+  server.Get("/api/color", route(&ApiRoutes::get_color));
 }
 
 void ApiRoutes::get_scene(const httplib::Request& request, httplib::Response& response) {
@@ -198,7 +225,7 @@ ApiRoutes::WaitingPlace::~WaitingPlace() {
 }
 
 void ApiRoutes::get_image(const httplib::Request& request, httplib::Response& response) {
-  const ImageRequest wanted = image_request(Query(request, kImageParameters), live_.session().width());
+  const ImageRequest wanted = image_request(Query(request, kImageParameters), live_.session().width(), live_.color_config());
   const WaitingPlace place(*this);
   const auto frame = live_.current_frame(wanted.term != Term::combined, options_.frame_timeout);
   if (!frame) return send_json(response, {{"error", "no frame within the time limit (server busy or stopping)"}}, 503);
@@ -207,7 +234,7 @@ void ApiRoutes::get_image(const httplib::Request& request, httplib::Response& re
 
 void ApiRoutes::get_frame(const httplib::Request& request, httplib::Response& response) {
   const Query query(request, kPollParameters);
-  const ImageRequest wanted = image_request(query, live_.session().width());
+  const ImageRequest wanted = image_request(query, live_.session().width(), live_.color_config());
   const auto after = static_cast<std::uint64_t>(query.integer("after", 0, std::numeric_limits<long long>::max(), 0));
   const auto timeout = std::chrono::milliseconds(
       query.integer("timeout_ms", 0, options_.max_poll.count(), std::min<long long>(20'000, options_.max_poll.count())));
@@ -221,11 +248,11 @@ void ApiRoutes::get_frame(const httplib::Request& request, httplib::Response& re
 }
 
 void ApiRoutes::get_beauty(const httplib::Request& request, httplib::Response& response) {
-  const ImageRequest wanted = image_request(Query(request, kBeautyParameters), live_.session().width());
+  const ImageRequest wanted = image_request(Query(request, kBeautyParameters), live_.session().width(), live_.color_config());
   const Image* beauty = live_.session().beauty();
   if (!beauty)
     return send_json(response, {{"error", "the G-buffer file has no beauty pass (the renderer's own image, e.g. Blender's Combined)"}}, 404);
-  send_image(wanted, *beauty, response);
+  send_image(wanted, *beauty, glm::dvec3(0.0), response);  // opaque: nothing shows through
 }
 
 void ApiRoutes::send_frame(const ImageRequest& wanted, const RenderedFrame& frame, httplib::Response& response) {
@@ -234,15 +261,22 @@ void ApiRoutes::send_frame(const ImageRequest& wanted, const RenderedFrame& fram
   if (!frame.error.empty()) return send_json(response, {{"error", frame.error}}, 422);
   response.set_header("X-Shade-Ms", format_number(frame.frame.timings.shade_ms));
   response.set_header("X-Kernel-Ms", format_number(frame.frame.timings.kernel_ms));
-  send_image(wanted, term_image(frame.frame, wanted.term), response);
+  send_image(wanted, term_image(frame.frame, wanted.term), frame.background, response);
 }
 
-// The image in the request's format, display settings and width.
-void ApiRoutes::send_image(const ImageRequest& wanted, const Image& image, httplib::Response& response) {
+// The image in the request's format, display settings and width, over `background`.
+void ApiRoutes::send_image(const ImageRequest& wanted, const Image& image, const glm::dvec3& background,
+                           httplib::Response& response) {
+  const ColorConfig& color = live_.color_config();
+  DisplaySettings settings = wanted.display;
+  settings.background = background;
+  const DisplayTransform display(color, settings);
   const Clock::time_point start = Clock::now();
-  const std::string bytes = wanted.width == image.width
-                                ? encode_image(image, wanted.format, wanted.display)
-                                : encode_image(scale_to_width(image, wanted.width), wanted.format, wanted.display);
+  std::optional<Image> resized;
+  if (wanted.width != image.width) resized = scale_to_width(image, wanted.width);
+  const Image& scaled = resized ? *resized : image;
+  const std::string bytes = wanted.format == ImageFormat::exr ? encode_exr(scaled, color.working_chromaticities())
+                                                              : encode_display_image(scaled, wanted.format, display);
   const double encode_ms = elapsed_ms(start);
   {
     std::lock_guard lock(encode_mutex_);
@@ -295,6 +329,32 @@ void ApiRoutes::get_pick(const httplib::Request& request, httplib::Response& res
     body["material"] = pick.material;
   }
   send_json(response, body);
+}
+
+// The config's displays with their views, its looks and colour spaces, and the colour pickers' space.
+void ApiRoutes::get_colors(const httplib::Request& request, httplib::Response& response) {
+  Query query(request, {});
+  const ColorConfig& color = live_.color_config();
+  json displays = json::array();
+  for (const std::string& display : color.displays())
+    displays.push_back({{"name", display}, {"views", color.views(display)}, {"default_view", color.default_view(display)},
+                        {"picker_space", color.picker_space(display)}});
+  send_json(response, {{"config", color.description()},
+                       {"working_space", color.working_space()},
+                       {"default_display", color.default_display()},
+                       {"displays", displays},
+                       {"looks", color.looks()},
+                       {"color_spaces", color.color_spaces()}});
+}
+
+// One colour from one of the config's spaces into another: the page's colour pickers show and
+// send values through it.
+void ApiRoutes::get_color(const httplib::Request& request, httplib::Response& response) {
+  Query query(request, {"rgb", "from", "to"});
+  const auto rgb = query.text("rgb"), from = query.text("from"), to = query.text("to");
+  if (!rgb || !from || !to) throw BadRequest("parameters 'rgb' (r,g,b), 'from' and 'to' (colour spaces) are required");
+  const ColorConversion conversion(live_.color_config(), *from, "parameter 'from'/'to'", *to);
+  send_json(response, {{"rgb", vec3_json(conversion(parse_rgb(*rgb)))}});
 }
 
 void ApiRoutes::post_save(const httplib::Request& request, httplib::Response& response) {

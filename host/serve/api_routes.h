@@ -31,8 +31,10 @@ class ApiRoutes {
   void get_pick(const httplib::Request& request, httplib::Response& response);
   void post_save(const httplib::Request& request, httplib::Response& response);
   void get_beauty(const httplib::Request& request, httplib::Response& response);
+  void get_colors(const httplib::Request& request, httplib::Response& response);
+  void get_color(const httplib::Request& request, httplib::Response& response);
   void send_frame(const ImageRequest& wanted, const RenderedFrame& frame, httplib::Response& response);
-  void send_image(const ImageRequest& wanted, const Image& image, httplib::Response& response);
+  void send_image(const ImageRequest& wanted, const Image& image, const glm::dvec3& background, httplib::Response& response);
 
   // Holds one of HttpLimits::max_waiting places for a request that waits for a frame, or throws
   // Unavailable (503) when all are taken: waiting requests never take every worker.

@@ -14,32 +14,12 @@
 #include <stdexcept>
 #include <vector>
 
-#include "image/display_encoder.h"
-
 namespace phongcl {
 
 namespace {
 
-// Display bytes in row blocks on every core.
-std::vector<std::uint8_t> parallel_display_bytes(const Image& image, const DisplaySettings& display) {
-  const DisplayEncoder encoder(display);
-  std::vector<std::uint8_t> bytes(4 * image.pixel_count());
-  constexpr int kRowsPerBlock = 32;
-  const int blocks = (image.height + kRowsPerBlock - 1) / kRowsPerBlock;
-#pragma omp parallel for schedule(dynamic)
-  for (int block = 0; block < blocks; ++block) {
-    const int first = block * kRowsPerBlock;
-    encoder.encode_rows(image, first, std::min(kRowsPerBlock, image.height - first), bytes.data());
-  }
-  return bytes;
-}
-
-std::string encode_png(const Image& image, const DisplaySettings& display) {
-  return phongcl::encode_png(parallel_display_bytes(image, display), image.width, image.height);
-}
-
-std::string encode_jpeg(const Image& image, const DisplaySettings& display) {
-  const std::vector<std::uint8_t> rgbx = parallel_display_bytes(image, display);
+std::string encode_jpeg(const Image& image, const DisplayTransform& display) {
+  const std::vector<std::uint8_t> rgbx = display.encode(image);
   const std::unique_ptr<void, int (*)(tjhandle)> compressor(tjInitCompress(), tjDestroy);
   if (!compressor) throw std::runtime_error(std::string("JPEG encoder: ") + tjGetErrorStr());
   unsigned char* jpeg = nullptr;
@@ -54,23 +34,23 @@ std::string encode_jpeg(const Image& image, const DisplaySettings& display) {
   return bytes;
 }
 
+}  // namespace
+
 // OpenEXR writes files; a private temporary one is read back and removed.
-std::string encode_exr(const Image& image) {
+std::string encode_exr(const Image& image, const std::optional<Chromaticities>& chromaticities) {
   std::string name = (std::filesystem::temp_directory_path() / "phongcl-serve-XXXXXX.exr").string();
   const int fd = mkstemps(name.data(), 4);
   if (fd < 0) throw std::runtime_error("cannot create a temporary file for the EXR in " + name);
   close(fd);
   const std::unique_ptr<const std::string, void (*)(const std::string*)> remove_at_exit(
       &name, [](const std::string* file) { std::filesystem::remove(*file); });
-  write_exr(image, name);
+  write_exr(image, name, ExrWriteOptions{.chromaticities = chromaticities});
   std::ifstream stream(name, std::ios::binary);
   std::ostringstream bytes;
   bytes << stream.rdbuf();
   if (!stream) throw std::runtime_error("cannot read back the temporary EXR " + name);
   return bytes.str();
 }
-
-}  // namespace
 
 ImageFormat parse_image_format(std::string_view name) {
   if (name == "png") return ImageFormat::png;
@@ -116,13 +96,13 @@ Image scale_to_width(const Image& image, int width) {
   return scaled;
 }
 
-std::string encode_image(const Image& image, ImageFormat format, const DisplaySettings& display) {
+std::string encode_display_image(const Image& image, ImageFormat format, const DisplayTransform& display) {
   switch (format) {
-    case ImageFormat::png: return encode_png(image, display);
+    case ImageFormat::png: return encode_png(display.encode(image), image.width, image.height);
     case ImageFormat::jpeg: return encode_jpeg(image, display);
-    case ImageFormat::exr: return encode_exr(image);
+    case ImageFormat::exr: break;
   }
-  throw std::invalid_argument("unknown image format");
+  throw std::invalid_argument("encode_display_image: EXR holds linear values, not display bytes");
 }
 
 }  // namespace phongcl

@@ -1,9 +1,11 @@
 #pragma once
-// Frames as the bytes an HTTP response carries: PNG and JPEG for display (exposure, tone map, sRGB)
-// and EXR for the linear values.
+// Frames as the bytes an HTTP response carries: PNG and JPEG for display (color/display.h) and EXR
+// for the linear values.
+#include <optional>
 #include <string>
 #include <string_view>
 
+#include "color/display.h"
 #include "image/image.h"
 
 namespace phongcl {
@@ -19,6 +21,8 @@ Image scale_to_width(const Image& image, int width);
 
 // PNG: 8-bit sRGB RGBA, fast zlib settings. JPEG: RGB (alpha dropped), 4:2:0, quality 90.
 // EXR: R G B A float32. Throws std::runtime_error if an encoder fails.
-std::string encode_image(const Image& image, ImageFormat format, const DisplaySettings& display);
+std::string encode_display_image(const Image& image, ImageFormat format, const DisplayTransform& display);
+// EXR: R G B A float32, RGB 0 where alpha is 0, the working space's chromaticities when known.
+std::string encode_exr(const Image& image, const std::optional<Chromaticities>& chromaticities);
 
 }  // namespace phongcl

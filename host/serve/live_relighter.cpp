@@ -7,6 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "color/color_conversion.h"
 #include "common/error.h"
 
 namespace phongcl {
@@ -23,9 +24,9 @@ std::string normalised_json(std::string_view text) { return nlohmann::json::pars
 }  // namespace
 
 LiveRelighter::LiveRelighter(RelightSession& session, std::string_view scene_text, std::filesystem::path scene_source,
-                             RenderSettings settings)
-    : session_(session), scene_source_(std::move(scene_source)), settings_(settings) {
-  scene_ = parse_scene(scene_text, scene_source_);
+                             RenderSettings settings, ColorConfig color)
+    : session_(session), scene_source_(std::move(scene_source)), color_(std::move(color)), settings_(settings) {
+  scene_ = parsed_scene(scene_text);
   session_.check(scene_);
   scene_json_ = normalised_json(scene_text);
   render_thread_ = std::thread([this] { render_loop(); });
@@ -48,8 +49,15 @@ SceneSnapshot LiveRelighter::scene() const {
   return {scene_version_, scene_json_};
 }
 
+// The document as the shader takes it: colours in the working space.
+Scene LiveRelighter::parsed_scene(std::string_view text) const {
+  Scene scene = parse_scene(text, scene_source_);
+  convert_scene_colors(scene, color_);
+  return scene;
+}
+
 std::uint64_t LiveRelighter::replace_scene(std::string_view text) {
-  Scene scene = parse_scene(text, scene_source_);  // outside the lock: a big scene takes a while
+  Scene scene = parsed_scene(text);  // outside the lock: a big scene takes a while
   session_.check(scene);
   std::string json = normalised_json(text);
   std::lock_guard lock(mutex_);
@@ -139,6 +147,7 @@ void LiveRelighter::render_loop() {
       frame->scene_version = scene_version_;
       frame->settings = settings_;
       frame->settings.terms = terms_wanted_;
+      frame->background = scene_.background;
     }
     try {
       frame->frame = session_.shade(scene, frame->settings);

@@ -14,6 +14,9 @@
 #include <string_view>
 #include <thread>
 
+#include <glm/glm.hpp>
+
+#include "color/color_config.h"
 #include "serve/relight_session.h"
 
 namespace phongcl {
@@ -23,6 +26,7 @@ namespace phongcl {
 struct RenderedFrame {
   std::uint64_t version = 0, scene_version = 0;
   RenderSettings settings;
+  glm::dvec3 background{0.0};  // the scene's (working space), under the image in 8-bit frames
   Frame frame;
   std::string error;  // non-empty: shading this state failed (the image is empty)
   std::chrono::steady_clock::time_point finished;
@@ -41,9 +45,10 @@ struct RenderCounters {
 class LiveRelighter {
  public:
   // `scene_text` is the scene file's text and `scene_source` its path (for messages and to resolve
-  // its "gbuffer" entry). Throws InputError when it is invalid. Starts the render thread.
+  // its "gbuffer" entry); its colours are converted to `color`'s working space. Throws InputError
+  // when it is invalid. Starts the render thread.
   LiveRelighter(RelightSession& session, std::string_view scene_text, std::filesystem::path scene_source,
-                RenderSettings settings);
+                RenderSettings settings, ColorConfig color);
   ~LiveRelighter();
   LiveRelighter(const LiveRelighter&) = delete;
   LiveRelighter& operator=(const LiveRelighter&) = delete;
@@ -66,17 +71,20 @@ class LiveRelighter {
   std::shared_ptr<const RenderedFrame> latest_frame() const;
   RenderCounters counters() const;
   RelightSession& session() { return session_; }
+  const ColorConfig& color_config() const { return color_; }
 
   // Wakes every waiter and ends the render thread; idempotent.
   void stop();
 
  private:
   void render_loop();
+  Scene parsed_scene(std::string_view text) const;
   std::shared_ptr<const RenderedFrame> wait_locked(std::unique_lock<std::mutex>& lock, std::uint64_t min_version,
                                                    bool need_terms, std::chrono::milliseconds timeout);
 
   RelightSession& session_;
   const std::filesystem::path scene_source_;
+  const ColorConfig color_;
   mutable std::mutex mutex_;
   std::condition_variable state_changed_, frame_ready_;
   // Guarded by mutex_:

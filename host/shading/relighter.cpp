@@ -93,6 +93,9 @@ Relighter::Relighter(Relighter&&) noexcept = default;
 Relighter& Relighter::operator=(Relighter&&) noexcept = default;
 
 void Relighter::set_frame(const Scene& scene, GBuffer&& gbuffer) {
+  if (!scene.color_space.empty())
+    throw std::invalid_argument("the scene's colours are in '" + scene.color_space +
+                                "': convert them to the working space first (phongcl::convert_scene_colors)");
   check_material_table(scene.materials);
   check_lights(scene.lights, scene.materials.size());
   const std::lock_guard lock(state_->mutex);

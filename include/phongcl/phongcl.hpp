@@ -9,10 +9,15 @@
 //   relighter.set_lights(scene.lights);
 //   image = relighter.shade();
 //   phongcl::write_exr("out.exr", image);
+//   phongcl::ColorConfig blender = phongcl::ColorConfig::load("blender");   // OpenColorIO
+//   phongcl::write_png(image, "out.png", phongcl::DisplayTransform(blender, {.view = "Filmic"}));
 //
 // Errors are exceptions whose what() is the one-line message the command line prints: InputError
 // (common/error.h) for bad files and values, std::invalid_argument and std::runtime_error otherwise.
 // Link phongcl::phongcl (find_package(phongcl)).
+#include "color/color_config.h"
+#include "color/color_conversion.h"
+#include "color/display.h"
 #include "common/error.h"
 #include "gbuffer/gbuffer.h"
 #include "image/image.h"

@@ -18,6 +18,7 @@ struct BenchArguments {
   std::string sizes;        // --throughput: image sizes to sweep, e.g. "256x256,1920x1080"
   std::string json_file;    // --throughput, --sequence: results as JSON
   bool sequence = false;
+  bool display = false;      // the display transforms of 8-bit outputs against OpenColorIO's processor
   int sequence_frames = 8;   // --sequence: frames in the shot
   int rounds = 3;            // --sequence: rounds of every mode; each mode's fastest is kept
   std::string compressions = "zip,piz";  // --sequence: G-buffer and output compressions
@@ -27,5 +28,6 @@ void run_error_vs_time_bench(const BenchArguments& args);  // bench_error_vs_tim
 void run_throughput_bench(const BenchArguments& args);     // bench_throughput.cpp
 void run_many_lights_bench(const BenchArguments& args);    // bench_many_lights.cpp
 void run_sequence_bench(const BenchArguments& args);       // bench_sequence.cpp
+void run_display_bench(const BenchArguments& args);        // bench_display.cpp
 
 }  // namespace phongcl::cli

@@ -29,10 +29,14 @@ void add_bench_command(CLI::App& app) {
   command->add_option("--rounds", args->rounds, "--sequence: rounds of every mode, the fastest kept (default 3)")
       ->check(CLI::Range(1, 100));
   command->add_option("--compressions", args->compressions, "--sequence: EXR compressions to measure (default zip,piz)");
+  command->add_flag("--display", args->display,
+                    "Time the PNG/serve display transforms (built-in views, Blender's Filmic with looks) on the scene's "
+                    "shaded frame against OpenColorIO's own processor");
   command->callback([args] {
-    if (args->throughput + args->many_lights + args->sequence > 1)
-      throw CLI::ValidationError("--throughput, --sequence and --many-lights are separate benchmarks: pick one");
+    if (args->throughput + args->many_lights + args->sequence + args->display > 1)
+      throw CLI::ValidationError("--throughput, --sequence, --many-lights and --display are separate benchmarks: pick one");
     if (args->sequence) return run_sequence_bench(*args);
+    if (args->display) return run_display_bench(*args);
     if (args->many_lights) return run_many_lights_bench(*args);
     args->throughput ? run_throughput_bench(*args) : run_error_vs_time_bench(*args);
   });

@@ -195,7 +195,7 @@ ModeResult io_mode(const Shot& shot, bool pipelined) {
     stages.read = [&](FrameWork& work) { work.gbuffer = read_gbuffer(shot.path("g", work.frame), ReadOptions{}).gbuffer; };
     stages.shade = [&](FrameWork& work) { work.image = images[static_cast<std::size_t>(work.frame) % images.size()]; };
     stages.write = [&](FrameWork& work) {
-      write_exr(work.image, shot.path("floor", work.frame), ExrPixelType::float32, compression);
+      write_exr(work.image, shot.path("floor", work.frame), ExrWriteOptions{.compression = compression});
     };
     FrameTimes totals;
     const auto start = Clock::now();

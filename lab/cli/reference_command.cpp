@@ -19,16 +19,18 @@ struct ReferenceArguments {
 };
 
 void run_reference(const ReferenceArguments& args) {
-  refuse_outputs_over_inputs(args.inputs, args.outputs);
-  args.outputs.check_destinations();
+  ImageOutputs outputs = args.outputs;
+  outputs.color = args.inputs.color_config();
+  refuse_outputs_over_inputs(args.inputs, outputs);
+  outputs.check_destinations();
   const Scene scene = args.inputs.load_scene();
-  if (args.inputs.gbuffer_file.empty()) refuse_outputs_over_inputs(args.inputs, args.outputs, &scene);
+  if (args.inputs.gbuffer_file.empty()) refuse_outputs_over_inputs(args.inputs, outputs, &scene);
   const GBuffer gbuffer = args.inputs.load_gbuffer(scene);
   check_materials(gbuffer, scene.materials.size());
   const auto start = std::chrono::steady_clock::now();
   const Image image = reference_image(scene, gbuffer);
   const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-  const std::string written = args.outputs.write(image);
+  const std::string written = outputs.write(image, scene.background);
   std::cout << "phongcl reference: " << scene.source.string() << " + " << gbuffer.source.string() << "\n"
             << "  image      " << gbuffer.width << " x " << gbuffer.height << ", " << with_commas(gbuffer.pixel_count())
             << " pixels, " << scene.lights.size() << " lights\n"

@@ -162,3 +162,53 @@ def test_scene_from_dict_reads_the_files_form():
     assert scene.camera.eye == [0, 1, 6]
     assert scene.lights[0].type == "directional" and scene.lights[0].color == [0.5, 0.5, 0.5]
     assert scene.materials[0].name == "red" and scene.materials[0].shininess == 32
+
+
+def test_write_png_through_a_view_over_a_background(tmp_path):
+    """The binding passes each setting on (the display transform itself is tested in C++):
+    equal settings make equal files, and each setting changes the file."""
+    image = np.zeros((2, 3, 4), dtype=np.float32)
+    image[0, 0] = [0.2, 0.2, 0.2, 1.0]    # opaque
+    image[0, 2] = [0.1, 0.1, 0.1, 0.5]    # half covered; the rest transparent
+    doubled = image * np.array([2, 2, 2, 1], dtype=np.float32)
+
+    def png(name, array, **settings):
+        phongcl.write_png(str(tmp_path / name), array, **settings)
+        return (tmp_path / name).read_bytes()
+
+    base = png("a.png", image, view="clamp", background=(0.1, 0.1, 0.1), exposure=1.0)
+    assert base[1:4] == b"PNG"
+    assert png("b.png", doubled, view="clamp", background=(0.2, 0.2, 0.2)) == base   # exposure scales everything
+    assert png("c.png", image, view="clamp", background=(0.3, 0.1, 0.1), exposure=1.0) != base
+    assert png("d.png", image, view="aces", background=(0.1, 0.1, 0.1), exposure=1.0) != base
+    with pytest.raises(phongcl.InputError, match="has no view 'Filmic'"):
+        phongcl.write_png(str(tmp_path / "e.png"), image, view="Filmic")
+    assert not (tmp_path / "e.png").exists()
+
+
+def test_colors_lists_the_config():
+    colors = phongcl.colors()
+    assert colors["working_space"] == "Linear Rec.709 (sRGB)"
+    assert colors["displays"] == {"sRGB": ["reinhard", "aces", "clamp"]}
+    assert "ACEScg" in colors["color_spaces"]
+    with pytest.raises(phongcl.InputError, match="cannot read the OCIO config"):
+        phongcl.colors(ocio="/nonexistent/config.ocio")
+
+
+def test_write_exr_is_black_where_transparent_unless_asked(tmp_path):
+    image = np.full((1, 2, 4), 0.25, dtype=np.float32)
+    image[0, 1, 3] = 0.0
+    phongcl.write_exr(str(tmp_path / "a.exr"), image)
+    phongcl.write_exr(str(tmp_path / "b.exr"), image, keep_color_where_transparent=True)
+    assert list(phongcl.read_exr(str(tmp_path / "a.exr"))[0, 1]) == [0, 0, 0, 0]
+    assert list(phongcl.read_exr(str(tmp_path / "b.exr"))[0, 1]) == [0.25, 0.25, 0.25, 0]
+
+
+def test_scene_colours_in_a_named_space_arrive_in_the_working_space():
+    scene = phongcl.Scene.from_dict({"color_space": "sRGB", "ambient": [0.5, 0.5, 0.5],
+                                     "lights": [{"type": "point", "position": [0, 1, 0], "color": [1, 0.5, 0]}]})
+    decoded = ((0.5 + 0.055) / 1.055) ** 2.4
+    assert scene.ambient == pytest.approx([decoded] * 3, rel=1e-6)
+    assert scene.lights[0].color == pytest.approx([1, decoded, 0], rel=1e-6)
+    with pytest.raises(phongcl.InputError, match="no such colour space"):
+        phongcl.Scene.from_dict({"color_space": "Rec.2020"})

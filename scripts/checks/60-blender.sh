@@ -5,13 +5,8 @@
 # layout with no flags beyond --scene. Needs build/phongcl (scripts/test.sh builds it first).
 set -euo pipefail
 cd "$(dirname "$0")/../.."
-phongcl="${PHONGCL_BUILD_DIR:-build}/phongcl"
-[ -x "$phongcl" ] || { echo "60-blender: no $phongcl (build first)" >&2; exit 1; }
-command -v blender >/dev/null || { echo "60-blender: blender is not installed (scripts/setup.sh blender)" >&2; exit 1; }
-
-work="$(mktemp -d)"
-trap 'rm -rf "$work"' EXIT
-export POCL_CACHE_DIR="${POCL_CACHE_DIR:-$work/pocl-cache}"
+check=60-blender
+source scripts/checks/lib/blender_check.sh
 
 blender -b --factory-startup --python-expr "
 import sys; sys.path.insert(0, 'scripts/blender')

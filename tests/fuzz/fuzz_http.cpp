@@ -16,6 +16,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "color/color_config.h"
 #include "serve/relight_server.h"
 #include "serve/request_framing.h"
 
@@ -47,7 +48,7 @@ constexpr const char* kScene = R"({"camera": {"eye": [0, 0, 10], "look_at": [0, 
 struct Server {
   Server()
       : session(small_gbuffer(), ""),
-        live(session, kScene, "fuzz.json", phongcl::RenderSettings{}),
+        live(session, kScene, "fuzz.json", phongcl::RenderSettings{}, phongcl::ColorConfig::builtin()),
         server(live, options()) {}
   static phongcl::ServeOptions options() {
     phongcl::ServeOptions options;

@@ -1,16 +1,12 @@
-// 8-bit sRGB PNGs for looking at HDR results.
+// 8-bit RGBA bytes as PNG (the bytes come from a display transform, color/display.h).
 #include <png.h>
 
-#include <cerrno>
 #include <cstdint>
 #include <cstring>
-#include <fstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
-#include "common/atomic_file.h"
-#include "common/error.h"
 #include "image/image.h"
 
 namespace phongcl {
@@ -33,22 +29,6 @@ std::string encode_png(const std::vector<std::uint8_t>& rgba, int width, int hei
     throw std::runtime_error(png.message);
   bytes.resize(size);
   return bytes;
-}
-
-void write_png(const Image& image, const std::filesystem::path& file, const DisplaySettings& display) {
-  check_exposure(display.exposure_stops);
-  std::string bytes;
-  try {
-    bytes = encode_png(display_rgba8(image, display), image.width, image.height);
-  } catch (const std::runtime_error& error) {
-    throw InputError(file, std::string("cannot write PNG (") + error.what() + ")");
-  }
-  write_atomically(file, [&](const std::filesystem::path& temp) {
-    std::ofstream stream(temp, std::ios::binary);
-    stream.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-    stream.close();
-    if (!stream) throw InputError(temp, std::string("cannot write PNG: ") + std::strerror(errno));
-  });
 }
 
 }  // namespace phongcl

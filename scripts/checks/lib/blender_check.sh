@@ -1,0 +1,9 @@
+# Sourced by 60-blender.sh and 63-blender-colour.sh (in lib/ so that test.sh does not run it as a
+# check), after `check=<name>`: the built phongcl, an installed Blender, a work directory removed on
+# exit, and PoCL's cache inside it unless one is set.
+phongcl="${PHONGCL_BUILD_DIR:-build}/phongcl"
+[ -x "$phongcl" ] || { echo "$check: no $phongcl (build first)" >&2; exit 1; }
+command -v blender >/dev/null || { echo "$check: blender is not installed (scripts/setup.sh blender)" >&2; exit 1; }
+work="$(mktemp -d)"
+trap 'rm -rf "$work"' EXIT
+export POCL_CACHE_DIR="${POCL_CACHE_DIR:-$work/pocl-cache}"
