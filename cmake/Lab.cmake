@@ -17,3 +17,17 @@ target_link_libraries(phongcl_lab INTERFACE phongcl_reference phongcl_report pho
 file(GLOB PHONGCL_LAB_CLI_SOURCES CONFIGURE_DEPENDS lab/cli/*.cpp)
 add_executable(phongcl-lab ${PHONGCL_LAB_CLI_SOURCES})
 target_link_libraries(phongcl-lab PRIVATE phongcl_lab phongcl_cli_support)
+
+# The Halide peer of `phongcl bench --throughput`, a benchmark program (PHONGCL_BUILD_BENCH), when
+# Halide 14 is installed (scripts/packages/halide.txt); without it the benchmark's halide rows say
+# SKIP and its tests skip. Found by hand: Debian's HalideConfig.cmake pulls in LLVM's CMake package
+# (which needs a C compiler enabled) although the shared library needs nothing of it.
+if(PHONGCL_BUILD_BENCH)
+  find_path(HALIDE_INCLUDE_DIR Halide.h PATH_SUFFIXES halide14)
+  find_library(HALIDE_LIBRARY NAMES Halide14 Halide)
+  if(HALIDE_INCLUDE_DIR AND HALIDE_LIBRARY)
+    add_subdirectory(lab/peers/halide_peer)
+  else()
+    message(STATUS "Halide not found: no Halide peer (phongcl bench --throughput reports its rows as SKIP)")
+  endif()
+endif()

@@ -1,4 +1,4 @@
-# The rooms of the house (README "Layout", ARCHITECTURE.md). A room is a folder of sources with one
+# The rooms of the house (CONTRIBUTING.md "Layout: the rooms"). A room is a folder of sources with one
 # job, included as "NAME/header.h"; its DEPS are the architecture's "may use" column.
 
 # phongcl_room(NAME [DEPS targets...]): host/NAME/*.cpp, a product room. Its objects go into the one

@@ -38,8 +38,8 @@ typedef struct {
   layout_float color[4];    /* rgb, a unused */
 } PointLight;
 
-/* How a point or spot light's F = falloff(d) * window(d) * cone(l) is shaped (README "The shading,
- * exactly"), parallel to the point lights; only scenes with falloff, ranges or spots read it.
+/* How a point or spot light's F = falloff(d) * window(d) * cone(l) is shaped (docs/shading.md
+ * "The formula"), parallel to the point lights; only scenes with falloff, ranges or spots read it.
  * The cone is given by versines, 1 - cos, computed in double: a cone of 1e-3 degrees has
  * cos(A/2) = 1 - 4e-11, which is 1 in float. A point light has versine_inner = versine_outer = 3
  * (every direction is inside its "cone": 1 - c <= 2); a hard-edged spot has versine_outer =

@@ -220,7 +220,7 @@ realv distance_in_range(vec3* v, realv* distance, realv* inverse_distance) {
 
 /* normalize() that neither overflows nor underflows: components of 1e30 (squares overflow float)
  * or 1e-40 (squares vanish) still give a unit vector. A zero vector stays zero: the documented
- * policy for degenerate inputs (README). */
+ * policy for degenerate inputs (docs/shading.md "Degenerate inputs"). */
 vec3 unit_or_zero(vec3 v) {
   const vec3 scaled = rescaled(v);
   return scale3(scaled, inverse_length(scaled));

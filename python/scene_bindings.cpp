@@ -89,7 +89,7 @@ void bind_scene(py::module_& module) {
       .def_readwrite("width", &Camera::width)
       .def_readwrite("height", &Camera::height);
 
-  py::class_<Light> light(module, "Light", "A point or directional light (README 'Scene').");
+  py::class_<Light> light(module, "Light", "A point, spot or directional light (docs/formats.md 'Lights').");
   light.def(py::init([](const std::string& type, std::array<double, 3> position, std::array<double, 3> direction,
                         std::array<double, 3> color) {
               return Light{type == "directional" ? LightType::directional

@@ -263,8 +263,8 @@ std::size_t repaired_count(const std::string& description) {
   return std::stoul(description.substr(begin, at - begin));
 }
 
-// A Cycles render without a Position pass used to end in SIGSEGV: the edge repair compared
-// positions that were not rebuilt from depth yet. Every combination now reads, rebuilds and
+// A Cycles render without a Position pass: the edge repair must wait for the positions rebuilt
+// from depth, not compare planes that are not there yet. Every combination reads, rebuilds and
 // repairs, and the repair finds the same pixels whether positions come from the pass or from depth.
 TEST(EdgePolicy, EveryLayoutAndPassCombinationIsRepairedAlike) {
   const Scene scene = fixture_scene();

@@ -1,4 +1,4 @@
-// The Halide peer of the throughput benchmark (bench/halide_peer, its own process) against the
+// The Halide peer of the throughput benchmark (lab/peers/halide_peer, its own process) against the
 // double reference, and the packed-input file it reads. The peer's tests skip where Halide is not
 // installed (the peer is not built then).
 #include <gtest/gtest.h>

@@ -37,17 +37,7 @@ std::string known_pass_names() {
 
 }  // namespace
 
-const std::vector<Pass>& all_passes() {
-  static const std::vector<Pass> passes = [] {
-    std::vector<Pass> list;
-    for (const auto& entry : kPasses) list.push_back(entry.pass);
-    return list;
-  }();
-  return passes;
-}
-
 const char* pass_name(Pass pass) { return info(pass).name; }
-std::size_t pass_width(Pass pass) { return info(pass).width; }
 
 std::pair<Pass, std::vector<std::string>> parse_channel_assignment(std::string_view text) {
   const std::string what = "--channel " + std::string(text);

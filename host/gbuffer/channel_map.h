@@ -19,12 +19,9 @@ enum class Pass {
   shininess,  // 1 channel
 };
 
-// Every pass, in the order descriptions list them.
-const std::vector<Pass>& all_passes();
-const char* pass_name(Pass pass);       // "position", as --channel spells it
-std::size_t pass_width(Pass pass);      // channels it takes: 1 or 3
+const char* pass_name(Pass pass);  // "position", as --channel spells it
 
-// Pass -> EXR channel names, pass_width(pass) of them, in x/y/z (r/g/b) order.
+// Pass -> EXR channel names, as many as the pass takes (1 or 3), in x/y/z (r/g/b) order.
 using ChannelMap = std::map<Pass, std::vector<std::string>>;
 
 // Parses one `--channel` value, "position=Foo.X,Foo.Y,Foo.Z" or "material=Foo.index". Throws

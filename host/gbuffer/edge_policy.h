@@ -1,6 +1,6 @@
 #pragma once
-// What renderers' files hold at the edges of surfaces, and how phongcl reads it (README "Edge
-// policy"). A renderer takes position, depth and the index passes from one sample near the pixel
+// What renderers' files hold at the edges of surfaces, and how phongcl reads it (docs/formats.md
+// "Edges"). A renderer takes position, depth and the index passes from one sample near the pixel
 // centre but filters normal and colour passes over the pixel's footprint, where sky samples add
 // nothing: at an edge the normal and colours are the surface's scaled by the fraction of samples
 // that hit it.

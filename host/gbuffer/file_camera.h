@@ -1,6 +1,6 @@
 #pragma once
-// The camera a G-buffer's header states, from OpenEXR's standard attributes (README "Cameras from
-// the file"):
+// The camera a G-buffer's header states, from OpenEXR's standard attributes (docs/formats.md
+// "Cameras from the file"):
 //   worldToCamera (M44f): world to the renderer's camera space, which is left-handed: +x right,
 //     +y up in the image, +z the viewing direction, the origin at the eye (RenderMan's camera space).
 //   worldToNDC (M44f): world to NDC, where (0, 0) and (1, 1) are the display window's upper left

@@ -1,6 +1,6 @@
 #pragma once
 // A G-buffer in memory: structure of arrays, one float per pixel per channel, row-major,
-// row 0 at the top of the data window. See README "G-buffer file".
+// row 0 at the top of the data window. The file: docs/formats.md "G-buffer (OpenEXR)".
 #include <array>
 #include <cstddef>
 #include <filesystem>

@@ -158,10 +158,6 @@ const char* layout_name(Layout layout) {
   return "?";
 }
 
-const char* depth_convention_name(DepthConvention convention) {
-  return convention == DepthConvention::view_z ? "viewz" : "distance";
-}
-
 Layout parse_layout(std::string_view name) {
   // custom is what auto reports for a file only --channel describes, not a choice of its own.
   for (const auto& [layout, known] : kLayoutNames)

@@ -27,7 +27,7 @@ namespace phongcl {
 // One way a file may store a pass.
 struct PassSource {
   std::string label;                  // as descriptions name it: "DiffCol", "Pworld"
-  std::vector<std::string> channels;  // pass_width(pass) of them
+  std::vector<std::string> channels;  // as many as the pass takes, 1 or 3
 };
 
 // The first source whose channels are all present is used.

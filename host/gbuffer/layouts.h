@@ -31,7 +31,6 @@ Layout parse_layout(std::string_view name);
 //             view space). Cycles and EEVEE write this.
 // The two agree at the image centre and differ by 1/cos(angle off axis) towards the corners.
 enum class DepthConvention { distance, view_z };
-const char* depth_convention_name(DepthConvention convention);  // "distance" or "viewz", as the flag spells it
 
 // Where kd and ks come from: the layout's choice, the colour pass, or the scene's material table.
 enum class ColourSource { layout_default, pass, table };

@@ -1,5 +1,5 @@
 #pragma once
-// The scene file (JSON) as plain, validated structs. See README "Scene file".
+// The scene file (JSON) as plain, validated structs; docs/formats.md "Scene JSON" is its reference.
 #include <array>
 #include <filesystem>
 #include <optional>

@@ -1,6 +1,6 @@
 #pragma once
 // `phongcl serve`'s HTTP server: the page (web/, embedded) and the JSON/image API over a
-// LiveRelighter. README "Interactive relighting" lists the endpoints; serve/http_limits.h says
+// LiveRelighter. docs/serve.md "HTTP API" lists the endpoints; serve/http_limits.h says
 // what one client may hold.
 #include <chrono>
 #include <filesystem>

@@ -1,5 +1,5 @@
 #pragma once
-// The kernel's variants a caller chooses: speed/precision (README "Precision variants") and light culling.
+// The kernel's variants a caller chooses: speed/precision (docs/shading.md "Precision variants") and light culling.
 #include <string>
 #include <vector>
 

@@ -181,7 +181,7 @@ void write_throughput_report(const std::string& directory, const MachineLimits& 
         "- opencl: kernel time from profiling events; end-to-end is the wall clock of pack + upload + kernel +\n"
         "  download (PhongShader::shade, build excluded). Peers: wall clock of the shading loop on input packed\n"
         "  once beforehand (structure of arrays, positions relative to the eye); packing is not timed.\n"
-        "- halide: the same formula as a JIT-compiled Halide pipeline (bench/halide_peer), in its own process\n"
+        "- halide: the same formula as a JIT-compiled Halide pipeline (lab/peers/halide_peer), in its own process\n"
         "  on the same packed input; wall clock of realize(); the JIT compile is reported below, not timed.\n"
         "- Runs: the requested count, fewer (at least 3) where that would exceed about 5 s per measurement.\n"
         "  cpp-scalar on large cases is timed on every n-th row (\"rows 1/n\"), its times scaled to the whole frame.\n"

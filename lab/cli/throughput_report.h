@@ -1,6 +1,6 @@
 #pragma once
 // The throughput benchmark's results and their outputs: the Markdown table, the JSON other tools
-// read (issue 5's schema), and the report directory (report.md, chart).
+// read (results_json: machine, then one object per row), and the report directory (report.md, chart).
 #include <optional>
 #include <string>
 #include <vector>

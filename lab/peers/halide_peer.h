@@ -1,5 +1,5 @@
 #pragma once
-// The Halide peer (bench/halide_peer) runs as its own executable, `phongcl-halide-peer`, because
+// The Halide peer (lab/peers/halide_peer) runs as its own executable, `phongcl-halide-peer`, because
 // Halide 14's LLVM and PoCL's cannot share a process; this is the host side that hands it the
 // packed input and reads back its image and timings.
 #include <filesystem>

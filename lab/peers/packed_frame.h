@@ -52,7 +52,7 @@ struct PackedScene {
   std::vector<float> ambient_r, ambient_g, ambient_b, kd_r, kd_g, kd_b, ks_r, ks_g, ks_b, shininess, alpha;
   // Point lights: position - eye; directional lights: l = -normalize(direction), both in double first.
   std::vector<float> point_x, point_y, point_z, point_r, point_g, point_b;  // point and spot lights
-  // Their shapes (README "The shading, exactly"), read by cpp-tiled only: 1/d^k power, 1/R (0: no
+  // Their shapes (docs/shading.md "The formula"), read by cpp-tiled only: 1/d^k power, 1/R (0: no
   // range), the spot's unit axis and 1 - cos(A/2), 1 - cos(A/2 + P), 1/(the two's difference)
   // (points: versines 3, every direction inside); and a bounding sphere (radius < 0: reaches everything).
   std::vector<float> falloff_power, inverse_range, axis_x, axis_y, axis_z, versine_inner, versine_outer, inverse_cone_width;
@@ -67,7 +67,7 @@ struct PackedScene {
 // Throws InputError for material indices out of range and for per-pixel material channels, which
 // the peers do not implement (they shade from the material table, as the benchmark scenes do).
 PackedFrame pack_frame(const GBuffer& gbuffer, const Scene& scene);
-// Spots are packed with the point lights; cpp-scalar and cpp-simd shade the seed's light model only
+// Spots are packed with the point lights; cpp-scalar and cpp-simd shade unshaped lights only
 // (no falloff, range, cone or linking), cpp-tiled all but linking.
 PackedScene pack_scene(const Scene& scene);
 

@@ -1,5 +1,5 @@
 #pragma once
-// The C++ peers the OpenCL kernel is measured against (issue 5): the same formula in float on the
+// The C++ peers the OpenCL kernel is measured against (bench --throughput): the same formula in float on the
 // same packed input (peers/packed_frame.h), written to `rgba` (4 floats per pixel, as the kernel does).
 #include "peers/packed_frame.h"
 

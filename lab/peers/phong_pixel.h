@@ -1,5 +1,5 @@
 #pragma once
-// The Phong formula (README "The shading, exactly") for one pixel, in float, shared by both C++
+// The Phong formula (docs/shading.md "The formula") for one pixel, in float, shared by both C++
 // peers. Written for `omp simd` across pixels: no calls, no early returns, selects instead of
 // branches, every lane reads the same light. Same degenerate policy as the kernel and the
 // reference: a zero vector stays zero, pow(0, 0) = 1.

@@ -1,6 +1,6 @@
 #pragma once
 // The scalar reference: the Phong formula in double precision, written from the specification
-// (README "The shading, exactly"), single-threaded and plain. It checks the OpenCL kernel, so it
+// (docs/shading.md "The formula"), single-threaded and plain. It checks the OpenCL kernel, so it
 // shares no code with kernels/ or host/shading/.
 #include <glm/glm.hpp>
 

@@ -19,7 +19,7 @@ glm::dvec3 robust_normalize(const glm::dvec3& x) {
 
 constexpr double kPi = 3.14159265358979323846;
 
-// falloff(d) * window(d) * cone(l) (README "The shading, exactly"), straight from the formula.
+// falloff(d) * window(d) * cone(l) (docs/shading.md "The formula"), straight from the formula.
 double light_factor(const Light& light, const glm::dvec3& position, const glm::dvec3& l) {
   const double d = glm::length(light.position - position);
   const double falloff = std::pow(d, -static_cast<double>(static_cast<int>(light.falloff)));

@@ -1,7 +1,7 @@
 #pragma once
-// The two accuracy bars of issue 4 ("Done when") as seeded random G-buffers of many pixels: the
-// default precision must stay within kBarRelative (kBarAbsolute near zero) of the long double
-// oracle on both.
+// Two accuracy bars, (a) far from the origin and (b) at highlight peaks, as seeded random
+// G-buffers of many pixels: the default precision must stay within kBarRelative (kBarAbsolute near
+// zero) of the long double oracle on both.
 #include <string>
 #include <utility>
 #include <vector>

@@ -1,6 +1,6 @@
 #pragma once
-// The stability catalogue (issue 4): named stiff and extreme cases, each with its expected value
-// and a tolerance per precision variant. README "Numerical stability" states the policies.
+// The stability catalogue: named stiff and extreme cases, each with its expected value and a
+// tolerance per precision variant. docs/shading.md "Stiff and extreme inputs" states the policies.
 #include <vector>
 
 #include "stability/stability_case.h"

@@ -44,7 +44,7 @@ long double versine(long double angle) {
   return 2 * half_sine * half_sine;
 }
 
-// F = falloff(d) * window(d) * cone(l) for a point or spot light (README "The shading, exactly").
+// F = falloff(d) * window(d) * cone(l) for a point or spot light (docs/shading.md "The formula").
 // The cone compares 1 - c = |-l - a|^2 / 2 with 1 - cos(A/2) = 2 sin^2(A/4), as specular_factor
 // does 1 - v.r: a cone of 1e-3 degrees, 1 - cos = 4e-11, keeps its full precision. Long double
 // holds 1/d^3 for any float d, so F is never infinite here.

@@ -1,5 +1,5 @@
 #pragma once
-// The stability catalogue's oracle: the Phong formula (README "The shading, exactly") in long
+// The stability catalogue's oracle: the Phong formula (docs/shading.md "The formula") in long
 // double, from exactly the values the G-buffer and scene hold. It is a third, independent
 // evaluation: the kernel works in float, the reference in double; this one has 11 more bits than
 // the reference, so at q = 1e8 its own error (q times a few 2^-64) stays below 1e-10.

@@ -26,7 +26,7 @@ struct Expectation {
   std::string why;     // the justification, printed in the report
   // The float kernels compute a light's F = falloff * window * cone before its colour, n.l, the
   // specular factor and kd or ks multiply it, so where F alone exceeds float they give +Inf even
-  // when the exact product does not (README "Stiff and extreme inputs"). A case whose values exceed
+  // when the exact product does not (docs/shading.md "Stiff and extreme inputs"). A case whose values exceed
   // this threshold exactly where F does (overflowing_above) accepts +Inf there.
   long double overflow_above = std::numeric_limits<long double>::infinity();
 

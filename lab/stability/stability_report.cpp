@@ -74,7 +74,7 @@ std::string stability_markdown(const StabilityRun& run, const std::vector<BarFig
          "channel and, in parentheses, the largest relative error over every value of the case "
          "(|value - exact| / max(|exact|, floor), floor 1e-6 of the brightest light; on an edge of F, a hard cone or a "
          "range's end, against the nearest value the edge's rounding admits) and the variant's tolerance. "
-         "Tolerances are justified in lab/stability/case_builder.h; the policies are in the README.\n\n";
+         "Tolerances are justified in lab/stability/case_builder.h; the policies are in docs/shading.md.\n\n";
   out << "**" << run.cases.size() - run.failures() << " of " << run.cases.size() << " cases pass.** Per variant:";
   for (std::size_t v = 0; v < all_precisions().size(); ++v) {
     out << " " << to_string(all_precisions()[v]) << " " << passed_for(run, v) << "/" << run.cases.size() << ";";

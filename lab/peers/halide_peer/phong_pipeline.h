@@ -30,7 +30,7 @@ struct Schedule {
   std::string name, description;
 };
 // Every schedule, the default first: the fastest here in CPU time per frame at 1 to 64 lights
-// (1080p; vector64 beat vector32 by 7-17% and the L1 tiles by 16-31%; README "Throughput").
+// (1080p; vector64 beat vector32 by 7-17% and the L1 tiles by 16-31%; docs/performance.md "Throughput").
 const std::vector<Schedule>& schedules();
 
 // rgba(c, i): 4 floats per pixel, the layout the kernel writes. Throws std::invalid_argument for an
