@@ -1,0 +1,29 @@
+#pragma once
+// The scene's BVH and planes in the kernels' layout (kernels/bvh_layout.h), relative to an eye:
+// rebuilt in one pass over the tree when the eye moves, never re-sorted.
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "geometry/scene_bvh.h"
+
+extern "C" {
+#include "kernels/bvh_layout.h"
+}
+
+static_assert(sizeof(float) == 4 && sizeof(unsigned int) == 4);
+static_assert(sizeof(BvhNode) == 64 && offsetof(BvhNode, hi_x) == 24 && offsetof(BvhNode, first) == 48 &&
+              offsetof(BvhNode, kind_count) == 56);
+static_assert(sizeof(ShadowPrimitive) == 48 && sizeof(ShadowPlane) == 16);
+
+namespace phongcl {
+
+struct DeviceGeometry {
+  std::vector<BvhNode> nodes;  // empty when the scene has no bounded shape
+  std::vector<ShadowPrimitive> primitives;
+  std::vector<ShadowPlane> planes;
+};
+
+DeviceGeometry pack_device_geometry(const SceneBvh& scene, const glm::dvec3& eye);
+
+}  // namespace phongcl
