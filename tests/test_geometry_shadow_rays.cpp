@@ -1,0 +1,202 @@
+// kernels/shadow.h and kernels/bvh.h through kernels/shadow_rays.cl: the rays are the specification's
+// (the double reference builds them independently from the same G-buffer), and every ray's decision
+// is the brute-force double reference's wherever that decision is not within rounding of a
+// silhouette or an end (borderline rays are counted, and must be rare). With Embree installed, the
+// Embree peer is held to the same reference on the same rays.
+#include <gtest/gtest.h>
+
+#include <memory>
+#include <random>
+
+#include "cl/device.h"
+#include "geometry/device_geometry.h"
+#include "geometry/scene_bvh.h"
+#include "peers/knot_mesh.h"
+#include "peers/opencl_shadow_rays.h"
+#include "peers/packed_frame.h"
+#include "raycast/raycast.h"
+#include "reference/reference_shadows.h"
+#include "scene/transform.h"
+#include "temp_dir.h"
+#ifdef PHONGCL_HAVE_EMBREE
+#include "embree/embree_peer.h"
+#endif
+
+namespace phongcl {
+namespace {
+
+using testing::TempDir;
+
+struct Device {
+  ComputeContext compute;
+  ProgramCache cache{std::filesystem::path()};
+};
+
+Device* shared_device() {
+  static std::unique_ptr<Device> device;
+  static bool tried = false;
+  if (!tried) {
+    tried = true;
+    if (!list_devices().empty()) device.reset(new Device{make_compute_context(pick_device("")), ProgramCache(std::filesystem::path())});
+  }
+  return device.get();
+}
+
+#define REQUIRE_DEVICE(name)                                                 \
+  Device* name = shared_device();                                            \
+  if (!name) GTEST_SKIP() << "no OpenCL device on this machine"
+
+double largest_magnitude(const glm::dvec3& v) { return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)}); }
+
+// A scene that exercises every shape: a ground plane, a knot mesh, spheres plain and under
+// non-uniform transforms, loose triangles; point lights and a directional one. `offset` moves
+// everything (camera and lights too).
+Scene test_scene(const std::filesystem::path& dir, const glm::dvec3& offset, int width, int height) {
+  Scene scene = knot_scene(dir, 48, 10, 2);
+  scene.camera.width = width;
+  scene.camera.height = height;
+  Object plane, ball, squashed, triangle, everything;
+  plane.kind = Object::Kind::plane;
+  plane.normal = {0, 1, 0};
+  plane.offset = -0.01;  // just under the ground triangles: both block, neither hides the other's shadow
+  ball.kind = Object::Kind::sphere;
+  ball.center = {2.5, 0.8, 1.5};
+  ball.radius = 0.8;
+  squashed.kind = Object::Kind::transform;
+  squashed.matrix = compose_transform({-2.8, 1.0, 1.8}, {30, 10, 50}, {1.4, 0.5, 0.8});
+  squashed.children = {ball};
+  squashed.children[0].center = {0, 0, 0};
+  triangle.kind = Object::Kind::triangle;
+  triangle.vertices = {glm::dvec3(-1, 0.5, 3), glm::dvec3(1, 0.5, 3.5), glm::dvec3(0, 2.5, 3.2)};
+  everything.kind = Object::Kind::transform;
+  everything.matrix = compose_transform(offset, {0, 0, 0}, {1, 1, 1});
+  everything.children = scene.objects;
+  everything.children.insert(everything.children.end(), {plane, ball, squashed, triangle});
+  scene.objects = {everything};
+  scene.lights.push_back({LightType::directional, {}, {-0.4, -1.0, -0.3}, glm::dvec3(0.4)});
+  scene.lights.push_back({LightType::point, {0.5, 0.3, 2.0}, {}, glm::dvec3(0.4)});  // low: long shadows, grazing rays
+  scene.camera.eye += offset;
+  scene.camera.look_at += offset;
+  for (Light& light : scene.lights) light.position += offset;
+  return scene;
+}
+
+struct Agreement {
+  std::size_t rays = 0, borderline = 0, disagree = 0;
+};
+
+// The kernel's decisions against the reference, ray by ray. Slack: 2^-20 of barycentrics and radii,
+// 2^-21 of the ray's coordinates in distances, between float's rounding of the same tests (2^-24
+// and a few operations) and the rays' offset from their surfaces (2^-18 of the same coordinates).
+Agreement compare(const SceneShapes& shapes, const glm::dvec3& eye, const ShadowRaySet& rays,
+                  const std::vector<float>& blocked) {
+  Agreement agreement;
+  for (std::size_t i = 0; i < rays.size; ++i) {
+    if (!(rays.t_max[i] > 0.0f)) continue;
+    ++agreement.rays;
+    const glm::dvec3 origin = eye + glm::dvec3(rays.ox[i], rays.oy[i], rays.oz[i]);
+    const glm::dvec3 direction(rays.dx[i], rays.dy[i], rays.dz[i]);
+    const ShadowSlack slack{0x1p-20, 0x1p-21 * (largest_magnitude(origin - eye) + largest_magnitude(eye))};
+    const RayOutcome outcome = reference_shadow_ray(shapes, origin, direction, rays.t_max[i], slack);
+    if (outcome == RayOutcome::borderline) {
+      ++agreement.borderline;
+    } else if ((outcome == RayOutcome::blocked) != (blocked[i] != 0.0f)) {
+      ++agreement.disagree;
+      if (agreement.disagree <= 5)
+        ADD_FAILURE() << "ray " << i << " from (" << origin.x << ", " << origin.y << ", " << origin.z << ") along ("
+                      << direction.x << ", " << direction.y << ", " << direction.z << ") to t = " << rays.t_max[i]
+                      << ": reference " << (outcome == RayOutcome::blocked ? "blocked" : "free") << ", traced "
+                      << (blocked[i] != 0.0f ? "blocked" : "free");
+    }
+  }
+  return agreement;
+}
+
+void expect_kernel_matches_reference(const glm::dvec3& offset, int lanes) {
+  REQUIRE_DEVICE(device);
+  TempDir dir("shadow_rays");
+  const Scene scene = test_scene(dir.path, offset, 96, 72);
+  const GBuffer gbuffer = generate_gbuffer(scene);
+  const SceneBvh bvh = build_scene_bvh(flatten_objects(scene.objects), PHONGCL_BVH_MAX_DEPTH);
+  const glm::dvec3 eye = scene.camera.eye;
+  OpenClShadowRays tracer(device->compute, device->cache, pack_device_geometry(bvh, eye), lanes);
+  const ShadowRaySet rays = tracer.make_rays(pack_frame(gbuffer, scene), scene, eye, PHONGCL_SHADOW_OFFSET_FLOAT);
+  const Agreement agreement = compare(bvh.shapes, eye, rays, tracer.trace(rays));
+  EXPECT_EQ(agreement.disagree, 0u);
+  EXPECT_GT(agreement.rays, 10000u);
+  // Grazing rays along the ground and past silhouettes: a few in ten thousand at most.
+  EXPECT_LE(agreement.borderline, agreement.rays / 2000) << agreement.borderline << " of " << agreement.rays;
+  std::cout << "[          ] " << agreement.rays << " rays, " << agreement.borderline << " borderline\n";
+}
+
+TEST(ShadowRays, EveryShapeAgreesWithTheBruteForceReferencePacketsOf16) { expect_kernel_matches_reference({0, 0, 0}, 16); }
+TEST(ShadowRays, EveryShapeAgreesWithTheBruteForceReferenceOneRayPerWorkItem) { expect_kernel_matches_reference({0, 0, 0}, 1); }
+TEST(ShadowRays, AMillionUnitsFromTheOriginAgreesToo) { expect_kernel_matches_reference({1e6, -3e5, 7e5}, 16); }
+
+// The kernel builds the specification's rays: from the reference's own double construction out of
+// the same G-buffer, within float rounding.
+TEST(ShadowRays, RaysAreTheSpecificationsWithinFloatRounding) {
+  REQUIRE_DEVICE(device);
+  TempDir dir("shadow_rays");
+  const Scene scene = test_scene(dir.path, {0, 0, 0}, 40, 30);
+  const GBuffer gbuffer = generate_gbuffer(scene);
+  const glm::dvec3 eye = scene.camera.eye;
+  const SceneBvh bvh = build_scene_bvh(flatten_objects(scene.objects), PHONGCL_BVH_MAX_DEPTH);
+  OpenClShadowRays tracer(device->compute, device->cache, pack_device_geometry(bvh, eye), 16);
+  const PackedFrame frame = pack_frame(gbuffer, scene);
+  const ShadowRaySet rays = tracer.make_rays(frame, scene, eye, PHONGCL_SHADOW_OFFSET_FLOAT);
+  const std::size_t stride = frame.px.size();
+  std::size_t checked = 0;
+  for (std::size_t k = 0; k < scene.lights.size(); ++k) {
+    for (std::size_t i = 0; i < gbuffer.pixel_count(); ++i) {
+      if (gbuffer.material[i] < 0) continue;
+      const glm::dvec3 p(gbuffer.position[0][i], gbuffer.position[1][i], gbuffer.position[2][i]);
+      const glm::dvec3 n(gbuffer.normal[0][i], gbuffer.normal[1][i], gbuffer.normal[2][i]);
+      ReferenceShadowRay expected;
+      const bool made = reference_shadow_ray_from(p, n, scene.lights[k], eye, PHONGCL_SHADOW_OFFSET_FLOAT, expected);
+      const std::size_t slot = k * stride + i;
+      // Within float rounding of n.l = 0 either may decide; elsewhere both make the ray or neither.
+      const glm::dvec3 l = scene.lights[k].type == LightType::directional ? -glm::normalize(scene.lights[k].direction)
+                                                                          : glm::normalize(scene.lights[k].position - p);
+      if (std::abs(glm::dot(glm::normalize(n), l)) < 1e-5) continue;
+      ASSERT_EQ(made, rays.t_max[slot] > 0.0f) << "pixel " << i << ", light " << k;
+      if (!made) continue;
+      ++checked;
+      const double scale = largest_magnitude(p - eye) + largest_magnitude(eye);
+      const glm::dvec3 origin = eye + glm::dvec3(rays.ox[slot], rays.oy[slot], rays.oz[slot]);
+      EXPECT_LE(largest_magnitude(origin - expected.origin), 4 * 0x1p-24 * scale) << "pixel " << i;
+      const glm::dvec3 direction(rays.dx[slot], rays.dy[slot], rays.dz[slot]);
+      EXPECT_LE(largest_magnitude(direction - expected.direction), 4 * 0x1p-24 * (largest_magnitude(expected.direction) + scale));
+      EXPECT_NEAR(rays.t_max[slot], expected.t_max, 4 * 0x1p-24 * expected.t_max);
+    }
+  }
+  EXPECT_GT(checked, 2000u);
+}
+
+#ifdef PHONGCL_HAVE_EMBREE
+TEST(ShadowRays, EmbreeAgreesWithTheReferenceOnTheSameRays) {
+  REQUIRE_DEVICE(device);
+  TempDir dir("shadow_rays");
+  const Scene scene = knot_scene(dir.path, 64, 12, 3);
+  const GBuffer gbuffer = generate_gbuffer(scene);
+  const glm::dvec3 eye = scene.camera.eye;
+  const SceneBvh bvh = build_scene_bvh(flatten_objects(scene.objects), PHONGCL_BVH_MAX_DEPTH);
+  OpenClShadowRays tracer(device->compute, device->cache, pack_device_geometry(bvh, eye), 16);
+  const ShadowRaySet rays = tracer.make_rays(pack_frame(gbuffer, scene), scene, eye, PHONGCL_SHADOW_OFFSET_FLOAT);
+  const EmbreeShadowPeer embree(bvh.shapes, eye);
+  for (EmbreeApi api : {EmbreeApi::packet16, EmbreeApi::single}) {
+    const Agreement agreement = compare(bvh.shapes, eye, rays, embree.trace(rays, api));
+    EXPECT_EQ(agreement.disagree, 0u) << to_string(api);
+    EXPECT_GT(agreement.rays, 100000u);
+  }
+}
+
+TEST(ShadowRays, EmbreeRefusesShapesItDoesNotHave) {
+  Object ball;
+  ball.kind = Object::Kind::sphere;
+  EXPECT_THROW(EmbreeShadowPeer(flatten_objects({ball}), glm::dvec3(0.0)), std::invalid_argument);
+}
+#endif
+
+}  // namespace
+}  // namespace phongcl
