@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages phongcl needs, only those missing. Each scripts/packages/NAME.txt
-# is one group (a package per word, `#` starts a comment; README "Dependencies" says why each one is
+# is one group (a package per word, `#` starts a comment; CONTRIBUTING.md "Dependencies" says why each one is
 # there). `setup.sh` installs the core group, `setup.sh NAME...` those groups, `setup.sh all` every
 # group. Safe to run again; uses sudo when not root.
 set -euo pipefail

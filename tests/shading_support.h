@@ -14,8 +14,8 @@
 
 namespace phongcl::testing {
 
-// The bound the product promises (README), for the kernel and every other implementation of the
-// formula (the C++ and Halide peers): 5e-4 relative, 1e-6 absolute near zero. Why float
+// The bound the product promises (docs/shading.md "Accuracy"), for the kernel and every other
+// implementation of the formula (the C++ and Halide peers): 5e-4 relative, 1e-6 absolute near zero. Why float
 // meets it: each shaded value is a short chain of float operations (normalise: ~3 ulp; dot
 // products: ~2 ulp; the light sum: n ulp for n lights), each ulp 6e-8, so the diffuse part is good
 // to ~1e-6. The specular x^q amplifies the error of x by q; the kernel takes log(x) from

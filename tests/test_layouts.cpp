@@ -553,7 +553,7 @@ TEST(Layouts, EveryCompressionHalfAndFloatTiledAndScanline) {
 // B44 quantises each 4x4 block of half values relative to the block's range: a codec for images,
 // not geometry. Colour passes stay within 0.1 (0.05 seen), but index passes do not survive (a 3
 // next to a 0 came back as 4), so this checks colours only; the exact check against OpenEXR's own
-// decoding is in the test above. README: do not write G-buffers with B44.
+// decoding is in the test above. docs/formats.md: do not write G-buffers with B44.
 TEST(Layouts, B44KeepsColoursClose) {
   TempDir dir;
   const auto [scene, g] = default_scene();

@@ -1,5 +1,5 @@
-// The scalar reference against values worked out by hand from the formula (README "The shading,
-// exactly"). Each case states its geometry and derivation; expected values never come from the
+// The scalar reference against values worked out by hand from the formula (docs/shading.md "The
+// formula"). Each case states its geometry and derivation; expected values never come from the
 // code under test.
 #include <gtest/gtest.h>
 

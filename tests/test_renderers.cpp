@@ -508,7 +508,7 @@ TEST(BlenderEdges, KernelAndReferenceAgreeOnPartialPixels) {
     for (std::size_t i = 0; i < g.pixel_count(); ++i) {
       partial += g.has_coverage() && g.material[i] >= 0.0f && g.coverage[i] < 1.0f;
       for (int c = 0; c < 4; ++c)
-        // 5e-4 relative: the kernel's bound against the reference (README "Accuracy").
+        // 5e-4 relative: the kernel's bound against the reference (docs/shading.md "Accuracy").
         ASSERT_NEAR(lit.pixel(i)[c], expected.pixel(i)[c], 5e-4 * std::max(1.0f, std::abs(expected.pixel(i)[c])))
             << "pixel " << i << " channel " << c;
     }

@@ -1,5 +1,5 @@
-"""The README's shading formula in NumPy float64, written from the formula alone, to check the
-kernel from Python (as the C++ reference in lab/reference does from C++)."""
+"""The shading formula (docs/shading.md) in NumPy float64, written from the formula alone, to check
+the kernel from Python (as the C++ reference in lab/reference does from C++)."""
 import numpy as np
 
 

@@ -12,7 +12,7 @@ import numpy_reference
 SCENES = pathlib.Path(__file__).resolve().parents[2] / "scenes"
 DEFAULT = SCENES / "default" / "scene.json"
 DEFAULT_GBUFFER = SCENES / "default" / "gbuffer.exr"
-# The product's bound (README "Accuracy"; derived in tests/shading_support.h): 5e-4 relative, 1e-6
+# The product's bound (docs/shading.md "Accuracy"; derived in tests/shading_support.h): 5e-4 relative, 1e-6
 # absolute near zero, on every shaded pixel.
 RELATIVE_BOUND = 5e-4
 

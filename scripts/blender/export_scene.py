@@ -3,7 +3,7 @@
     blender -b file.blend --python scripts/blender/export_scene.py -- --out scene.json [--render gbuffer.exr]
         [--samples N] [--falloff quadratic|none]
 
-Conventions (README "Renderers' G-buffers", "From a .blend"):
+Conventions (docs/formats.md "Renderers' G-buffers", "From a Blender scene"):
 - Camera: eye, forward (-Z) and up (+Y) of the camera's world matrix; the vertical field of view
   from Blender's own view frame (Camera.view_frame), which applies the sensor fit: under AUTO the
   sensor width spans the larger image side, so camera.data.angle_y is not the vertical fov of a

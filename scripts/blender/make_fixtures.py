@@ -1,4 +1,4 @@
-"""Makes the Blender fixtures of tests/fixtures/blender/ (README "Renderers' G-buffers"):
+"""Makes the Blender fixtures of tests/fixtures/blender/ (docs/formats.md "Renderers' G-buffers"):
 
     blender -b --factory-startup --python scripts/blender/make_fixtures.py -- --out tests/fixtures/blender
         [--width 64 --height 48]

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The Python module: builds it in build/ (python/, pybind11), runs its pytest suite against an
-# independent NumPy reference, and the turntable example for a few steps.
+# independent NumPy reference, the README's Python relight as written, and the turntable example for a
+# few steps.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 work=$(mktemp -d)
@@ -20,7 +21,14 @@ status=0
 [ "$status" -ne 5 ] || fail "pytest collected no tests in python/tests"
 [ "$status" -eq 0 ] || fail "pytest (exit $status)"
 
+# The README's Python relight, as written, run from a directory that sees the repository's scenes.
+sed -n '/^```python$/,/^```$/p' README.md | sed '1d;$d' >"$work/readme_relight.py"
+[ -s "$work/readme_relight.py" ] || fail "README.md has no python block"
+ln -s "$PWD/scenes" "$work/scenes"
+(cd "$work" && "$python" readme_relight.py) || fail "the README's Python relight"
+[ -s "$work/relit.exr" ] || fail "the README's Python relight wrote no relit.exr"
+
 "$python" examples/relight_turntable.py --scene scenes/default/scene.json --out "$work/turntable" --steps 4 \
   >"$work/turntable.log" || { cat "$work/turntable.log"; fail "examples/relight_turntable.py"; }
 [ "$(find "$work/turntable" -name 'frame_*.png' | wc -l)" -eq 4 ] || fail "the turntable wrote no 4 frames"
-echo "15-python: pytest passed; examples/relight_turntable.py: $(grep 'relight + shade' "$work/turntable.log" | xargs)"
+echo "15-python: pytest and the README's relight passed; examples/relight_turntable.py: $(grep 'relight + shade' "$work/turntable.log" | xargs)"

@@ -3,7 +3,7 @@
 # tests/fuzz/corpus/ (the bundled scenes, small G-buffers and the regression inputs). Fails on a
 # crash, a sanitizer report, a leak (LeakSanitizer on: the harnesses load no OpenCL), an allocation
 # over -malloc_limit_mb or an input slower than -timeout. FUZZ_SECONDS (default 60) sets the time
-# per harness; README "Reliability" says how to run them longer.
+# per harness; CONTRIBUTING.md "Reliability" says how to run them longer.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 source scripts/checks/lib/sanitizer_build.sh

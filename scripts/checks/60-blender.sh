@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# A .blend to a relit EXR with the README's two commands: builds a tiny scene in Blender (64x48),
-# exports it and renders its G-buffer with Cycles (4 samples, CPU) through
+# A .blend to a relit EXR with the two commands of the README's "Shade your own render": builds a
+# tiny scene in Blender (64x48), exports it and renders its G-buffer with Cycles (4 samples, CPU) through
 # scripts/blender/export_scene.py, then shades it with phongcl, which must detect the Blender
 # layout with no flags beyond --scene. Needs build/phongcl (scripts/test.sh builds it first).
 set -euo pipefail

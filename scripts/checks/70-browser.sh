@@ -3,7 +3,7 @@
 # by scripts/checks/browser_relight.py. Edits a light through the page, checks the images against the
 # scalar reference of the edited scene, saves the scene, takes a screenshot, and reports the
 # input-event-to-image-displayed frame rates while dragging at 640x480 and 1920x1080.
-# PHONGCL_SCREENSHOT=FILE keeps the screenshot (docs/serve.png in the README was made so).
+# PHONGCL_SCREENSHOT=FILE keeps the screenshot (docs/serve.png, shown in docs/serve.md, was made so).
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 scripts/setup.sh serve

@@ -385,7 +385,7 @@ def main():
         if shade.returncode != 0:
             fail(f"the saved scene does not shade: {shade.stderr}")
 
-        # 5. The screenshot the README shows.
+        # 5. The screenshot docs/serve.md shows.
         driver.run("const f = document.getElementById('format'); f.value = 'jpeg'; f.dispatchEvent(new Event('change'));")
         driver.run("document.getElementById('panel').scrollTop = 0;")
         time.sleep(0.5)

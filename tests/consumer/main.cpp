@@ -1,4 +1,4 @@
-// The README's C++ usage, as written, against the installed package: shade a scene, brighten its
+// docs/library.md's C++ usage, as written, against the installed package: shade a scene, brighten its
 // first light, shade again, write both. Exits non-zero unless the relit frame is brighter where
 // that light reaches and identical in the background, and the report counts every pixel.
 #include <phongcl/phongcl.hpp>
