@@ -9,9 +9,9 @@
 #define PHONGCL_BVH_MAX_DEPTH 64
 
 /* Shadow rays leave a shaded point by offset_scale * (|P - eye|_inf + |eye|_inf) along its normal
- * (kernels/shadow.h): 32 float ulp of its world coordinates for positions stored as float, and
- * for half-precision ones (16 half ulp) enough to clear their rounding. */
-#define PHONGCL_SHADOW_OFFSET_FLOAT 0x1p-18f
+ * (kernels/shadow.h): 8 to 16 float ulp of its world coordinates for positions stored as float,
+ * and for half-precision ones (16 half ulp) enough to clear their rounding. */
+#define PHONGCL_SHADOW_OFFSET_FLOAT 0x1p-20f
 #define PHONGCL_SHADOW_OFFSET_HALF 0x1p-7f
 
 /* What a child link leads to: its kind in the low PHONGCL_BVH_KIND_BITS bits, and for a leaf the

@@ -1,7 +1,10 @@
 #include "geometry/mesh_file.h"
 
 #include <cmath>
+#include <fstream>
+#include <iterator>
 #include <string>
+#include <vector>
 
 #include <assimp/Importer.hpp>
 #include <assimp/postprocess.h>
@@ -43,6 +46,29 @@ void append_triangles(const aiMesh& mesh, const std::filesystem::path& file, Tri
   }
 }
 
+// Assimp 5.2's PLY reader skips a '\n' that starts a binary file's data as if it ended the header
+// line, and reads every value one byte off (assimp/assimp#5341; one binary PLY in 256). With the
+// header's lines ended by "\r\n" it takes exactly those two bytes, so such a file is handed over
+// from memory with its header so rewritten; the data is untouched. Empty when the file needs none.
+std::vector<char> ply_with_crlf_header(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  std::string header;
+  for (std::string line; header.size() < 65536 && std::getline(in, line);) {
+    header += line + '\n';
+    if (line == "end_header") break;
+  }
+  if (!header.starts_with("ply\n") || !header.ends_with("\nend_header\n") ||
+      header.find("\nformat binary") == std::string::npos || in.peek() != '\n')
+    return {};
+  std::vector<char> rewritten;
+  for (char c : header) {
+    if (c == '\n') rewritten.push_back('\r');
+    rewritten.push_back(c);
+  }
+  rewritten.insert(rewritten.end(), std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  return rewritten;
+}
+
 }  // namespace
 
 TriangleMesh read_mesh(const std::filesystem::path& file) {
@@ -50,10 +76,14 @@ TriangleMesh read_mesh(const std::filesystem::path& file) {
   if (!std::filesystem::is_regular_file(file, error)) throw InputError(file, "cannot open (no such mesh file)");
   Assimp::Importer importer;
   // Points and lines are sorted out and removed; polygons become triangles; the file's node
-  // hierarchy is flattened into its meshes' vertices.
+  // hierarchy is flattened into its meshes' vertices. Validation first: a file Assimp misreads is
+  // an error naming it, not a crash in a later step.
   importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
-  const aiScene* scene = importer.ReadFile(
-      file.string(), aiProcess_Triangulate | aiProcess_SortByPType | aiProcess_PreTransformVertices);
+  const unsigned steps = aiProcess_ValidateDataStructure | aiProcess_Triangulate | aiProcess_SortByPType |
+                         aiProcess_PreTransformVertices;
+  const std::vector<char> rewritten = ply_with_crlf_header(file);
+  const aiScene* scene = rewritten.empty() ? importer.ReadFile(file.string(), steps)
+                                           : importer.ReadFileFromMemory(rewritten.data(), rewritten.size(), steps, "ply");
   if (scene == nullptr) throw InputError(file, one_line(importer.GetErrorString()));
   TriangleMesh mesh;
   for (unsigned m = 0; m < scene->mNumMeshes; ++m) append_triangles(*scene->mMeshes[m], file, mesh);
