@@ -100,14 +100,16 @@ static inline intv meets_plane(__global const ShadowPlane* plane, const ShadowRa
   return LANE_MASK(to_plane * approach > 0 && fabs(to_plane) < ray->t_max * fabs(approach));
 }
 
-/* The lanes of a leaf's primitives that block; `pending` loses them. */
-static inline intv leaf_blocks(__global const ShadowPrimitive* primitives, uint first, uint kind_count,
-                               const ShadowRay* ray, intv pending) {
+/* The lanes of `pending` blocked by a run of primitives (a leaf) or of planes. */
+static inline intv run_blocks(__global const ShadowPrimitive* primitives, __global const ShadowPlane* planes,
+                              uint first, uint kind_count, const ShadowRay* ray, intv pending) {
   intv blocked = pending & 0;
   const uint count = kind_count >> PHONGCL_BVH_KIND_BITS;
   const uint kind = kind_count & PHONGCL_BVH_KIND_MASK;
   for (uint k = first; k < first + count; ++k)
-    blocked |= kind == BVH_TRIANGLES ? meets_triangle(&primitives[k], ray) : meets_sphere(&primitives[k], ray);
+    blocked |= kind == BVH_TRIANGLES ? meets_triangle(&primitives[k], ray)
+               : kind == BVH_SPHERES ? meets_sphere(&primitives[k], ray)
+                                     : meets_plane(&planes[k], ray);
   return blocked & pending;
 }
 
@@ -130,7 +132,7 @@ static inline intv shadow_ray_blocked(__global const BvhNode* nodes, uint node_c
       enter[c] = any_lane(meets_box(record, c, ray) & pending);
       const uint kind_count = record->kind_count[c];
       if (enter[c] && (kind_count & PHONGCL_BVH_KIND_MASK) != BVH_INNER) {
-        const intv hit = leaf_blocks(primitives, record->first[c], kind_count, ray, pending);
+        const intv hit = run_blocks(primitives, planes, record->first[c], kind_count, ray, pending);
         blocked |= hit;
         pending &= ~hit;
         if (!any_lane(pending)) return blocked;
@@ -145,6 +147,19 @@ static inline intv shadow_ray_blocked(__global const BvhNode* nodes, uint node_c
       node = stack[--size];
     }
   }
+}
+
+/* The lanes of `pending` blocked by a tile's candidates for one light (kernels/shadow_cull.cl). */
+static inline intv candidates_block(__global const ShadowCandidate* candidates, uint count,
+                                    __global const ShadowPrimitive* primitives, __global const ShadowPlane* planes,
+                                    const ShadowRay* ray, intv pending) {
+  intv blocked = pending & 0;
+  for (uint j = 0; j < count && any_lane(pending); ++j) {
+    const intv hit = run_blocks(primitives, planes, candidates[j].first, candidates[j].kind_count, ray, pending);
+    blocked |= hit;
+    pending &= ~hit;
+  }
+  return blocked;
 }
 
 #endif

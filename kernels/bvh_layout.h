@@ -14,9 +14,10 @@
 #define PHONGCL_SHADOW_OFFSET_FLOAT 0x1p-20f
 #define PHONGCL_SHADOW_OFFSET_HALF 0x1p-7f
 
-/* What a child link leads to: its kind in the low PHONGCL_BVH_KIND_BITS bits, and for a leaf the
- * number of its primitives above them. An empty child (a root with one leaf) has an empty box. */
-enum { BVH_INNER = 0, BVH_TRIANGLES = 1, BVH_SPHERES = 2, BVH_EMPTY = 3 };
+/* What a link leads to: its kind in the low PHONGCL_BVH_KIND_BITS bits, and for a run of primitives
+ * (a leaf) or planes the number of them above. An empty child (beside a root that is one leaf) is a
+ * run of no triangles, with an empty box. */
+enum { BVH_INNER = 0, BVH_TRIANGLES = 1, BVH_SPHERES = 2, BVH_PLANES = 3 };
 #define PHONGCL_BVH_KIND_BITS 2
 #define PHONGCL_BVH_KIND_MASK 3u
 
@@ -38,10 +39,49 @@ typedef struct {
   float row[3][4];
 } ShadowPrimitive;
 
+/* A primitive's box, parallel to the primitives (rounded outwards like the nodes'): what tiled
+ * culling tests each primitive of a leaf with. */
+typedef struct {
+  float lo[3];
+  float hi[3];
+} ShadowBounds;
+
 /* An unbounded plane: the points x with dot(normal, x) == offset; normal of unit length. */
 typedef struct {
   float normal[3];
   float offset;
 } ShadowPlane;
+
+/* Tiled shadow culling: per screen tile and shadow-casting light, the runs of primitives (of one
+ * leaf) and the planes that can block any of the tile's rays toward that light, as links
+ * (first, kind | count << PHONGCL_BVH_KIND_BITS). A tile and light with more than
+ * PHONGCL_SHADOW_CANDIDATE_LIMIT runs get none and a count of PHONGCL_SHADOW_TRAVERSE: its rays
+ * traverse the whole BVH instead. */
+typedef struct {
+  unsigned int first;
+  unsigned int kind_count;
+} ShadowCandidate;
+#define PHONGCL_SHADOW_CANDIDATE_LIMIT 48
+#define PHONGCL_SHADOW_TRAVERSE 0xffffffffu
+
+/* Culling runs in two levels (kernels/shadow_cull.cl): tiles of PHONGCL_SHADOW_COARSE_RATIO^2 tiles
+ * walk the BVH, with a longer list allowed, and each tile filters its parent's list. */
+#define PHONGCL_SHADOW_COARSE_RATIO 4
+#define PHONGCL_SHADOW_COARSE_LIMIT 256
+
+/* Where a culling level takes its candidates from: the BVH (ratio 0) or the level above, whose tiles
+ * are ratio x ratio of this level's. */
+typedef struct {
+  unsigned int ratio;
+  unsigned int tiles_x;        /* this level's tiles per row */
+  unsigned int parent_tiles_x, parent_tiles;
+} CullLevel;
+
+/* A shadow-casting light as the culling sees it: a point or spot light's position, or a
+ * directional light's unit l (toward the light), eye-relative. */
+typedef struct {
+  float where[3];
+  unsigned int directional;
+} ShadowLight;
 
 #endif

@@ -5,36 +5,44 @@
  * Rays: 7 planes of `stride` floats, eye-relative: origin x y z, direction x y z, t_max; a ray with
  * t_max <= 0 is padding (a background pixel, or one facing away from the light) and is not traced. */
 #include "shadow.h"
+#include "tiles.h"
 
-/* One light's shadow rays from packed pixels (planes of `stride`: position - eye x y z, normal x y z;
- * material index < 0: background), built as the shading kernel builds them (shadow.h). `light` is
- * the light's position - eye, or for a directional light (directional != 0) the unit l. */
-__kernel void make_shadow_rays(__global const float* restrict pixels, __global const int* restrict material_index,
-                               const uint stride, const float light_x, const float light_y, const float light_z,
-                               const int directional, const float offset_scale, const float eye_extent,
-                               __global float* restrict rays) {
-  const size_t group = get_global_id(0);
-  const vec3 p = make_vec3(TO_REALV(VLOAD_FLOAT(group, pixels)), TO_REALV(VLOAD_FLOAT(group, pixels + stride)),
-                           TO_REALV(VLOAD_FLOAT(group, pixels + 2 * (size_t)stride)));
-  const vec3 n = unit_or_zero(make_vec3(TO_REALV(VLOAD_FLOAT(group, pixels + 3 * (size_t)stride)),
-                                        TO_REALV(VLOAD_FLOAT(group, pixels + 4 * (size_t)stride)),
-                                        TO_REALV(VLOAD_FLOAT(group, pixels + 5 * (size_t)stride))));
-  const intv shaded = VLOAD_INT(group, material_index) >= 0;
-  ShadowRay ray;
-  realv facing;
-  if (directional) {
-    const vec3 l = make_vec3((realv)light_x, (realv)light_y, (realv)light_z);
-    ray = shadow_ray_to_direction(p, n, l, offset_scale, eye_extent);
-    facing = dot3(n, l);
-  } else {
-    const vec3 toward = make_vec3(light_x - p.x, light_y - p.y, light_z - p.z);
-    vec3 scaled = toward; /* distance_in_range() may rescale it, keeping its direction */
-    realv distance, inverse_distance;
-    distance_in_range(&scaled, &distance, &inverse_distance);
-    ray = shadow_ray_to_point(p, n, toward, inverse_distance, offset_scale, eye_extent);
-    facing = dot3(n, scaled);
+/* A pixel's shadow ray toward one light (shadow.h), and in `traced` the lanes that need one: shaded
+ * and facing the light. */
+static inline ShadowRay light_ray(vec3 p, vec3 n, ShadowLight light, float offset_scale, float eye_extent, intv* traced) {
+  const vec3 where = make_vec3((realv)light.where[0], (realv)light.where[1], (realv)light.where[2]);
+  if (light.directional) {
+    *traced &= LANE_MASK(dot3(n, where) > 0);
+    return shadow_ray_to_direction(p, n, where, offset_scale, eye_extent);
   }
-  const intv traced = shaded & LANE_MASK(facing > 0);
+  const vec3 toward = sub3(where, p);
+  vec3 scaled = toward; /* distance_in_range() may rescale it, keeping its direction */
+  realv distance, inverse_distance;
+  distance_in_range(&scaled, &distance, &inverse_distance);
+  *traced &= LANE_MASK(dot3(n, scaled) > 0);
+  return shadow_ray_to_point(p, n, toward, inverse_distance, offset_scale, eye_extent);
+}
+
+/* Packed pixels: planes of `stride` (position - eye x y z, normal x y z; material index < 0:
+ * background). */
+static inline vec3 pixel_position(__global const float* pixels, uint stride, size_t group) {
+  return make_vec3(TO_REALV(VLOAD_FLOAT(group, pixels)), TO_REALV(VLOAD_FLOAT(group, pixels + stride)),
+                   TO_REALV(VLOAD_FLOAT(group, pixels + 2 * (size_t)stride)));
+}
+static inline vec3 pixel_normal(__global const float* pixels, uint stride, size_t group) {
+  return unit_or_zero(make_vec3(TO_REALV(VLOAD_FLOAT(group, pixels + 3 * (size_t)stride)),
+                                TO_REALV(VLOAD_FLOAT(group, pixels + 4 * (size_t)stride)),
+                                TO_REALV(VLOAD_FLOAT(group, pixels + 5 * (size_t)stride))));
+}
+
+/* One light's shadow rays from packed pixels, as the shading kernel builds them. */
+__kernel void make_shadow_rays(__global const float* restrict pixels, __global const int* restrict material_index,
+                               const uint stride, __global const ShadowLight* restrict lights, const uint light,
+                               const float offset_scale, const float eye_extent, __global float* restrict rays) {
+  const size_t group = get_global_id(0);
+  intv traced = VLOAD_INT(group, material_index) >= 0;
+  const ShadowRay ray = light_ray(pixel_position(pixels, stride, group), pixel_normal(pixels, stride, group), lights[light],
+                                  offset_scale, eye_extent, &traced);
   const vec3 o = ray.origin, d = ray.direction;
   const realv t_max = SELECT(LANE_MASK(ray.t_max > 0) & traced, ray.t_max, 0);
   VSTORE_FLOAT(TO_FLOATV(o.x), group, rays);
@@ -46,7 +54,16 @@ __kernel void make_shadow_rays(__global const float* restrict pixels, __global c
   VSTORE_FLOAT(TO_FLOATV(t_max), group, rays + 6 * (size_t)stride);
 }
 
-/* Out: 1 where the ray is blocked, else 0. */
+static inline ShadowRay load_ray(__global const float* rays, uint stride, size_t group) {
+  const vec3 origin = make_vec3(TO_REALV(VLOAD_FLOAT(group, rays)), TO_REALV(VLOAD_FLOAT(group, rays + stride)),
+                                TO_REALV(VLOAD_FLOAT(group, rays + 2 * (size_t)stride)));
+  const vec3 direction = make_vec3(TO_REALV(VLOAD_FLOAT(group, rays + 3 * (size_t)stride)),
+                                   TO_REALV(VLOAD_FLOAT(group, rays + 4 * (size_t)stride)),
+                                   TO_REALV(VLOAD_FLOAT(group, rays + 5 * (size_t)stride)));
+  return make_shadow_ray(origin, direction, TO_REALV(VLOAD_FLOAT(group, rays + 6 * (size_t)stride)));
+}
+
+/* Out: 1 where the ray is blocked, else 0. Every ray traverses the BVH. */
 __kernel void trace_shadow_rays(__global const float* restrict rays, const uint stride,
                                 /* the shadow geometry (bvh_layout.h) */
                                 __global const BvhNode* restrict nodes, const uint node_count,
@@ -54,13 +71,40 @@ __kernel void trace_shadow_rays(__global const float* restrict rays, const uint 
                                 __global const ShadowPlane* restrict planes, const uint plane_count,
                                 __global float* restrict blocked) {
   const size_t group = get_global_id(0);
-  const vec3 origin = make_vec3(TO_REALV(VLOAD_FLOAT(group, rays)), TO_REALV(VLOAD_FLOAT(group, rays + stride)),
-                                TO_REALV(VLOAD_FLOAT(group, rays + 2 * (size_t)stride)));
-  const vec3 direction = make_vec3(TO_REALV(VLOAD_FLOAT(group, rays + 3 * (size_t)stride)),
-                                   TO_REALV(VLOAD_FLOAT(group, rays + 4 * (size_t)stride)),
-                                   TO_REALV(VLOAD_FLOAT(group, rays + 5 * (size_t)stride)));
-  const realv t_max = TO_REALV(VLOAD_FLOAT(group, rays + 6 * (size_t)stride));
-  const ShadowRay ray = make_shadow_ray(origin, direction, t_max);
-  const intv hit = shadow_ray_blocked(nodes, node_count, primitives, planes, plane_count, &ray, LANE_MASK(t_max > 0));
+  const ShadowRay ray = load_ray(rays, stride, group);
+  const intv hit = shadow_ray_blocked(nodes, node_count, primitives, planes, plane_count, &ray, LANE_MASK(ray.t_max > 0));
   VSTORE_FLOAT(TO_FLOATV(hit & 1), group, blocked);
+}
+
+/* Every light's shadows at once, as the shading kernel meets them: per pixel the number of lights
+ * whose ray is blocked, the rays built in registers. With `culled`, a ray tests its tile's
+ * candidates for its light (shadow_cull.cl: pair = light * tile_count + tile), or traverses where
+ * the tile has too many; without, every ray traverses. */
+__kernel void count_blocked_lights(__global const float* restrict pixels, __global const int* restrict material_index,
+                                   const uint stride, __global const ShadowLight* restrict lights, const uint light_count,
+                                   const float offset_scale, const float eye_extent, const int culled,
+                                   const TileGrid grid, const uint tile_count, __global const uint* restrict counts,
+                                   __global const uint* restrict offsets,
+                                   __global const ShadowCandidate* restrict candidates,
+                                   /* the shadow geometry (bvh_layout.h) */
+                                   __global const BvhNode* restrict nodes, const uint node_count,
+                                   __global const ShadowPrimitive* restrict primitives,
+                                   __global const ShadowPlane* restrict planes, const uint plane_count,
+                                   __global float* restrict blocked_lights) {
+  const size_t group = get_global_id(0);
+  const uint tile = tile_of_pixel(grid, (uint)(group * PHONGCL_LANES));
+  const intv shaded = VLOAD_INT(group, material_index) >= 0;
+  const vec3 p = pixel_position(pixels, stride, group), n = pixel_normal(pixels, stride, group);
+  realv blocked_count = 0;
+  for (uint k = 0; k < light_count && tile < tile_count; ++k) {
+    intv pending = shaded;
+    const ShadowRay ray = light_ray(p, n, lights[k], offset_scale, eye_extent, &pending);
+    pending &= LANE_MASK(ray.t_max > 0);
+    const uint pair = k * tile_count + tile;
+    const intv hit = culled && counts[pair] != PHONGCL_SHADOW_TRAVERSE
+                         ? candidates_block(&candidates[offsets[pair]], counts[pair], primitives, planes, &ray, pending)
+                         : shadow_ray_blocked(nodes, node_count, primitives, planes, plane_count, &ray, pending);
+    blocked_count += TO_REALV(hit & 1);
+  }
+  VSTORE_FLOAT(TO_FLOATV(blocked_count), group, blocked_lights);
 }

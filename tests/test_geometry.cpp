@@ -296,7 +296,6 @@ TEST(DeviceGeometry, RoundedBoxesHoldTheirFloatPrimitivesFarFromTheOrigin) {
     const BvhNode& node = device.nodes.at(frame.node);
     for (int c = 0; c < 2; ++c) {
       const unsigned kind = node.kind_count[c] & PHONGCL_BVH_KIND_MASK;
-      if (kind == BVH_EMPTY) continue;
       std::vector<std::array<float, 6>> boxes = frame.boxes;
       boxes.push_back({node.lo_x[c], node.lo_y[c], node.lo_z[c], node.hi_x[c], node.hi_y[c], node.hi_z[c]});
       if (kind == BVH_INNER) {

@@ -135,9 +135,26 @@ void expect_kernel_matches_reference(const glm::dvec3& offset, int lanes) {
   const SceneBvh bvh = build_scene_bvh(flatten_objects(scene.objects), PHONGCL_BVH_MAX_DEPTH);
   const glm::dvec3 eye = scene.camera.eye;
   OpenClShadowRays tracer(device->compute, device->cache, pack_device_geometry(bvh, eye), lanes);
-  const ShadowRaySet rays = tracer.make_rays(pack_frame(gbuffer, scene), scene, eye, PHONGCL_SHADOW_OFFSET_FLOAT);
-  const Agreement agreement = compare(reference_outcomes(bvh, eye, rays), rays, tracer.trace(rays), eye);
+  tracer.set_frame(pack_frame(gbuffer, scene), gbuffer.width, gbuffer.height, scene, eye, PHONGCL_SHADOW_OFFSET_FLOAT);
+  const ShadowRaySet rays = tracer.make_rays();
+  const std::vector<float> traversed = tracer.trace(rays);
+  const Agreement agreement = compare(reference_outcomes(bvh, eye, rays), rays, traversed, eye);
   EXPECT_EQ(agreement.disagree, 0u);
+  // Every light in one work-item, as shading meets them, with or without tiled culling, which only
+  // leaves out what cannot block: per pixel, as many blocked lights as the rays one by one.
+  const std::size_t stride = rays.size / scene.lights.size();
+  std::vector<float> expected(stride, 0.0f);
+  for (std::size_t i = 0; i < rays.size; ++i) expected[i % stride] += traversed[i];
+  for (int tile_size : {0, 16, 5}) {
+    const OpenClShadowRays::Counts culled = tracer.count_blocked(tile_size);
+    std::size_t differ = 0;
+    for (std::size_t i = 0; i < stride; ++i) differ += culled.blocked_lights[i] != expected[i];
+    EXPECT_EQ(differ, 0u) << "tiles of " << tile_size;
+    // ... and does leave things out: at 5 x 5 pixels (a 96 x 72 frame) most pairs have a short list.
+    if (tile_size != 5) continue;
+    EXPECT_LT(culled.traversing_pairs, 0.2);
+    EXPECT_LT(culled.candidates_per_pair, 8.0);
+  }
   EXPECT_GT(agreement.rays, 10000u);
   // Grazing rays along the ground and past silhouettes: a few in ten thousand at most.
   EXPECT_LE(agreement.borderline, agreement.rays / 2000) << agreement.borderline << " of " << agreement.rays;
@@ -159,7 +176,8 @@ TEST(ShadowRays, RaysAreTheSpecificationsWithinFloatRounding) {
   const SceneBvh bvh = build_scene_bvh(flatten_objects(scene.objects), PHONGCL_BVH_MAX_DEPTH);
   OpenClShadowRays tracer(device->compute, device->cache, pack_device_geometry(bvh, eye), 16);
   const PackedFrame frame = pack_frame(gbuffer, scene);
-  const ShadowRaySet rays = tracer.make_rays(frame, scene, eye, PHONGCL_SHADOW_OFFSET_FLOAT);
+  tracer.set_frame(frame, gbuffer.width, gbuffer.height, scene, eye, PHONGCL_SHADOW_OFFSET_FLOAT);
+  const ShadowRaySet rays = tracer.make_rays();
   const std::size_t stride = frame.px.size();
   std::size_t checked = 0;
   for (std::size_t k = 0; k < scene.lights.size(); ++k) {
@@ -199,7 +217,8 @@ TEST(ShadowRays, EmbreeAgreesWithTheReferenceOnTheSameRays) {
   const glm::dvec3 eye = scene.camera.eye;
   const SceneBvh bvh = build_scene_bvh(flatten_objects(scene.objects), PHONGCL_BVH_MAX_DEPTH);
   OpenClShadowRays tracer(device->compute, device->cache, pack_device_geometry(bvh, eye), 16);
-  const ShadowRaySet rays = tracer.make_rays(pack_frame(gbuffer, scene), scene, eye, PHONGCL_SHADOW_OFFSET_FLOAT);
+  tracer.set_frame(pack_frame(gbuffer, scene), gbuffer.width, gbuffer.height, scene, eye, PHONGCL_SHADOW_OFFSET_FLOAT);
+  const ShadowRaySet rays = tracer.make_rays();
   const EmbreeShadowPeer embree(bvh.shapes, eye);
   const std::vector<RayOutcome> reference = reference_outcomes(bvh, eye, rays);
   for (EmbreeApi api : {EmbreeApi::packet16, EmbreeApi::single}) {

@@ -86,7 +86,7 @@ class NodePacker {
     node.lo_x[c] = node.lo_y[c] = node.lo_z[c] = inf;
     node.hi_x[c] = node.hi_y[c] = node.hi_z[c] = -inf;
     node.first[c] = 0;
-    node.kind_count[c] = BVH_EMPTY;
+    node.kind_count[c] = BVH_TRIANGLES;  // none of them
   }
 
   const SceneBvh& scene_;
@@ -99,7 +99,14 @@ class NodePacker {
 DeviceGeometry pack_device_geometry(const SceneBvh& scene, const glm::dvec3& eye) {
   DeviceGeometry device;
   device.primitives.reserve(scene.bvh.order.size());
-  for (std::uint32_t item : scene.bvh.order) device.primitives.push_back(pack_item(scene, item, eye));
+  device.bounds.reserve(scene.bvh.order.size());
+  for (std::uint32_t item : scene.bvh.order) {
+    device.primitives.push_back(pack_item(scene, item, eye));
+    const Box box = scene.group(item) == ShapeGroup::triangle ? scene.shapes.triangle_box(item)
+                                                              : scene.shapes.sphere_box(item - scene.shapes.triangles.size());
+    device.bounds.push_back({{round_down(box.lo.x - eye.x), round_down(box.lo.y - eye.y), round_down(box.lo.z - eye.z)},
+                             {round_up(box.hi.x - eye.x), round_up(box.hi.y - eye.y), round_up(box.hi.z - eye.z)}});
+  }
   if (!scene.bvh.nodes.empty()) {
     device.nodes.reserve(scene.bvh.nodes.size() / 2 + 1);
     NodePacker(scene, eye, device.nodes).pack(0);

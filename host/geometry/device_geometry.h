@@ -14,13 +14,16 @@ extern "C" {
 static_assert(sizeof(float) == 4 && sizeof(unsigned int) == 4);
 static_assert(sizeof(BvhNode) == 64 && offsetof(BvhNode, hi_x) == 24 && offsetof(BvhNode, first) == 48 &&
               offsetof(BvhNode, kind_count) == 56);
-static_assert(sizeof(ShadowPrimitive) == 48 && sizeof(ShadowPlane) == 16);
+static_assert(sizeof(ShadowPrimitive) == 48 && sizeof(ShadowPlane) == 16 && sizeof(ShadowBounds) == 24);
+static_assert(sizeof(ShadowCandidate) == 8 && sizeof(ShadowLight) == 16 && offsetof(ShadowLight, directional) == 12);
+static_assert(sizeof(CullLevel) == 16);
 
 namespace phongcl {
 
 struct DeviceGeometry {
   std::vector<BvhNode> nodes;  // empty when the scene has no bounded shape
   std::vector<ShadowPrimitive> primitives;
+  std::vector<ShadowBounds> bounds;  // parallel to primitives
   std::vector<ShadowPlane> planes;
 };
 

@@ -29,9 +29,15 @@ void add_bench_command(CLI::App& app) {
   command->add_option("--rounds", args->rounds, "--sequence: rounds of every mode, the fastest kept (default 3)")
       ->check(CLI::Range(1, 100));
   command->add_option("--compressions", args->compressions, "--sequence: EXR compressions to measure (default zip,piz)");
+  command->add_flag("--shadows", args->shadows,
+                    "Shadows: screen-space marches against exact geometry shadows (error against run time), and the "
+                    "BVH traversal against Embree on the same rays");
+  command->add_option("--mesh-triangles", args->mesh_triangles, "--shadows: triangles of the mesh scene (default 128000)")
+      ->check(CLI::Range(1000, 100000000));
   command->callback([args] {
-    if (args->throughput + args->many_lights + args->sequence > 1)
-      throw CLI::ValidationError("--throughput, --sequence and --many-lights are separate benchmarks: pick one");
+    if (args->throughput + args->many_lights + args->sequence + args->shadows > 1)
+      throw CLI::ValidationError("--throughput, --sequence, --many-lights and --shadows are separate benchmarks: pick one");
+    if (args->shadows) return run_shadows_bench(*args);
     if (args->sequence) return run_sequence_bench(*args);
     if (args->many_lights) return run_many_lights_bench(*args);
     args->throughput ? run_throughput_bench(*args) : run_error_vs_time_bench(*args);

@@ -1,10 +1,12 @@
 #include "peers/opencl_shadow_rays.h"
 
 #include <algorithm>
+#include <chrono>
 #include <stdexcept>
 #include <string>
 
 #include "cl/kernel_source.h"
+#include "shading/tile_culling.h"
 
 namespace phongcl {
 namespace {
@@ -28,6 +30,10 @@ int device_lanes(const DeviceInfo& device, int lanes) {
   return lanes;
 }
 
+cl::Program build(const ComputeContext& compute, ProgramCache& cache, const char* file, int lanes) {
+  return cache.build(compute, load_kernel_source(file), "-cl-std=CL1.2 -DPHONGCL_LANES=" + std::to_string(lanes)).program;
+}
+
 }  // namespace
 
 std::size_t ShadowRaySet::traced() const {
@@ -38,58 +44,70 @@ OpenClShadowRays::OpenClShadowRays(const ComputeContext& compute, ProgramCache& 
                                    int lanes)
     : compute_(compute),
       lanes_(device_lanes(compute.device.info, lanes)),
-      program_(cache.build(compute, load_kernel_source("shadow_rays.cl"),
-                           "-cl-std=CL1.2 -DPHONGCL_LANES=" + std::to_string(lanes_)).program),
+      program_(build(compute, cache, "shadow_rays.cl", lanes_)),
+      cull_program_(build(compute, cache, "shadow_cull.cl", lanes_)),
+      bounds_program_(build(compute, cache, "cull.cl", lanes_)),
       nodes_(table_buffer(compute.context, geometry.nodes)),
       primitives_(table_buffer(compute.context, geometry.primitives)),
+      bounds_(table_buffer(compute.context, geometry.bounds)),
       planes_(table_buffer(compute.context, geometry.planes)),
       node_count_(static_cast<cl_uint>(geometry.nodes.size())),
       plane_count_(static_cast<cl_uint>(geometry.planes.size())) {}
 
-ShadowRaySet OpenClShadowRays::make_rays(const PackedFrame& frame, const Scene& scene, const glm::dvec3& eye,
-                                         float offset_scale) {
-  const std::size_t stride = frame.px.size();
-  if (stride % static_cast<std::size_t>(lanes_) != 0) throw std::invalid_argument("shadow rays: frame not padded to the lanes");
+void OpenClShadowRays::set_frame(const PackedFrame& frame, int width, int height, const Scene& scene,
+                                 const glm::dvec3& eye, float offset_scale) {
+  stride_ = frame.px.size();
+  if (stride_ % static_cast<std::size_t>(lanes_) != 0) throw std::invalid_argument("shadow rays: frame not padded to the lanes");
   std::vector<float> pixels;
   for (const auto* plane : {&frame.px, &frame.py, &frame.pz, &frame.nx, &frame.ny, &frame.nz})
     pixels.insert(pixels.end(), plane->begin(), plane->end());
-  const cl::Buffer pixel_buffer(compute_.context, pixels.begin(), pixels.end(), true);
-  const cl::Buffer material_buffer(compute_.context, frame.material.begin(), frame.material.end(), true);
-  const cl::Buffer ray_buffer(compute_.context, CL_MEM_WRITE_ONLY, kRayPlanes * stride * sizeof(float));
-  cl::KernelFunctor<cl::Buffer, cl::Buffer, cl_uint, cl_float, cl_float, cl_float, cl_int, cl_float, cl_float, cl::Buffer>
-      make(program_, "make_shadow_rays");
-  const float eye_extent = static_cast<float>(std::max({std::abs(eye.x), std::abs(eye.y), std::abs(eye.z)}));
+  pixels_ = cl::Buffer(compute_.context, pixels.begin(), pixels.end(), true);
+  materials_ = cl::Buffer(compute_.context, frame.material.begin(), frame.material.end(), true);
+  width_ = width;
+  height_ = height;
+  offset_scale_ = offset_scale;
+  eye_extent_ = static_cast<float>(std::max({std::abs(eye.x), std::abs(eye.y), std::abs(eye.z)}));
+  // Relative to the eye in double, as the shading kernel's tables are; a direction as l = -normalize(d).
+  std::vector<ShadowLight> lights;
+  for (const Light& light : scene.lights) {
+    const bool directional = light.type == LightType::directional;
+    const glm::dvec3 where = directional ? -glm::normalize(light.direction) : light.position - eye;
+    lights.push_back({{static_cast<float>(where.x), static_cast<float>(where.y), static_cast<float>(where.z)},
+                      directional ? 1u : 0u});
+  }
+  lights_ = table_buffer(compute_.context, lights);
+  light_count_ = lights.size();
+}
 
+ShadowRaySet OpenClShadowRays::make_rays() {
+  const cl::Buffer ray_buffer(compute_.context, CL_MEM_WRITE_ONLY, kRayPlanes * stride_ * sizeof(float));
+  cl::KernelFunctor<cl::Buffer, cl::Buffer, cl_uint, cl::Buffer, cl_uint, cl_float, cl_float, cl::Buffer> make(
+      program_, "make_shadow_rays");
   ShadowRaySet set;
-  set.size = stride * scene.lights.size();
+  set.size = stride_ * light_count_;
   AlignedVector<float>* planes[kRayPlanes] = {&set.ox, &set.oy, &set.oz, &set.dx, &set.dy, &set.dz, &set.t_max};
   for (AlignedVector<float>* plane : planes) plane->resize(set.size);
-  std::vector<float> rays(kRayPlanes * stride);
-  for (std::size_t k = 0; k < scene.lights.size(); ++k) {
-    const Light& light = scene.lights[k];
-    const bool directional = light.type == LightType::directional;
-    // Relative to the eye in double, as the shading kernel's tables are; a direction as l = -normalize(d).
-    const glm::dvec3 where = directional ? -glm::normalize(light.direction) : light.position - eye;
-    make(cl::EnqueueArgs(compute_.queue, cl::NDRange(stride / lanes_)), pixel_buffer, material_buffer,
-         static_cast<cl_uint>(stride), static_cast<float>(where.x), static_cast<float>(where.y),
-         static_cast<float>(where.z), directional ? 1 : 0, offset_scale, eye_extent, ray_buffer);
+  std::vector<float> rays(kRayPlanes * stride_);
+  for (std::size_t k = 0; k < light_count_; ++k) {
+    make(cl::EnqueueArgs(compute_.queue, cl::NDRange(stride_ / lanes_)), pixels_, materials_, static_cast<cl_uint>(stride_),
+         lights_, static_cast<cl_uint>(k), offset_scale_, eye_extent_, ray_buffer);
     compute_.queue.enqueueReadBuffer(ray_buffer, CL_TRUE, 0, rays.size() * sizeof(float), rays.data());
     for (int p = 0; p < kRayPlanes; ++p)
-      std::copy_n(rays.begin() + p * stride, stride, planes[p]->begin() + k * stride);
+      std::copy_n(rays.begin() + p * stride_, stride_, planes[p]->begin() + k * stride_);
   }
   return set;
 }
 
 std::vector<float> OpenClShadowRays::trace(const ShadowRaySet& rays, double* kernel_ms) {
   if (rays.size % static_cast<std::size_t>(lanes_) != 0) throw std::invalid_argument("shadow rays: set not padded to the lanes");
+  std::vector<float> blocked(rays.size, 0.0f);
+  if (rays.size == 0) return blocked;
   std::vector<float> packed;
   packed.reserve(kRayPlanes * rays.size);
   for (const auto* plane : {&rays.ox, &rays.oy, &rays.oz, &rays.dx, &rays.dy, &rays.dz, &rays.t_max})
     packed.insert(packed.end(), plane->begin(), plane->end());
   const cl::Buffer ray_buffer(compute_.context, packed.begin(), packed.end(), true);
-  const cl::Buffer blocked_buffer(compute_.context, CL_MEM_WRITE_ONLY, std::max<std::size_t>(rays.size, 1) * sizeof(float));
-  std::vector<float> blocked(rays.size, 0.0f);
-  if (rays.size == 0) return blocked;
+  const cl::Buffer blocked_buffer(compute_.context, CL_MEM_WRITE_ONLY, rays.size * sizeof(float));
   cl::KernelFunctor<cl::Buffer, cl_uint, cl::Buffer, cl_uint, cl::Buffer, cl::Buffer, cl_uint, cl::Buffer> trace(
       program_, "trace_shadow_rays");
   cl::Event done = trace(cl::EnqueueArgs(compute_.queue, cl::NDRange(rays.size / lanes_)), ray_buffer,
@@ -98,6 +116,91 @@ std::vector<float> OpenClShadowRays::trace(const ShadowRaySet& rays, double* ker
   compute_.queue.enqueueReadBuffer(blocked_buffer, CL_TRUE, 0, blocked.size() * sizeof(float), blocked.data());
   if (kernel_ms) *kernel_ms = event_milliseconds(done);
   return blocked;
+}
+
+OpenClShadowRays::Lists OpenClShadowRays::cull_level(const TileGrid& grid, std::size_t tiles, cl_uint limit,
+                                                     const CullLevel& level, const Lists* parent, double& culling_ms) {
+  Lists lists;
+  lists.grid = grid;
+  lists.tiles = static_cast<cl_uint>(tiles);
+  const std::size_t pairs = tiles * light_count_;
+  const cl::Buffer boxes(compute_.context, CL_MEM_READ_WRITE, std::max<std::size_t>(tiles, 1) * sizeof(TileBox));
+  cl::KernelFunctor<cl::Buffer, cl_uint, cl::Buffer, cl_uint, TileGrid, cl::Buffer> bounds(bounds_program_, "tile_bounds");
+  cl::Event boxed = bounds(cl::EnqueueArgs(compute_.queue, cl::NDRange(tiles)), pixels_, static_cast<cl_uint>(stride_),
+                           materials_, static_cast<cl_uint>(stride_), grid, boxes);
+  const cl::Buffer none(compute_.context, CL_MEM_READ_ONLY, sizeof(ShadowCandidate));
+  const cl::Buffer& parent_counts = parent ? parent->counts : none;
+  const cl::Buffer& parent_offsets = parent ? parent->offsets : none;
+  const cl::Buffer& parent_candidates = parent ? parent->candidates : none;
+  lists.counts = cl::Buffer(compute_.context, CL_MEM_READ_WRITE, std::max<std::size_t>(pairs, 1) * sizeof(cl_uint));
+  cl::KernelFunctor<cl::Buffer, cl_uint, cl::Buffer, cl_float, cl_float, cl_uint, CullLevel, cl::Buffer, cl::Buffer, cl::Buffer,
+                    cl::Buffer, cl_uint, cl::Buffer, cl::Buffer, cl_uint, cl::Buffer>
+      count(cull_program_, "count_shadow_candidates");
+  cl::Event counted = count(cl::EnqueueArgs(compute_.queue, cl::NDRange(pairs)), boxes, lists.tiles, lights_,
+                            offset_scale_, eye_extent_, limit, level, parent_counts, parent_offsets, parent_candidates,
+                            nodes_, node_count_, bounds_, planes_, plane_count_, lists.counts);
+  std::vector<cl_uint> host_counts(pairs), host_offsets(pairs);
+  compute_.queue.enqueueReadBuffer(lists.counts, CL_TRUE, 0, pairs * sizeof(cl_uint), host_counts.data());
+  const auto prefix_start = std::chrono::steady_clock::now();
+  for (std::size_t p = 0; p < pairs; ++p) {
+    host_offsets[p] = static_cast<cl_uint>(lists.entries);
+    if (host_counts[p] == PHONGCL_SHADOW_TRAVERSE) ++lists.traversing;
+    else lists.entries += host_counts[p];
+  }
+  lists.offsets = table_buffer(compute_.context, host_offsets);
+  const double prefix_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - prefix_start).count();
+  lists.candidates =
+      cl::Buffer(compute_.context, CL_MEM_READ_WRITE, std::max<std::size_t>(lists.entries, 1) * sizeof(ShadowCandidate));
+  cl::KernelFunctor<cl::Buffer, cl_uint, cl::Buffer, cl_float, cl_float, CullLevel, cl::Buffer, cl::Buffer, cl::Buffer,
+                    cl::Buffer, cl_uint, cl::Buffer, cl::Buffer, cl_uint, cl::Buffer, cl::Buffer, cl::Buffer>
+      fill(cull_program_, "fill_shadow_candidates");
+  cl::Event filled = fill(cl::EnqueueArgs(compute_.queue, cl::NDRange(pairs)), boxes, lists.tiles, lights_, offset_scale_,
+                          eye_extent_, level, parent_counts, parent_offsets, parent_candidates, nodes_, node_count_,
+                          bounds_, planes_, plane_count_, lists.counts, lists.offsets, lists.candidates);
+  filled.wait();
+  culling_ms += event_milliseconds(boxed) + event_milliseconds(counted) + prefix_ms + event_milliseconds(filled);
+  return lists;
+}
+
+OpenClShadowRays::Lists OpenClShadowRays::cull(int tile_size, Counts& counts) {
+  const TileLayout fine = tile_layout(width_, height_, tile_size);
+  const TileLayout coarse = tile_layout(width_, height_, tile_size * PHONGCL_SHADOW_COARSE_RATIO);
+  const Lists parent =
+      cull_level(coarse.grid, coarse.tile_count, PHONGCL_SHADOW_COARSE_LIMIT, CullLevel{}, nullptr, counts.culling_ms);
+  const CullLevel level{PHONGCL_SHADOW_COARSE_RATIO, fine.grid.tiles_x, coarse.grid.tiles_x,
+                        static_cast<cl_uint>(coarse.tile_count)};
+  Lists lists = cull_level(fine.grid, fine.tile_count, PHONGCL_SHADOW_CANDIDATE_LIMIT, level, &parent, counts.culling_ms);
+  const std::size_t pairs = fine.tile_count * light_count_;
+  counts.candidates_per_pair =
+      static_cast<double>(lists.entries) / static_cast<double>(std::max<std::size_t>(pairs - lists.traversing, 1));
+  counts.traversing_pairs = static_cast<double>(lists.traversing) / static_cast<double>(std::max<std::size_t>(pairs, 1));
+  return lists;
+}
+
+OpenClShadowRays::Counts OpenClShadowRays::count_blocked(int tile_size) {
+  Counts counts;
+  counts.blocked_lights.assign(stride_, 0.0f);
+  if (stride_ == 0) return counts;
+  Lists lists;
+  if (tile_size > 0) {
+    lists = cull(tile_size, counts);
+  } else {  // nothing culled: the lists' buffers are never read
+    lists.counts = lists.offsets = lists.candidates = cl::Buffer(compute_.context, CL_MEM_READ_ONLY, sizeof(cl_uint) * 2);
+    lists.grid = tile_layout(width_, height_, 16).grid;
+    lists.tiles = static_cast<cl_uint>(tile_layout(width_, height_, 16).tile_count);
+  }
+  const cl::Buffer out(compute_.context, CL_MEM_WRITE_ONLY, stride_ * sizeof(float));
+  cl::KernelFunctor<cl::Buffer, cl::Buffer, cl_uint, cl::Buffer, cl_uint, cl_float, cl_float, cl_int, TileGrid, cl_uint,
+                    cl::Buffer, cl::Buffer, cl::Buffer, cl::Buffer, cl_uint, cl::Buffer, cl::Buffer, cl_uint, cl::Buffer>
+      kernel(program_, "count_blocked_lights");
+  cl::Event done = kernel(cl::EnqueueArgs(compute_.queue, cl::NDRange(stride_ / lanes_)), pixels_, materials_,
+                          static_cast<cl_uint>(stride_), lights_, static_cast<cl_uint>(light_count_), offset_scale_,
+                          eye_extent_, tile_size > 0 ? 1 : 0, lists.grid, lists.tiles, lists.counts, lists.offsets,
+                          lists.candidates, nodes_, node_count_, primitives_, planes_, plane_count_, out);
+  compute_.queue.enqueueReadBuffer(out, CL_TRUE, 0, stride_ * sizeof(float), counts.blocked_lights.data());
+  counts.kernel_ms = event_milliseconds(done);
+  return counts;
 }
 
 }  // namespace phongcl

@@ -1,7 +1,7 @@
 #pragma once
-// kernels/shadow_rays.cl: the shading kernel's shadow rays and BVH traversal (kernels/shadow.h,
-// kernels/bvh.h) on their own, so they can be checked ray by ray against the double reference and
-// timed against the Embree peer on the same rays.
+// kernels/shadow_rays.cl: the shading kernel's shadow rays, BVH traversal and tiled shadow culling
+// (kernels/shadow.h, bvh.h, shadow_cull.cl) on their own, so they can be checked ray by ray against
+// the double reference, timed against the Embree peer on the same rays, and costed per frame.
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -10,6 +10,7 @@
 #include "geometry/device_geometry.h"
 #include "peers/shadow_ray_set.h"
 #include "scene/scene.h"
+#include "shading/device_layout.h"  // TileGrid
 
 namespace phongcl {
 
@@ -19,21 +20,53 @@ class OpenClShadowRays {
   // the shading kernel does.
   OpenClShadowRays(const ComputeContext& compute, ProgramCache& cache, const DeviceGeometry& geometry, int lanes = 0);
 
-  // Every light's rays from the frame's shaded pixels (packed relative to `eye`).
-  ShadowRaySet make_rays(const PackedFrame& frame, const Scene& scene, const glm::dvec3& eye, float offset_scale);
+  // The frame (packed relative to `eye`, width x height pixels) and the scene's lights, kept on
+  // the device for what follows.
+  void set_frame(const PackedFrame& frame, int width, int height, const Scene& scene, const glm::dvec3& eye,
+                 float offset_scale);
 
-  // 1 where a ray is blocked, 0 where not (and in empty slots); the trace kernel's time from its
-  // profiling event in kernel_ms.
+  // Every light's rays from the frame's shaded pixels.
+  ShadowRaySet make_rays();
+
+  // 1 where a ray is blocked, 0 where not (and in empty slots); every ray traverses the BVH. The
+  // trace kernel's time from its profiling event in kernel_ms.
   std::vector<float> trace(const ShadowRaySet& rays, double* kernel_ms = nullptr);
+
+  // Per pixel, how many of the lights' rays are blocked, every light in one work-item as shading
+  // meets them: with tiled culling (tile_size > 0; kernels/shadow_cull.cl) or every ray traversing.
+  struct Counts {
+    std::vector<float> blocked_lights;  // per pixel slot
+    double culling_ms = 0.0;  // tile boxes, both culling passes (profiling events) and the host's prefix sum
+    double kernel_ms = 0.0;
+    double candidates_per_pair = 0.0;  // runs per (tile, light) that has a list
+    double traversing_pairs = 0.0;     // fraction of (tile, light) pairs beyond the list's limit
+  };
+  Counts count_blocked(int tile_size);
 
   int lanes() const { return lanes_; }
 
  private:
+  struct Lists {
+    cl::Buffer counts, offsets, candidates;
+    TileGrid grid{};
+    cl_uint tiles = 1;
+    std::size_t entries = 0, traversing = 0;
+  };
+  Lists cull(int tile_size, Counts& counts);
+  // One level of culling over a grid of tiles: from the BVH, or filtering `parent`'s lists.
+  Lists cull_level(const TileGrid& grid, std::size_t tiles, cl_uint limit, const CullLevel& level, const Lists* parent,
+                   double& culling_ms);
+
   ComputeContext compute_;
   int lanes_;
-  cl::Program program_;
-  cl::Buffer nodes_, primitives_, planes_;
+  cl::Program program_, cull_program_, bounds_program_;
+  cl::Buffer nodes_, primitives_, bounds_, planes_;
   cl_uint node_count_, plane_count_;
+  // The frame of set_frame().
+  cl::Buffer pixels_, materials_, lights_;
+  std::size_t stride_ = 0, light_count_ = 0;
+  int width_ = 0, height_ = 0;
+  float offset_scale_ = 0.0f, eye_extent_ = 0.0f;
 };
 
 }  // namespace phongcl
