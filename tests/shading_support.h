@@ -7,24 +7,13 @@
 #include <random>
 #include <sstream>
 
+#include "accuracy_bound.h"
 #include "cl/device.h"
 #include "raycast/raycast.h"
 #include "reference/reference.h"
 #include "shading/phong_shader.h"
 
 namespace phongcl::testing {
-
-// The bound the product promises (docs/shading.md "Accuracy"), for the kernel and every other
-// implementation of the formula (the C++ and Halide peers): 5e-4 relative, 1e-6 absolute near zero. Why float
-// meets it: each shaded value is a short chain of float operations (normalise: ~3 ulp; dot
-// products: ~2 ulp; the light sum: n ulp for n lights), each ulp 6e-8, so the diffuse part is good
-// to ~1e-6. The specular x^q amplifies the error of x by q; the kernel takes log(x) from
-// 1 - v.r = |v - r|^2/2 without cancellation, leaving an exponent error of about
-// q * |v - r| * 2e-7, under 1e-4 where the highlight is still visible (q * |v - r|^2 < ~20) for
-// q <= 1000. 5e-4 leaves a factor of 5 for the worst of thousands of pixels.
-constexpr double kRelativeBound = 5e-4;
-constexpr double kAbsoluteFloor = 1e-6;
-
 
 // One context and in-memory program cache for the whole test binary: building contexts and
 // programs is the slow part, and sharing them is what the CLI does within one run too.
@@ -130,6 +119,26 @@ inline std::vector<bool> shaded_mask(const GBuffer& gbuffer) {
   std::vector<bool> mask(gbuffer.pixel_count());
   for (std::size_t i = 0; i < mask.size(); ++i) mask[i] = classify_pixel(gbuffer, i) == PixelClass::shaded;
   return mask;
+}
+
+// The ambient, diffuse and specular images add up to the image on every shaded pixel. The kernel
+// sums the three non-negative terms in float (two roundings) and stores each from the same sums,
+// so their exact sum is within 2 ulp of the stored value; 4 ulp leaves room for the unscaling.
+inline void expect_terms_sum_to_image(const TermImages& terms, const Image& image, const std::vector<bool>& shaded) {
+  constexpr double kFourUlp = 4 * 0x1p-24;
+  for (const Image* term : {&terms.ambient, &terms.diffuse, &terms.specular})
+    ASSERT_EQ(term->pixel_count(), image.pixel_count());
+  bool any_specular = false;
+  for (std::size_t i = 0; i < image.pixel_count(); ++i) {
+    if (!shaded[i]) continue;  // background: the scene's colour, not a sum of terms
+    for (int c = 0; c < 3; ++c) {
+      const double sum = double(terms.ambient.pixel(i)[c]) + terms.diffuse.pixel(i)[c] + terms.specular.pixel(i)[c];
+      ASSERT_NEAR(sum, image.pixel(i)[c], kFourUlp * std::abs(sum)) << "pixel " << i << ", channel " << c;
+      any_specular |= terms.specular.pixel(i)[c] > 0.0f;
+    }
+    ASSERT_EQ(terms.diffuse.pixel(i)[3], image.pixel(i)[3]) << "alpha of pixel " << i;
+  }
+  EXPECT_TRUE(any_specular) << "no pixel has a specular term: the sum checks too little";
 }
 
 // Background pixels must equal the scene's background colour with alpha 0, exactly; shaded ones alpha 1.

@@ -6,7 +6,9 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <sstream>
 
+#include "accuracy_bound.h"
 #include "cli_runner.h"
 #include "gbuffer/gbuffer.h"
 
@@ -70,7 +72,9 @@ TEST_F(Cli, ShadeMatchesReferenceThroughCompare) {
   const std::string scene = " --scene scenes/shininess/scene.json";
   ASSERT_EQ(run_phongcl("shade" + scene + " --out " + path("lit.exr")).exit_code, 0);
   ASSERT_EQ(run_phongcl("reference" + scene + " --out " + path("ref.exr")).exit_code, 0);
-  const CliRun compare = run_phongcl("compare " + path("lit.exr") + " " + path("ref.exr") + " --tolerance 5e-4");
+  std::ostringstream bound;  // the product's bound, measured as tests/accuracy_bound.h states it
+  bound << " --tolerance " << testing::kRelativeBound << " --abs-floor " << testing::kErrorFloor;
+  const CliRun compare = run_phongcl("compare " + path("lit.exr") + " " + path("ref.exr") + bound.str());
   EXPECT_EQ(compare.exit_code, 0) << compare.out << compare.err;
   for (const char* expected : {"max abs", "max rel", "RMSE", "PSNR", "worst"}) {
     EXPECT_NE(compare.out.find(expected), std::string::npos) << compare.out;

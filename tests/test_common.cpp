@@ -1,4 +1,5 @@
-// Atomic outputs: a killed or failing writer leaves the old files and nothing else.
+// Atomic outputs: a killed or failing writer leaves the old files and nothing else; a failed write
+// leaves no temporary.
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/wait.h>
@@ -13,6 +14,7 @@
 #include <string>
 
 #include "common/atomic_file.h"
+#include "common/error.h"
 
 #include "temp_dir.h"
 
@@ -21,9 +23,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct TempDir : testing::TempDir {
-  TempDir() : testing::TempDir("common") {}
-};
+using testing::TempDir;
 
 std::string content(const fs::path& file) {
   std::ifstream in(file, std::ios::binary);
@@ -55,7 +55,8 @@ void write_then_die(const fs::path& temp) {
   ::kill(::getpid(), SIGKILL);
 }
 
-// 17 of 19 SIGKILLs during a 1080p shade left hidden .NAME.tmpPID.exr files of up to 17 MB.
+// A writer killed mid-write (SIGKILL: no handler runs) leaves the old file and no hidden
+// .NAME.tmpPID temporary beside it.
 TEST(AtomicFile, KilledWriterLeavesOnlyTheOldFile) {
   TempDir dir;
   write_text(dir / "lit.exr", "old");
@@ -80,7 +81,7 @@ TEST(AtomicFile, NextWriteRemovesTemporariesOfDeadProcesses) {
   EXPECT_EQ(content(dir / "lit.exr"), "new");
 }
 
-// A kill between the PNG and the EXR of one run used to leave the new PNG beside the old EXR.
+// A kill between the PNG and the EXR of one run leaves both old files, not a new PNG beside an old EXR.
 TEST(AtomicBatch, KillBeforeCommitLeavesAllOldFiles) {
   TempDir dir;
   write_text(dir / "lit.png", "old png");
@@ -125,6 +126,34 @@ TEST(AtomicBatch, CommitReplacesEveryFile) {
   EXPECT_EQ(names_in(dir.path), (std::set<std::string>{"lit.exr", "lit.png"}));
   EXPECT_EQ(content(dir / "lit.png"), "new png");
   EXPECT_EQ(content(dir / "lit.exr"), "new exr");
+}
+
+TEST(AtomicWrite, ReplacesTheDestinationOnSuccess) {
+  TempDir dir;
+  std::ofstream(dir / "out.txt") << "old";
+  write_atomically(dir / "out.txt", [](const fs::path& temp) { std::ofstream(temp) << "new"; });
+  EXPECT_EQ(content(dir / "out.txt"), "new");
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir.path), fs::directory_iterator()), 1);
+}
+
+TEST(AtomicWrite, ThrowingWriterLeavesDestinationIntactAndNoTemporary) {
+  TempDir dir;
+  std::ofstream(dir / "out.txt") << "old";
+  EXPECT_THROW(write_atomically(dir / "out.txt",
+                                [](const fs::path& temp) {
+                                  std::ofstream(temp) << "half writ";
+                                  throw std::runtime_error("disk full");
+                                }),
+               std::runtime_error);
+  EXPECT_EQ(content(dir / "out.txt"), "old");
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir.path), fs::directory_iterator()), 1);
+}
+
+TEST(AtomicWrite, MissingDirectoryFailsWithoutLeftovers) {
+  TempDir dir;
+  // The writer "succeeds" without creating anything; the rename then fails.
+  EXPECT_THROW(write_atomically(dir / "missing" / "out.txt", [](const fs::path&) {}), InputError);
+  EXPECT_TRUE(fs::is_empty(dir.path));
 }
 
 }  // namespace

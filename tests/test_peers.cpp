@@ -7,18 +7,16 @@
 #include "common/error.h"
 #include "peers/float_math.h"
 #include "peers/light_sweep.h"
-#include "peers/machine_limits.h"
 #include "peers/peers.h"
-#include "peers/work_model.h"
 #include "shading_support.h"
 
 namespace phongcl {
 namespace {
 
-using testing::kAbsoluteFloor;
 using testing::kRelativeBound;
 using testing::random_scene;
 using testing::RandomSceneSpec;
+using testing::shading_error;
 
 using PeerFunction = void (*)(const PackedFrame&, const PackedScene&, float*);
 struct Peer {
@@ -37,7 +35,7 @@ void expect_matches_reference(const Scene& scene, const GBuffer& gbuffer, const 
   const Image reference = reference_image(scene, gbuffer);
   for (const Peer& peer : kPeers) {
     const Image image = shade_with(peer, scene, gbuffer);
-    const ErrorStats stats = compare_images(image, reference, kAbsoluteFloor, testing::shaded_mask(gbuffer));
+    const ErrorStats stats = shading_error(image, reference, testing::shaded_mask(gbuffer));
     EXPECT_LE(stats.max_rel, kRelativeBound) << peer.name << " on " << what << ": " << testing::describe_worst(stats);
     EXPECT_EQ(stats.nonfinite_mismatches, 0u) << peer.name << " on " << what;
     testing::expect_background_exact(image, scene, gbuffer);
@@ -197,23 +195,6 @@ TEST(LightSweep, EveryNthRowTakesRowsZeroStepTwoStep) {
   ASSERT_EQ(image_rows.height, 3);
   EXPECT_EQ(image_rows.pixel(4)[2], image.pixel(10)[2]);
   EXPECT_THROW(every_nth_row(source, 0), std::invalid_argument);
-}
-
-TEST(MachineLimits, MeasurementsArePositive) {
-  EXPECT_GT(measure_triad_bandwidth(1 << 20, 1), 0.1);
-  EXPECT_GT(measure_fma_peak(1), 1.0);
-  EXPECT_FALSE(cpu_model_name().empty());
-}
-
-TEST(WorkModel, UnlitPixelsNeedNeitherGeometryNorLightMath) {
-  // Without lights L_o = ka La: the material index in, RGBA out, three multiplies.
-  EXPECT_EQ(bytes_per_pixel(false, 0), 20.0);
-  EXPECT_EQ(flops_per_pixel(0, 0), 3.0);
-  // With lights P and N are read too, as float or half planes.
-  EXPECT_EQ(bytes_per_pixel(false, 1), 44.0);
-  EXPECT_EQ(bytes_per_pixel(true, 16), 32.0);
-  // Per lit pixel 49, per point light 121, per directional light 101 (the counts in work_model.h).
-  EXPECT_EQ(flops_per_pixel(1, 1), 49.0 + 121.0 + 101.0);
 }
 
 }  // namespace

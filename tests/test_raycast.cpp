@@ -4,6 +4,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <optional>
 #include <random>
 #include <vector>
@@ -13,9 +14,15 @@
 
 #include "raycast/raycast.h"
 #include "scene/scene.h"
+#include "common/error.h"
+#include "raycast/depth_reconstruction.h"
+#include "renderer_files.h"
+#include "temp_dir.h"
 
 namespace phongcl {
 namespace {
+
+using namespace testing;
 
 // The G-buffer stores floats (relative rounding 6e-8) of doubles computed in a different order
 // from the ones below (differences near 1e-15); 1e-5 of the value, or of 1 near zero, is far above
@@ -67,6 +74,31 @@ void expect_close(const glm::dvec3& actual, const glm::dvec3& expected, const ch
         << expected[axis];
 }
 
+struct AnalyticHit {
+  glm::dvec3 position, normal;
+};
+
+// Every pixel against `analytic`, the closed-form hit of the pixel's ray (or none): that hit with
+// `material`, or background where there is none. Returns how many pixels hit.
+int expect_every_pixel(const Scene& scene, const GBuffer& gbuffer, float material,
+                       const std::function<std::optional<AnalyticHit>(const TestRay&)>& analytic) {
+  int hits = 0;
+  for (int y = 0; y < gbuffer.height; ++y)
+    for (int x = 0; x < gbuffer.width; ++x) {
+      const Pixel pixel = pixel_at(gbuffer, x, y);
+      const std::optional<AnalyticHit> hit = analytic(expected_ray(scene.camera, x, y));
+      if (!hit) {
+        EXPECT_EQ(pixel.material, -1.0f) << "at pixel (" << x << ", " << y << ")";
+        continue;
+      }
+      ++hits;
+      EXPECT_EQ(pixel.material, material) << "at pixel (" << x << ", " << y << ")";
+      expect_close(pixel.position, hit->position, "P", x, y);
+      expect_close(pixel.normal, hit->normal, "N", x, y);
+    }
+  return hits;
+}
+
 Scene scene_with(std::vector<Object> objects, int materials = 3) {
   Scene scene;
   scene.camera.eye = {0.0, 0.0, 5.0};
@@ -112,25 +144,14 @@ TEST(Raycast, SphereHitsMatchTheAnalyticIntersection) {
   scene.camera.eye = {0.5, 1.0, 6.0};
   scene.camera.look_at = {0.0, 0.2, 0.0};
   const GBuffer gbuffer = generate_gbuffer(scene);
-
-  int hits = 0;
-  for (int y = 0; y < gbuffer.height; ++y)
-    for (int x = 0; x < gbuffer.width; ++x) {
-      const TestRay ray = expected_ray(scene.camera, x, y);
-      const glm::dvec3 to_origin = ray.origin - center;
-      const auto t = nearest_root(1.0, 2.0 * glm::dot(to_origin, ray.direction),
-                                  glm::dot(to_origin, to_origin) - radius * radius);
-      const Pixel pixel = pixel_at(gbuffer, x, y);
-      if (!t) {
-        EXPECT_EQ(pixel.material, -1.0f) << "at pixel (" << x << ", " << y << ")";
-        continue;
-      }
-      ++hits;
-      const glm::dvec3 hit = ray.origin + *t * ray.direction;
-      ASSERT_EQ(pixel.material, 2.0f) << "at pixel (" << x << ", " << y << ")";
-      expect_close(pixel.position, hit, "P", x, y);
-      expect_close(pixel.normal, (hit - center) / radius, "N", x, y);
-    }
+  const int hits = expect_every_pixel(scene, gbuffer, 2.0f, [&](const TestRay& ray) -> std::optional<AnalyticHit> {
+    const glm::dvec3 to_origin = ray.origin - center;
+    const auto t =
+        nearest_root(1.0, 2.0 * glm::dot(to_origin, ray.direction), glm::dot(to_origin, to_origin) - radius * radius);
+    if (!t) return std::nullopt;
+    const glm::dvec3 hit = ray.origin + *t * ray.direction;
+    return AnalyticHit{hit, (hit - center) / radius};
+  });
   EXPECT_GT(hits, 100);  // the sphere fills a good part of the image
 }
 
@@ -196,27 +217,15 @@ TEST(Raycast, TransformedSphereUsesTheInverseTransposeForNormals) {
   transform.children = {sphere({0, 0, 0}, 1.0, 1)};
   const Scene scene = scene_with({transform});
   const GBuffer gbuffer = generate_gbuffer(scene);
-
-  int hits = 0;
-  for (int y = 0; y < gbuffer.height; ++y)
-    for (int x = 0; x < gbuffer.width; ++x) {
-      // Solve sum(((o + t d - translate) / scale)^2) == 1.
-      const TestRay ray = expected_ray(scene.camera, x, y);
-      const glm::dvec3 o = (ray.origin - translate) / scale, d = ray.direction / scale;
-      const auto t = nearest_root(glm::dot(d, d), 2.0 * glm::dot(o, d), glm::dot(o, o) - 1.0);
-      const Pixel pixel = pixel_at(gbuffer, x, y);
-      if (!t) {
-        EXPECT_EQ(pixel.material, -1.0f) << "at pixel (" << x << ", " << y << ")";
-        continue;
-      }
-      ++hits;
-      const glm::dvec3 hit = ray.origin + *t * ray.direction;
-      // The gradient of the implicit function, not the scaled sphere normal M * n.
-      const glm::dvec3 gradient = (hit - translate) / (scale * scale);
-      ASSERT_EQ(pixel.material, 1.0f) << "at pixel (" << x << ", " << y << ")";
-      expect_close(pixel.position, hit, "P", x, y);
-      expect_close(pixel.normal, glm::normalize(gradient), "N", x, y);
-    }
+  const int hits = expect_every_pixel(scene, gbuffer, 1.0f, [&](const TestRay& ray) -> std::optional<AnalyticHit> {
+    // Solve sum(((o + t d - translate) / scale)^2) == 1.
+    const glm::dvec3 o = (ray.origin - translate) / scale, d = ray.direction / scale;
+    const auto t = nearest_root(glm::dot(d, d), 2.0 * glm::dot(o, d), glm::dot(o, o) - 1.0);
+    if (!t) return std::nullopt;
+    const glm::dvec3 hit = ray.origin + *t * ray.direction;
+    // The gradient of the implicit function, not the scaled sphere normal M * n.
+    return AnalyticHit{hit, glm::normalize((hit - translate) / (scale * scale))};
+  });
   EXPECT_GT(hits, 100);
 }
 
@@ -303,6 +312,80 @@ TEST(Raycast, ImageRowsRunDownAndColumnsRight) {
     }
   EXPECT_GT(hits_above, 0);
   EXPECT_GT(hits_right, 0);
+}
+
+// Reconstructed positions against the position pass they replace. Float rounding, per coordinate:
+// the stored depth carries 2^-24 relative error (so t * 2^-24 along the ray), the written and the
+// rebuilt positions 2^-24 * |P| each; the ray itself is double. Allowing twice the sum:
+// |error| <= 2^-23 * (depth + 2 * max|P|). A wrong convention or pixel-centre offset errs by far
+// more (1/cos of the off-axis angle, or a pixel's footprint at that distance).
+void expect_positions_from_depth(const GBuffer& rebuilt, const GBuffer& truth, const Plane& depth) {
+  for (std::size_t i = 0; i < truth.pixel_count(); ++i) {
+    if (!shaded(truth, i)) continue;
+    const float largest = std::max({std::abs(truth.position[0][i]), std::abs(truth.position[1][i]), std::abs(truth.position[2][i])});
+    const double tolerance = std::ldexp(1.0, -23) * (std::abs(depth[i]) + 2.0 * largest);
+    for (int c = 0; c < 3; ++c)
+      ASSERT_LE(std::abs(rebuilt.position[c][i] - truth.position[c][i]), tolerance)
+          << "pixel " << i << " axis " << c << ": rebuilt " << rebuilt.position[c][i] << ", true " << truth.position[c][i];
+  }
+}
+
+TEST(DepthReconstruction, BothConventionsMatchThePositionPass) {
+  TempDir dir;
+  auto [scene, g] = default_scene();
+  // A crop of the camera's image: data window pixel (x, y) must still get the camera's ray (x, y).
+  GBuffer crop = g;
+  const PixelWindow window{20, 10, 80, 50};
+  crop.data_window = window;
+  crop.width = window.width();
+  crop.height = window.height();
+  const int width = g.width;  // clang 14 cannot capture a structured binding
+  const auto crop_plane = [&](const Plane& plane) {
+    Plane out;
+    for (int y = window.y_min; y <= window.y_max; ++y)
+      for (int x = window.x_min; x <= window.x_max; ++x) out.push_back(plane[static_cast<std::size_t>(y) * width + x]);
+    return out;
+  };
+  for (int c = 0; c < 3; ++c) crop.position[c] = crop_plane(g.position[c]), crop.normal[c] = crop_plane(g.normal[c]);
+  crop.material = crop_plane(g.material);
+
+  for (const GBuffer* truth : {&g, &crop}) {
+    for (auto [kind, convention] : {std::pair{DepthPass::distance, DepthConvention::distance},
+                                    std::pair{DepthPass::view_z, DepthConvention::view_z}}) {
+      SCOPED_TRACE(std::string(kind == DepthPass::distance ? "distance" : "view z") + (truth == &crop ? ", cropped" : ""));
+      write_file(dir / "d.exr", *truth, blender_channels(scene, *truth, {.position = false, .depth = kind, .colors = false}));
+      GBufferRead read = read_gbuffer(dir / "d.exr", {});
+      ASSERT_TRUE(read.needs_positions_from_depth());
+      EXPECT_NE(read.description.find("Depth"), std::string::npos) << read.description;
+      positions_from_depth(read.gbuffer, read.depth, scene.camera, convention);
+      expect_positions_from_depth(read.gbuffer, *truth, read.depth);
+      expect_same_gbuffer(read.gbuffer, *truth, 1e-5);  // normals and materials untouched
+    }
+  }
+}
+
+TEST(DepthReconstruction, TheConventionsDifferOffAxis) {
+  // Guards the test above against passing for either convention: the wrong one must fail it.
+  auto [scene, g] = default_scene();
+  GBuffer rebuilt = g;
+  positions_from_depth(rebuilt, depth_pass(scene, g, DepthPass::distance), scene.camera, DepthConvention::view_z);
+  double worst = 0.0;
+  for (std::size_t i = 0; i < g.pixel_count(); ++i)
+    if (shaded(g, i)) worst = std::max(worst, static_cast<double>(std::abs(rebuilt.position[0][i] - g.position[0][i])));
+  EXPECT_GT(worst, 1e-2);
+}
+
+TEST(DepthReconstruction, DisplayWindowMustBeTheCameraImage) {
+  auto [scene, g] = default_scene();
+  g.source = "small.exr";
+  scene.camera.width += 1;
+  try {
+    positions_from_depth(g, Plane(g.pixel_count(), 1.0f), scene.camera, DepthConvention::distance);
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("small.exr: display window is 97x61 but the scene camera is 98x61"),
+              std::string::npos) << e.what();
+  }
 }
 
 }  // namespace

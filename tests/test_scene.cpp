@@ -2,17 +2,20 @@
 // conversion of transforms to GLM's column-major matrices.
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
 
 #include "common/error.h"
+#include "scene/camera_space.h"
 #include "scene/scene.h"
 
 namespace phongcl {
 namespace {
 
+const std::filesystem::path kDefaultScene = PHONGCL_SOURCE_DIR "/scenes/default/scene.json";
 const std::filesystem::path kSource = "some/dir/scene.json";
 
 // A valid scene with one material, plus `extra` top-level entries; `camera` replaces the camera.
@@ -381,14 +384,35 @@ TEST(Scene, TransformPartsComposeScaleThenRotateXYZThenTranslate) {
   expect_near(moved(2, {1, 0, 0}), {0, 3, 10});   // scaled, turned to +y, lifted along z
 }
 
-}  // namespace
-}  // namespace phongcl
-
 // The camera is optional: shade may take it from the G-buffer's header (gbuffer/file_camera.h).
 TEST(Scene, CameraIsOptional) {
-  const phongcl::Scene without = phongcl::parse_scene(R"({"materials": []})", "s.json");
+  const Scene without = parse_scene(R"({"materials": []})", "s.json");
   EXPECT_FALSE(without.has_camera);
-  const phongcl::Scene with = phongcl::parse_scene(R"({"camera": {"eye": [1, 2, 3]}})", "s.json");
+  const Scene with = parse_scene(R"({"camera": {"eye": [1, 2, 3]}})", "s.json");
   EXPECT_TRUE(with.has_camera);
   EXPECT_EQ(with.camera.eye, glm::dvec3(1, 2, 3));
 }
+
+TEST(CameraSpace, TheCameraGoesToTheOriginLookingDownMinusZ) {
+  const Scene scene = load_scene(kDefaultScene);
+  const glm::dmat4 view = world_to_camera(scene.camera);
+  const glm::dvec3 eye(view * glm::dvec4(scene.camera.eye, 1.0));
+  const glm::dvec3 target(view * glm::dvec4(scene.camera.look_at, 1.0));
+  EXPECT_NEAR(glm::length(eye), 0.0, 1e-12);
+  EXPECT_NEAR(target.x, 0.0, 1e-12);
+  EXPECT_NEAR(target.y, 0.0, 1e-12);
+  EXPECT_NEAR(target.z, -glm::length(scene.camera.look_at - scene.camera.eye), 1e-12);
+  const Scene moved = to_camera_space(scene);
+  EXPECT_EQ(moved.camera.eye, glm::dvec3(0.0));
+  EXPECT_EQ(moved.camera.look_at, glm::dvec3(0.0, 0.0, -1.0));
+  ASSERT_EQ(moved.lights.size(), scene.lights.size());
+  for (std::size_t i = 0; i < scene.lights.size(); ++i) {  // rigid: distances to the eye are kept
+    if (scene.lights[i].type == LightType::point)
+      EXPECT_NEAR(glm::length(moved.lights[i].position), glm::length(scene.lights[i].position - scene.camera.eye), 1e-12);
+    else
+      EXPECT_NEAR(glm::length(moved.lights[i].direction), glm::length(scene.lights[i].direction), 1e-12);
+  }
+}
+
+}  // namespace
+}  // namespace phongcl

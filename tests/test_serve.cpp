@@ -18,6 +18,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "accuracy_bound.h"
 #include "cl/device.h"
 #include "cli_runner.h"
 #include "gbuffer/layouts.h"
@@ -107,6 +108,17 @@ void expect_error(const httplib::Result& result, int status, const std::string& 
 
 json default_scene() { return json::parse(file_text(kSceneFile)); }
 
+std::uint64_t frames_shaded(httplib::Client& client) { return body_json(client.Get("/api/stats"))["frames"]; }
+
+// Polls the server's frame counter until it reaches `count`; the deadline only ends a hung server.
+void wait_for_frames(httplib::Client& client, std::uint64_t count) {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::minutes(2);
+  while (frames_shaded(client) < count) {
+    ASSERT_LT(std::chrono::steady_clock::now(), deadline) << "the server never shaded frame " << count;
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+}
+
 Image decode_exr(const std::string& bytes) {
   TempDir dir("serve");
   std::ofstream(dir / "image.exr", std::ios::binary) << bytes;
@@ -126,15 +138,15 @@ std::vector<std::uint8_t> decode_png(const std::string& bytes, int& width, int& 
   return rgba;
 }
 
-// The kernel against the scalar reference of the same scene: the accuracy the shading tests
-// hold it to (5e-4 relative, 1e-6 absolute near zero), on every pixel.
+// The kernel against the scalar reference of the same scene: the product's bound, on every pixel.
 void expect_matches_reference(const Image& served, const Scene& scene, const GBuffer& gbuffer) {
   const Image expected = reference_image(scene, gbuffer);
   ASSERT_EQ(served.width, expected.width);
   ASSERT_EQ(served.height, expected.height);
-  const ErrorStats error = compare_images(served, expected, 1e-6 / 5e-4);
-  EXPECT_LE(error.max_rel, 5e-4) << "worst pixel (" << error.worst_x << ", " << error.worst_y << "): served "
-                                 << error.worst_test << ", reference " << error.worst_expected;
+  const ErrorStats error = testing::shading_error(served, expected);
+  EXPECT_LE(error.max_rel, testing::kRelativeBound) << "worst pixel (" << error.worst_x << ", " << error.worst_y
+                                                    << "): served " << error.worst_test << ", reference "
+                                                    << error.worst_expected;
   EXPECT_EQ(error.nonfinite_mismatches, 0u);
 }
 
@@ -289,7 +301,7 @@ TEST_F(Serve, LongPollWaitsForANewerFrameAndTimesOutWith204) {
 
 TEST_F(Serve, EditsCoalesceAndTheLastOneIsShown) {
   auto client = server_->client();
-  const std::uint64_t frames_before = body_json(client.Get("/api/stats"))["frames"];
+  const std::uint64_t frames_before = frames_shaded(client);
   json scene = default_scene();
   constexpr int kEdits = 30;
   for (int i = 0; i < kEdits; ++i) {
@@ -297,26 +309,30 @@ TEST_F(Serve, EditsCoalesceAndTheLastOneIsShown) {
     ASSERT_EQ(client.Put("/api/scene", scene.dump(), "application/json")->status, 200);
   }
   const Image shown = decode_exr(client.Get("/api/image?format=exr")->body);
-  const std::uint64_t frames_after = body_json(client.Get("/api/stats"))["frames"];
+  const std::uint64_t frames_after = frames_shaded(client);
   EXPECT_LT(frames_after - frames_before, static_cast<std::uint64_t>(kEdits)) << "every edit was shaded: no coalescing";
   expect_matches_reference(shown, parse_scene(scene.dump(), kSceneFile), server_->session().gbuffer());
 }
 
 // Edits nobody fetches a frame of are not all shaded: one frame ahead at most, then the newest
-// state when a request asks.
+// state when a request asks. The frame ahead is awaited on the counter before the next edits, so a
+// render thread that shaded every edit would be shading the second while the others arrive, and
+// would have shaded more than the two frames counted after the fetch. Reading /api/stats (as the
+// wait does) is not fetching a frame.
 TEST_F(Serve, ShadesOneFrameAheadOfWhatIsFetched) {
   auto client = server_->client();
-  ASSERT_EQ(client.Get("/api/image?format=exr")->status, 200);
-  const std::uint64_t frames_before = body_json(client.Get("/api/stats"))["frames"];
+  ASSERT_EQ(client.Get("/api/image?format=exr")->status, 200);  // every frame so far has been taken
+  const std::uint64_t frames_before = frames_shaded(client);
   json scene = default_scene();
-  for (int i = 0; i < 4; ++i) {
-    scene["lights"][0]["position"] = {-2.0 + 0.5 * i, 3.0, 2.0};
+  const auto move_light_to = [&](double x) {
+    scene["lights"][0]["position"] = {x, 3.0, 2.0};
     ASSERT_EQ(client.Put("/api/scene", scene.dump(), "application/json")->status, 200);
-    std::this_thread::sleep_for(std::chrono::milliseconds(250));  // time to shade each, were it shaded
-  }
-  const std::uint64_t frames_between = body_json(client.Get("/api/stats"))["frames"];
-  EXPECT_LE(frames_between - frames_before, 1u) << "edits were shaded with no request for their frames";
+  };
+  move_light_to(-2.0);
+  wait_for_frames(client, frames_before + 1);  // the one frame ahead
+  for (double x : {-1.5, -1.0, -0.5}) move_light_to(x);
   const Image shown = decode_exr(client.Get("/api/image?format=exr")->body);
+  EXPECT_EQ(frames_shaded(client) - frames_before, 2u) << "the frame ahead, then the fetched one, and no other";
   expect_matches_reference(shown, parse_scene(scene.dump(), kSceneFile), server_->session().gbuffer());
 }
 

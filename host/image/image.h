@@ -81,6 +81,7 @@ struct ErrorStats {
   int worst_channel = 0;
   double worst_test = 0.0, worst_expected = 0.0;
   std::size_t nonfinite_mismatches = 0;  // one is finite and the other is not, or NaN anywhere
+  bool operator==(const ErrorStats&) const = default;
 };
 ErrorStats compare_images(const Image& test, const Image& expected, double abs_floor,
                           const std::vector<bool>& mask = {});

@@ -216,7 +216,7 @@ void ApiRoutes::send_image(const Query& query, const Image& image, httplib::Resp
 
 void ApiRoutes::get_stats(const httplib::Request& request, httplib::Response& response) {
   Query query(request, {});
-  const auto frame = live_.wait_for_frame(0, false, std::chrono::milliseconds(0));
+  const auto frame = live_.latest_frame();
   const RenderCounters counters = live_.counters();
   json stats{{"width", live_.session().width()},
              {"height", live_.session().height()},

@@ -108,6 +108,11 @@ std::shared_ptr<const RenderedFrame> LiveRelighter::current_frame(bool need_term
   return wait_locked(lock, version_, need_terms, timeout);
 }
 
+std::shared_ptr<const RenderedFrame> LiveRelighter::latest_frame() const {
+  std::lock_guard lock(mutex_);
+  return latest_;
+}
+
 RenderCounters LiveRelighter::counters() const {
   std::lock_guard lock(mutex_);
   const auto since = std::chrono::steady_clock::now() - kFpsWindow;

@@ -61,6 +61,9 @@ class LiveRelighter {
                                                       std::chrono::milliseconds timeout);
   // The frame showing the state as it is now (waiting for it to be shaded), or nullptr on timeout.
   std::shared_ptr<const RenderedFrame> current_frame(bool need_terms, std::chrono::milliseconds timeout);
+  // The newest shaded frame (nullptr before the first), without waiting; reading it is not showing
+  // it, so it does not let the render thread shade ahead.
+  std::shared_ptr<const RenderedFrame> latest_frame() const;
   RenderCounters counters() const;
   RelightSession& session() { return session_; }
 

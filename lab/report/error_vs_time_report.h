@@ -25,6 +25,7 @@ struct VariantMeasurement {
 
   std::string kernel_kind() const { return specialised ? "specialised" : "general"; }
   std::string label() const { return precision + (specialised ? " (S)" : " (G)"); }
+  bool operator==(const VariantMeasurement&) const = default;
 };
 
 struct ErrorVsTimeReport {
@@ -36,6 +37,7 @@ struct ErrorVsTimeReport {
   double relative_error_floor = 1e-6;  // relative error is |test - expected| / max(|expected|, floor)
   std::vector<std::string> notes;      // e.g. a variant the device cannot run
   std::vector<VariantMeasurement> variants;
+  bool operator==(const ErrorVsTimeReport&) const = default;
 };
 
 // Every output lists variants in this order: by median kernel time, ties by label.

@@ -2,6 +2,8 @@
 the kernel from Python (as the C++ reference in lab/reference does from C++)."""
 import numpy as np
 
+from accuracy_bound import ERROR_FLOOR
+
 
 def _unit(v):
     length = np.linalg.norm(v, axis=-1, keepdims=True)
@@ -40,9 +42,10 @@ def shade(scene, P, N, material):
     return out
 
 
-def worst_relative_error(image, expected, shaded, floor=1e-6):
-    """Max relative error over shaded pixels' RGB (relative to max(|e|, floor)) and where it is."""
-    error = np.abs(image[..., :3] - expected[..., :3]) / np.maximum(np.abs(expected[..., :3]), floor)
+def worst_relative_error(image, expected, shaded):
+    """Max relative error over shaded pixels' RGB, |got - want| / max(|want|, ERROR_FLOOR) as the
+    product's bound is measured (accuracy_bound.py), and where it is."""
+    error = np.abs(image[..., :3] - expected[..., :3]) / np.maximum(np.abs(expected[..., :3]), ERROR_FLOOR)
     error = np.where(shaded[..., None], error, 0.0)
     worst = np.unravel_index(np.argmax(error), error.shape)
     return float(error[worst]), worst

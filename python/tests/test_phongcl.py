@@ -8,13 +8,11 @@ import pytest
 
 import phongcl
 import numpy_reference
+from accuracy_bound import RELATIVE_BOUND
 
 SCENES = pathlib.Path(__file__).resolve().parents[2] / "scenes"
 DEFAULT = SCENES / "default" / "scene.json"
 DEFAULT_GBUFFER = SCENES / "default" / "gbuffer.exr"
-# The product's bound (docs/shading.md "Accuracy"; derived in tests/shading_support.h): 5e-4 relative, 1e-6
-# absolute near zero, on every shaded pixel.
-RELATIVE_BOUND = 5e-4
 
 needs_device = pytest.mark.skipif(not phongcl.devices(), reason="no OpenCL device on this machine")
 

@@ -6,6 +6,9 @@ screenshot, and measures input-event-to-image-displayed rates at 640x480 and 192
 render it adds a spot through its controls and checks the before/after split against the beauty pass."""
 import argparse, base64, json, os, re, socket, statistics, struct, subprocess, sys, time, urllib.request, zlib
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python", "tests"))
+from accuracy_bound import ERROR_FLOOR, RELATIVE_BOUND  # the product's bound, defined in tests/accuracy_bound.h
+
 ELEMENT = "element-6066-11e4-a52e-4f735466cecf"
 
 
@@ -232,7 +235,8 @@ def check_against_reference(args, work, url, scene, gbuffer, name):
     if ref.returncode != 0:
         fail(f"phongcl reference: {ref.stderr}")
     compare = subprocess.run([args.phongcl, "compare", os.path.join(work, f"{name}-served.exr"),
-                              os.path.join(work, f"{name}-ref.exr"), "--tolerance", "5e-4"], capture_output=True, text=True)
+                              os.path.join(work, f"{name}-ref.exr"), "--tolerance", str(RELATIVE_BOUND),
+                              "--abs-floor", str(ERROR_FLOOR)], capture_output=True, text=True)
     if compare.returncode != 0:
         fail(f"{name}: served image against the reference: {compare.stdout}{compare.stderr}")
     return os.path.join(work, f"{name}-ref.png")
@@ -370,7 +374,7 @@ def main():
         wait_for_png_frame(driver)
         pixels = canvas_pixels(driver)
         width, height, reference = decode_png(open(reference_png, "rb").read())
-        # The kernel is within 5e-4 relative of the reference, so a byte may round the other way.
+        # The kernel is within RELATIVE_BOUND of the reference, so a byte may round the other way.
         worst, compared = worst_difference(pixels, reference, width, lambda x: True)
         if compared == 0 or worst > 1:
             fail(f"displayed image differs from the reference display encoding by {worst} (of {compared} pixels)")
@@ -415,16 +419,16 @@ def main():
         driver.run("const fit = document.getElementById('fit'); fit.checked = false; fit.dispatchEvent(new Event('change'));")
         time.sleep(1)
         large_full = measure(driver, args.seconds)
-        for name, r, target in (("640x480", small, 25), ("1920x1080", large, 10), ("1920x1080 streamed at full size", large_full, 10)):
-            print(f"70-browser: {name}: {r['fps']:.1f} frames/s displayed while dragging (target >= {target}), "
+        for name, r in (("640x480", small), ("1920x1080", large), ("1920x1080 streamed at full size", large_full)):
+            print(f"70-browser: {name}: {r['fps']:.1f} frames/s displayed while dragging, "
                   f"displayed at {r['width']}x{r['height']}, "
                   f"input to image median {r['median_ms']:.0f} ms, p90 {r['p90_ms']:.0f} ms, {r['events']} input events; "
                   f"per frame in the page: waiting {r['wait_ms']:.1f} ms, transfer {r['transfer_ms']:.1f} ms, "
                   f"decode and draw {r['decode_ms']:.1f} ms")
-        print(f"70-browser: edited light through the page; served EXR within 5e-4 of the reference, displayed PNG within "
+        print(f"70-browser: edited light through the page; served EXR within {RELATIVE_BOUND:g} of the reference, displayed PNG within "
               f"1/255 on {compared} pixels; scene saved and shades; screenshot {args.screenshot}")
         print(f"70-browser: spot added and set through its controls (cone, penumbra clamped to A/2 + P <= 90, falloff, "
-              f"range, light linking), a light switched off, served EXR within 5e-4 of the reference; split within "
+              f"range, light linking), a light switched off, served EXR within {RELATIVE_BOUND:g} of the reference; split within "
               f"1/255 of the relit reference on {split_left} pixels and of the beauty pass on {split_right}")
     finally:
         # The session first: chromedriver leaves its Chromium running when it is terminated.

@@ -13,15 +13,14 @@ namespace phongcl {
 namespace {
 
 using testing::describe_worst;
-using testing::kAbsoluteFloor;
 using testing::kRelativeBound;
 using testing::random_scene;
 using testing::RandomSceneSpec;
+using testing::shading_error;
 
 void expect_matches_reference(const Image& image, const Scene& scene, const GBuffer& gbuffer, const char* step) {
   testing::expect_background_exact(image, scene, gbuffer);
-  const ErrorStats stats =
-      compare_images(image, reference_image(scene, gbuffer), kAbsoluteFloor, testing::shaded_mask(gbuffer));
+  const ErrorStats stats = shading_error(image, reference_image(scene, gbuffer), testing::shaded_mask(gbuffer));
   EXPECT_EQ(stats.nonfinite_mismatches, 0u) << step;
   EXPECT_LE(stats.max_rel, kRelativeBound) << step << ": " << describe_worst(stats);
 }
@@ -122,16 +121,7 @@ TEST(Relighter, TermsSumToTheImage) {
   Relighter relighter(scene, gbuffer, options);
   const Image image = relighter.shade(terms);
   expect_matches_reference(image, scene, gbuffer, "with terms");
-  const std::vector<bool> shaded = testing::shaded_mask(gbuffer);
-  for (std::size_t i = 0; i < gbuffer.pixel_count(); ++i) {
-    if (!shaded[i]) continue;
-    for (int c = 0; c < 3; ++c) {
-      const double sum = double(terms.ambient.pixel(i)[c]) + terms.diffuse.pixel(i)[c] + terms.specular.pixel(i)[c];
-      // Three float terms rounded once more when the kernel adds them.
-      ASSERT_NEAR(sum, image.pixel(i)[c], kAbsoluteFloor + 1e-6 * std::abs(sum)) << "pixel " << i << ", channel " << c;
-    }
-    ASSERT_EQ(terms.diffuse.pixel(i)[3], image.pixel(i)[3]) << "alpha of pixel " << i;
-  }
+  testing::expect_terms_sum_to_image(terms, image, testing::shaded_mask(gbuffer));
 }
 
 TEST(Relighter, ReportCountsPixelsAndSaysWhatWasCompiled) {

@@ -18,10 +18,10 @@
 namespace phongcl {
 namespace {
 
-using testing::kAbsoluteFloor;
 using testing::kRelativeBound;
 using testing::random_scene;
 using testing::RandomSceneSpec;
+using testing::shading_error;
 
 std::optional<std::filesystem::path> halide_peer() {
 #ifdef PHONGCL_HALIDE_PEER_EXE
@@ -79,7 +79,7 @@ TEST(HalidePeer, MatchesReferenceOnSmallRandomFrames) {
     const HalidePeerRun run = run_halide_peer(*peer, pack_frame(gbuffer, scene), pack_scene(scene), 2, 1e4, image.rgba.data());
     EXPECT_EQ(run.times_ms.size(), 2u);
     EXPECT_GT(run.compile_ms, 0.0);
-    const ErrorStats stats = compare_images(image, reference_image(scene, gbuffer), kAbsoluteFloor, testing::shaded_mask(gbuffer));
+    const ErrorStats stats = shading_error(image, reference_image(scene, gbuffer), testing::shaded_mask(gbuffer));
     EXPECT_LE(stats.max_rel, kRelativeBound) << lights << " lights, schedule " << run.schedule << ": " << testing::describe_worst(stats);
     EXPECT_EQ(stats.nonfinite_mismatches, 0u);
     testing::expect_background_exact(image, scene, gbuffer);
