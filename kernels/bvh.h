@@ -1,4 +1,4 @@
-/* Shadow rays against the scene's geometry (kernels/bvh_layout.h): whether anything lies between a
+/* Shadow rays against the scene's geometry (kernels/shadow_layout.h): whether anything lies between a
  * ray's origin and t_max, for PHONGCL_LANES rays at once (phong_math.h's lanes). With one lane this
  * is the plain single-ray traversal GPUs want; with 16 the rays of a work-item's 16 neighbouring
  * pixels traverse as one packet (Wald et al. 2001): a node is entered when any pending lane's ray
@@ -10,7 +10,7 @@
 #ifndef PHONGCL_BVH_H
 #define PHONGCL_BVH_H
 
-#include "bvh_layout.h"
+#include "shadow_layout.h"
 #include "phong_math.h"
 
 typedef struct {

@@ -1,6 +1,6 @@
 /* Tiled shadow culling, before shading (or tracing): per screen tile and shadow-casting light, the
  * primitives and the planes that can block any of the tile's shadow rays toward that light
- * (ShadowCandidate, bvh_layout.h), so that a pixel tests a few primitives instead of traversing:
+ * (ShadowCandidate, shadow_layout.h), so that a pixel tests a few primitives instead of traversing:
  *   count_shadow_candidates  one work-item per (light, tile): how many, or PHONGCL_SHADOW_TRAVERSE
  *   fill_shadow_candidates   the same walk again, writing them at the host's offset for the pair
  * (pair p = light * tile_count + tile). A tile's rays start within its box of shaded positions
@@ -161,7 +161,7 @@ static bool filter_list(CandidateList* list, const ShadowHull* hull, ShadowLight
 
 /* The candidates of one (light, tile) pair (pair = light * tiles + tile, at every level), written to
  * `out` (null: counted); their number, or PHONGCL_SHADOW_TRAVERSE beyond the limit. They come from
- * the level above (CullLevel, bvh_layout.h), whose list holds all of them, or from the BVH where
+ * the level above (CullLevel, shadow_layout.h), whose list holds all of them, or from the BVH where
  * there is none or it went beyond its limit. */
 static uint pair_candidates(uint pair, uint tile_count, __global const TileBox* boxes, __global const ShadowLight* lights,
                             float offset_scale, float eye_extent, CullLevel level, __global const uint* parent_counts,
@@ -195,7 +195,7 @@ __kernel void count_shadow_candidates(__global const TileBox* restrict boxes, co
                                       const CullLevel level, __global const uint* restrict parent_counts,
                                       __global const uint* restrict parent_offsets,
                                       __global const ShadowCandidate* restrict parent_candidates,
-                                      /* the shadow geometry (bvh_layout.h) */
+                                      /* the shadow geometry (shadow_layout.h) */
                                       __global const BvhNode* restrict nodes, const uint node_count,
                                       __global const ShadowBounds* restrict bounds,
                                       __global const ShadowPlane* restrict planes, const uint plane_count,

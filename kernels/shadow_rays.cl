@@ -65,7 +65,7 @@ static inline ShadowRay load_ray(__global const float* rays, uint stride, size_t
 
 /* Out: 1 where the ray is blocked, else 0. Every ray traverses the BVH. */
 __kernel void trace_shadow_rays(__global const float* restrict rays, const uint stride,
-                                /* the shadow geometry (bvh_layout.h) */
+                                /* the shadow geometry (shadow_layout.h) */
                                 __global const BvhNode* restrict nodes, const uint node_count,
                                 __global const ShadowPrimitive* restrict primitives,
                                 __global const ShadowPlane* restrict planes, const uint plane_count,
@@ -77,19 +77,22 @@ __kernel void trace_shadow_rays(__global const float* restrict rays, const uint 
 }
 
 /* Every light's shadows at once, as the shading kernel meets them: per pixel the number of lights
- * whose ray is blocked, the rays built in registers. With `culled`, a ray tests its tile's
- * candidates for its light (shadow_cull.cl: pair = light * tile_count + tile), or traverses where
- * the tile has too many; without, every ray traverses. */
+ * whose ray is blocked, the rays built in registers. Method 0: every ray traverses the BVH; 1: a ray
+ * tests its tile's candidates for its light (shadow_cull.cl: pair = light * tile_count + tile), or
+ * traverses where the tile has too many; 2: the screen-space march over the depth plane. */
 __kernel void count_blocked_lights(__global const float* restrict pixels, __global const int* restrict material_index,
                                    const uint stride, __global const ShadowLight* restrict lights, const uint light_count,
-                                   const float offset_scale, const float eye_extent, const int culled,
+                                   const float offset_scale, const float eye_extent, const int method,
+                                   /* tiled culling's lists */
                                    const TileGrid grid, const uint tile_count, __global const uint* restrict counts,
                                    __global const uint* restrict offsets,
                                    __global const ShadowCandidate* restrict candidates,
-                                   /* the shadow geometry (bvh_layout.h) */
+                                   /* the shadow geometry (shadow_layout.h) */
                                    __global const BvhNode* restrict nodes, const uint node_count,
                                    __global const ShadowPrimitive* restrict primitives,
                                    __global const ShadowPlane* restrict planes, const uint plane_count,
+                                   /* the screen-space march's depth plane, in the frame's pixel order */
+                                   __global const float* restrict depth, const ScreenMarch march,
                                    __global float* restrict blocked_lights) {
   const size_t group = get_global_id(0);
   const uint tile = tile_of_pixel(grid, (uint)(group * PHONGCL_LANES));
@@ -101,9 +104,11 @@ __kernel void count_blocked_lights(__global const float* restrict pixels, __glob
     const ShadowRay ray = light_ray(p, n, lights[k], offset_scale, eye_extent, &pending);
     pending &= LANE_MASK(ray.t_max > 0);
     const uint pair = k * tile_count + tile;
-    const intv hit = culled && counts[pair] != PHONGCL_SHADOW_TRAVERSE
-                         ? candidates_block(&candidates[offsets[pair]], counts[pair], primitives, planes, &ray, pending)
-                         : shadow_ray_blocked(nodes, node_count, primitives, planes, plane_count, &ray, pending);
+    intv hit;
+    if (method == 2) hit = screen_march_blocked(depth, march, &ray, pending);
+    else if (method == 1 && counts[pair] != PHONGCL_SHADOW_TRAVERSE)
+      hit = candidates_block(&candidates[offsets[pair]], counts[pair], primitives, planes, &ray, pending);
+    else hit = shadow_ray_blocked(nodes, node_count, primitives, planes, plane_count, &ray, pending);
     blocked_count += TO_REALV(hit & 1);
   }
   VSTORE_FLOAT(TO_FLOATV(blocked_count), group, blocked_lights);

@@ -41,7 +41,7 @@ std::string error_of(const std::function<void()>& action) {
 }
 
 TEST(MeshFile, BinaryPlyRoundTrips) {
-  TempDir dir("geometry");
+  TempDir dir;
   const TriangleMesh knot = trefoil_knot(40, 8);
   write_ply(dir / "knot.ply", knot);
   const TriangleMesh read = read_mesh(dir / "knot.ply");
@@ -56,7 +56,7 @@ TEST(MeshFile, BinaryPlyRoundTrips) {
 // read_mesh hands such a file over with a CRLF header. A first vertex x of 0x3f80000a starts the
 // data with that byte (little-endian), 1.0f with a zero.
 TEST(MeshFile, BinaryPlyWhoseDataStartsWithANewlineIsReadRight) {
-  TempDir dir("geometry");
+  TempDir dir;
   for (std::uint32_t bits : {0x3f80000au, 0x3f800000u}) {
     TriangleMesh mesh = trefoil_knot(12, 5);
     std::memcpy(&mesh.vertices[0].x, &bits, sizeof bits);
@@ -70,14 +70,14 @@ TEST(MeshFile, BinaryPlyWhoseDataStartsWithANewlineIsReadRight) {
 }
 
 TEST(MeshFile, ObjPolygonsAreTriangulatedAndPointsDropped) {
-  TempDir dir("geometry");
+  TempDir dir;
   write_text(dir / "quad.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 5 5 5\nf 1 2 3 4\np 5\n");
   const TriangleMesh quad = read_mesh(dir / "quad.obj");
   EXPECT_EQ(quad.triangles.size(), 2u);
 }
 
 TEST(MeshFile, BadFilesAreOneLineErrorsNamingTheFile) {
-  TempDir dir("geometry");
+  TempDir dir;
   const std::string missing = error_of([&] { read_mesh(dir / "missing.ply"); });
   EXPECT_NE(missing.find("missing.ply"), std::string::npos) << missing;
 
@@ -110,7 +110,7 @@ TEST(MeshFile, SceneMeshObjectsResolveRelativeToTheSceneAndCheckTheirKeys) {
 }
 
 TEST(SceneShapes, TransformsReachTrianglesMeshesSpheresAndPlanes) {
-  TempDir dir("geometry");
+  TempDir dir;
   write_text(dir / "tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
   const glm::dmat4 outer = compose_transform({1, 2, 3}, {10, 20, 30}, {1, 2, 3});
   const glm::dmat4 inner = compose_transform({-1, 0, 0.5}, {0, 45, 0}, {2, 2, 2});
@@ -162,7 +162,7 @@ TEST(SceneShapes, TransformsReachTrianglesMeshesSpheresAndPlanes) {
 }
 
 TEST(SceneShapes, AMeshInstancedTwiceIsReadOnceAndPlacedTwice) {
-  TempDir dir("geometry");
+  TempDir dir;
   write_ply(dir / "knot.ply", trefoil_knot(10, 4));
   Object mesh, moved;
   mesh.kind = Object::Kind::mesh;
@@ -258,7 +258,7 @@ TEST(Bvh, CoincidentAndDegenerateItemsStayWithinTheDepthLimit) {
 
 // Every float primitive lies within the boxes on its path, wherever the eye is.
 TEST(DeviceGeometry, RoundedBoxesHoldTheirFloatPrimitivesFarFromTheOrigin) {
-  TempDir dir("geometry");
+  TempDir dir;
   write_ply(dir / "knot.ply", trefoil_knot(60, 6));
   Object mesh, ball, ellipsoid, plane;
   mesh.kind = Object::Kind::mesh;

@@ -129,7 +129,7 @@ Agreement compare(const std::vector<RayOutcome>& reference, const ShadowRaySet& 
 
 void expect_kernel_matches_reference(const glm::dvec3& offset, int lanes) {
   REQUIRE_DEVICE(device);
-  TempDir dir("shadow_rays");
+  TempDir dir;
   const Scene scene = test_scene(dir.path, offset, 96, 72);
   const GBuffer gbuffer = generate_gbuffer(scene);
   const SceneBvh bvh = build_scene_bvh(flatten_objects(scene.objects), PHONGCL_BVH_MAX_DEPTH);
@@ -146,7 +146,8 @@ void expect_kernel_matches_reference(const glm::dvec3& offset, int lanes) {
   std::vector<float> expected(stride, 0.0f);
   for (std::size_t i = 0; i < rays.size; ++i) expected[i % stride] += traversed[i];
   for (int tile_size : {0, 16, 5}) {
-    const OpenClShadowRays::Counts culled = tracer.count_blocked(tile_size);
+    const OpenClShadowRays::Counts culled = tracer.count_blocked(
+        tile_size == 0 ? OpenClShadowRays::Method::traverse : OpenClShadowRays::Method::culled, std::max(tile_size, 1));
     std::size_t differ = 0;
     for (std::size_t i = 0; i < stride; ++i) differ += culled.blocked_lights[i] != expected[i];
     EXPECT_EQ(differ, 0u) << "tiles of " << tile_size;
@@ -169,7 +170,7 @@ TEST(ShadowRays, AMillionUnitsFromTheOriginAgreesToo) { expect_kernel_matches_re
 // the same G-buffer, within float rounding.
 TEST(ShadowRays, RaysAreTheSpecificationsWithinFloatRounding) {
   REQUIRE_DEVICE(device);
-  TempDir dir("shadow_rays");
+  TempDir dir;
   const Scene scene = test_scene(dir.path, {0, 0, 0}, 40, 30);
   const GBuffer gbuffer = generate_gbuffer(scene);
   const glm::dvec3 eye = scene.camera.eye;
@@ -209,7 +210,7 @@ TEST(ShadowRays, RaysAreTheSpecificationsWithinFloatRounding) {
 #ifdef PHONGCL_HAVE_EMBREE
 TEST(ShadowRays, EmbreeAgreesWithTheReferenceOnTheSameRays) {
   REQUIRE_DEVICE(device);
-  TempDir dir("shadow_rays");
+  TempDir dir;
   Scene scene = knot_scene(dir.path, 64, 12, 3);
   scene.camera.width = 160;
   scene.camera.height = 120;

@@ -4,7 +4,7 @@
 // node, 16 bins per axis, the split that minimises the expected cost of a ray that reaches the
 // node. Hand-written rather than taken from a library: Debian packages no BVH builder but Embree's,
 // which is a lab peer here and never linked by the product, and the layout the kernels read
-// (kernels/bvh_layout.h) is ours to choose.
+// (kernels/shadow_layout.h) is ours to choose.
 #include <cstddef>
 #include <cstdint>
 #include <vector>

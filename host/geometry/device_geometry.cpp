@@ -18,7 +18,7 @@ float round_up(double x) {
   return f;
 }
 
-// The triangle's corners, the sphere's map to the unit sphere (kernels/bvh_layout.h), eye-relative.
+// The triangle's corners, the sphere's map to the unit sphere (kernels/shadow_layout.h), eye-relative.
 ShadowPrimitive pack_item(const SceneBvh& scene, std::uint32_t item, const glm::dvec3& eye) {
   ShadowPrimitive primitive{};
   const SceneShapes& shapes = scene.shapes;

@@ -1,5 +1,5 @@
 #pragma once
-// The scene's BVH and planes in the kernels' layout (kernels/bvh_layout.h), relative to an eye:
+// The scene's BVH and planes in the kernels' layout (kernels/shadow_layout.h), relative to an eye:
 // rebuilt in one pass over the tree when the eye moves, never re-sorted.
 #include <vector>
 
@@ -8,7 +8,7 @@
 #include "geometry/scene_bvh.h"
 
 extern "C" {
-#include "kernels/bvh_layout.h"
+#include "kernels/shadow_layout.h"
 }
 
 static_assert(sizeof(float) == 4 && sizeof(unsigned int) == 4);
@@ -17,6 +17,8 @@ static_assert(sizeof(BvhNode) == 64 && offsetof(BvhNode, hi_x) == 24 && offsetof
 static_assert(sizeof(ShadowPrimitive) == 48 && sizeof(ShadowPlane) == 16 && sizeof(ShadowBounds) == 24);
 static_assert(sizeof(ShadowCandidate) == 8 && sizeof(ShadowLight) == 16 && offsetof(ShadowLight, directional) == 12);
 static_assert(sizeof(CullLevel) == 16);
+static_assert(sizeof(ScreenMarch) == 96 && offsetof(ScreenMarch, scale_x) == 48 && offsetof(ScreenMarch, width) == 64 &&
+              offsetof(ScreenMarch, steps) == 80);
 
 namespace phongcl {
 

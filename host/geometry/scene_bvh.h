@@ -20,7 +20,7 @@ struct SceneBvh {
   }
 };
 
-// max_depth: the deepest tree the traversal's stack allows (kernels/bvh_layout.h).
+// max_depth: the deepest tree the traversal's stack allows (kernels/shadow_layout.h).
 SceneBvh build_scene_bvh(SceneShapes shapes, int max_depth);
 
 }  // namespace phongcl

@@ -178,26 +178,32 @@ OpenClShadowRays::Lists OpenClShadowRays::cull(int tile_size, Counts& counts) {
   return lists;
 }
 
-OpenClShadowRays::Counts OpenClShadowRays::count_blocked(int tile_size) {
+OpenClShadowRays::Counts OpenClShadowRays::count_blocked(Method method, int tile_size, const ScreenDepth* screen) {
   Counts counts;
   counts.blocked_lights.assign(stride_, 0.0f);
   if (stride_ == 0) return counts;
+  if (method == Method::screen && screen == nullptr) throw std::invalid_argument("shadow rays: the screen march needs a depth plane");
   Lists lists;
-  if (tile_size > 0) {
+  if (method == Method::culled) {
     lists = cull(tile_size, counts);
-  } else {  // nothing culled: the lists' buffers are never read
+  } else {  // the lists' buffers are never read
     lists.counts = lists.offsets = lists.candidates = cl::Buffer(compute_.context, CL_MEM_READ_ONLY, sizeof(cl_uint) * 2);
-    lists.grid = tile_layout(width_, height_, 16).grid;
-    lists.tiles = static_cast<cl_uint>(tile_layout(width_, height_, 16).tile_count);
+    const TileLayout layout = tile_layout(width_, height_, tile_size);
+    lists.grid = layout.grid;
+    lists.tiles = static_cast<cl_uint>(layout.tile_count);
   }
+  const cl::Buffer depth = screen ? table_buffer(compute_.context, screen->depth)
+                                  : cl::Buffer(compute_.context, CL_MEM_READ_ONLY, sizeof(float));
+  const ScreenMarch march = screen ? screen->march : ScreenMarch{};
   const cl::Buffer out(compute_.context, CL_MEM_WRITE_ONLY, stride_ * sizeof(float));
   cl::KernelFunctor<cl::Buffer, cl::Buffer, cl_uint, cl::Buffer, cl_uint, cl_float, cl_float, cl_int, TileGrid, cl_uint,
-                    cl::Buffer, cl::Buffer, cl::Buffer, cl::Buffer, cl_uint, cl::Buffer, cl::Buffer, cl_uint, cl::Buffer>
+                    cl::Buffer, cl::Buffer, cl::Buffer, cl::Buffer, cl_uint, cl::Buffer, cl::Buffer, cl_uint, cl::Buffer,
+                    ScreenMarch, cl::Buffer>
       kernel(program_, "count_blocked_lights");
   cl::Event done = kernel(cl::EnqueueArgs(compute_.queue, cl::NDRange(stride_ / lanes_)), pixels_, materials_,
                           static_cast<cl_uint>(stride_), lights_, static_cast<cl_uint>(light_count_), offset_scale_,
-                          eye_extent_, tile_size > 0 ? 1 : 0, lists.grid, lists.tiles, lists.counts, lists.offsets,
-                          lists.candidates, nodes_, node_count_, primitives_, planes_, plane_count_, out);
+                          eye_extent_, static_cast<cl_int>(method), lists.grid, lists.tiles, lists.counts, lists.offsets,
+                          lists.candidates, nodes_, node_count_, primitives_, planes_, plane_count_, depth, march, out);
   compute_.queue.enqueueReadBuffer(out, CL_TRUE, 0, stride_ * sizeof(float), counts.blocked_lights.data());
   counts.kernel_ms = event_milliseconds(done);
   return counts;

@@ -11,6 +11,7 @@
 #include "peers/shadow_ray_set.h"
 #include "scene/scene.h"
 #include "shading/device_layout.h"  // TileGrid
+#include "shading/screen_depth.h"
 
 namespace phongcl {
 
@@ -33,7 +34,9 @@ class OpenClShadowRays {
   std::vector<float> trace(const ShadowRaySet& rays, double* kernel_ms = nullptr);
 
   // Per pixel, how many of the lights' rays are blocked, every light in one work-item as shading
-  // meets them: with tiled culling (tile_size > 0; kernels/shadow_cull.cl) or every ray traversing.
+  // meets them: every ray traversing the BVH, with tiled culling (kernels/shadow_cull.cl), or by the
+  // screen-space march (`screen` then holds the depth plane and camera).
+  enum class Method { traverse = 0, culled = 1, screen = 2 };
   struct Counts {
     std::vector<float> blocked_lights;  // per pixel slot
     double culling_ms = 0.0;  // tile boxes, both culling passes (profiling events) and the host's prefix sum
@@ -41,7 +44,7 @@ class OpenClShadowRays {
     double candidates_per_pair = 0.0;  // runs per (tile, light) that has a list
     double traversing_pairs = 0.0;     // fraction of (tile, light) pairs beyond the list's limit
   };
-  Counts count_blocked(int tile_size);
+  Counts count_blocked(Method method, int tile_size = 16, const ScreenDepth* screen = nullptr);
 
   int lanes() const { return lanes_; }
 

@@ -1,9 +1,10 @@
-/* The shadow geometry as the kernels read it (kernels/bvh.h), written once for both languages:
- * fixed-width fields, explicit padding, sizes static-asserted on the host (geometry/device_geometry.h).
- * Every coordinate is relative to the eye, subtracted in double on the host, as the G-buffer's
- * positions are: a scene far from the origin loses nothing in float. */
-#ifndef PHONGCL_BVH_LAYOUT_H
-#define PHONGCL_BVH_LAYOUT_H
+/* What shadows read on the device, written once for both languages: the scene's geometry and its BVH
+ * (kernels/bvh.h), tiled shadow culling's lists (shadow_cull.cl) and the screen-space march's camera
+ * (shadow.h). Fixed-width fields, explicit padding, sizes static-asserted on the host
+ * (geometry/device_geometry.h). Every coordinate is relative to the eye, subtracted in double on the
+ * host, as the G-buffer's positions are: a scene far from the origin loses nothing in float. */
+#ifndef PHONGCL_SHADOW_LAYOUT_H
+#define PHONGCL_SHADOW_LAYOUT_H
 
 /* The traversal's stack holds one entry per level: the host builds no deeper tree (geometry/bvh.h). */
 #define PHONGCL_BVH_MAX_DEPTH 64
@@ -83,5 +84,20 @@ typedef struct {
   float where[3];
   unsigned int directional;
 } ShadowLight;
+
+/* Screen-space shadows march across the frame's depth plane (the view depth of each pixel's surface,
+ * +Inf where there is none), so they need the camera that made the G-buffer: an eye-relative point X
+ * lands at pixel coordinates (centre_x + scale_x * X.right / X.forward, centre_y - scale_y * X.up /
+ * X.forward) of the plane (its pixel (0, 0) spans [0, 1) x [0, 1); rows run down). */
+typedef struct {
+  float forward[4], right[4], up[4]; /* unit; w unused */
+  float scale_x, scale_y;            /* pixels per unit of the image plane at depth 1 */
+  float centre_x, centre_y;          /* where the optical axis meets the plane */
+  unsigned int width, height;        /* the depth plane's pixels */
+  float near_depth, far_depth;       /* the nearest and farthest surfaces' depths: the march stays between */
+  unsigned int steps;                /* samples along each ray */
+  float thickness;                   /* a surface hides what lies up to this far behind it (view depth, world units) */
+  unsigned int padding[2];
+} ScreenMarch;
 
 #endif
