@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstring>
 #include <functional>
+#include <iterator>
 #include <fstream>
 #include <limits>
 #include <random>
@@ -85,6 +86,19 @@ TEST(MeshFile, BadFilesAreOneLineErrorsNamingTheFile) {
   const std::string garbage = error_of([&] { read_mesh(dir / "garbage.ply"); });
   EXPECT_NE(garbage.find("garbage.ply"), std::string::npos) << garbage;
   EXPECT_EQ(garbage.find('\n'), std::string::npos) << garbage;
+
+  // A header that declares two billion vertices in a few bytes is refused before anything is read.
+  write_text(dir / "huge.ply", "ply\nformat binary_little_endian 1.0\nelement vertex 2000000000\nproperty float x\n"
+                               "property float y\nproperty float z\nelement face 2000000000\n"
+                               "property list uchar int vertex_indices\nend_header\n0123456789");
+  const std::string huge = error_of([&] { read_mesh(dir / "huge.ply"); });
+  EXPECT_NE(huge.find("huge.ply: its header declares elements that need at least 26000000000 bytes"), std::string::npos) << huge;
+  // A file cut short.
+  write_ply(dir / "knot.ply", trefoil_knot(10, 4));
+  std::ifstream whole(dir / "knot.ply", std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(whole)), std::istreambuf_iterator<char>());
+  std::ofstream(dir / "cut.ply", std::ios::binary) << bytes.substr(0, bytes.size() - 100);
+  EXPECT_NE(error_of([&] { read_mesh(dir / "cut.ply"); }).find("cut.ply"), std::string::npos);
 
   write_text(dir / "points.obj", "v 0 0 0\nv 1 0 0\np 1\np 2\n");
   EXPECT_NE(error_of([&] { read_mesh(dir / "points.obj"); }).find("points.obj"), std::string::npos);
