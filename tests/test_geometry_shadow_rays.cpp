@@ -15,7 +15,9 @@
 #include "peers/opencl_shadow_rays.h"
 #include "peers/packed_frame.h"
 #include "raycast/raycast.h"
+#include "reference/reference_screen_shadows.h"
 #include "reference/reference_shadows.h"
+#include "shading/screen_depth.h"
 #include "scene/transform.h"
 #include "temp_dir.h"
 #ifdef PHONGCL_HAVE_EMBREE
@@ -206,6 +208,53 @@ TEST(ShadowRays, RaysAreTheSpecificationsWithinFloatRounding) {
   }
   EXPECT_GT(checked, 2000u);
 }
+
+// The screen-space march against the double reference's (reference_screen_shadows.h), pixel by
+// pixel: as many blocked lights, wherever no light's decision is within rounding of a bound
+// (2^-16 of a depth, 2^-9 of a pixel: float's pixel coordinates near 100 carry ~1e-5 px).
+void expect_march_matches_reference(int steps, float thickness) {
+  REQUIRE_DEVICE(device);
+  TempDir dir;
+  const Scene scene = test_scene(dir.path, {0, 0, 0}, 96, 72);
+  const GBuffer gbuffer = generate_gbuffer(scene);
+  const glm::dvec3 eye = scene.camera.eye;
+  const SceneBvh bvh = build_scene_bvh(flatten_objects(scene.objects), PHONGCL_BVH_MAX_DEPTH);
+  OpenClShadowRays tracer(device->compute, device->cache, pack_device_geometry(bvh, eye), 16);
+  tracer.set_frame(pack_frame(gbuffer, scene), gbuffer.width, gbuffer.height, scene, eye, PHONGCL_SHADOW_OFFSET_FLOAT);
+  const ScreenDepth screen = screen_depth(scene.camera, gbuffer, steps, thickness);
+  const std::vector<float> blocked = tracer.count_blocked(OpenClShadowRays::Method::screen, 16, &screen).blocked_lights;
+  const ReferenceScreenMarch reference(scene.camera, gbuffer, steps, thickness);
+  std::size_t compared = 0, borderline = 0, blocked_somewhere = 0;
+  for (std::size_t i = 0; i < gbuffer.pixel_count(); ++i) {
+    if (gbuffer.material[i] < 0) continue;
+    const glm::dvec3 p(gbuffer.position[0][i], gbuffer.position[1][i], gbuffer.position[2][i]);
+    const glm::dvec3 n(gbuffer.normal[0][i], gbuffer.normal[1][i], gbuffer.normal[2][i]);
+    float expected = 0.0f;
+    bool close = false;
+    for (const Light& light : scene.lights) {
+      ReferenceShadowRay ray;
+      if (!reference_shadow_ray_from(p, n, light, eye, PHONGCL_SHADOW_OFFSET_FLOAT, ray)) continue;
+      const RayOutcome outcome = reference.march(ray, 0x1p-16, 0x1p-9);
+      close = close || outcome == RayOutcome::borderline;
+      expected += outcome == RayOutcome::blocked;
+    }
+    if (close) {
+      ++borderline;
+      continue;
+    }
+    ++compared;
+    blocked_somewhere += expected > 0.0f;
+    EXPECT_EQ(blocked[i], expected) << "pixel " << i % gbuffer.width << ", " << i / gbuffer.width;
+  }
+  EXPECT_LT(borderline, compared / 50) << borderline << " borderline pixels";
+  EXPECT_GT(blocked_somewhere, compared / 10);  // the march does find shadows here
+  std::cout << "[          ] " << compared << " pixels, " << borderline << " borderline, " << blocked_somewhere
+            << " with a light blocked\n";
+}
+
+TEST(ShadowRays, ScreenMarchAgreesWithTheReference) { expect_march_matches_reference(32, -0.06f); }
+TEST(ShadowRays, ScreenMarchInWorldThicknessAgreesWithTheReference) { expect_march_matches_reference(8, 0.4f); }
+TEST(ShadowRays, ScreenMarchWithThicknessFromTheStepAgreesWithTheReference) { expect_march_matches_reference(64, 0.0f); }
 
 #ifdef PHONGCL_HAVE_EMBREE
 TEST(ShadowRays, EmbreeAgreesWithTheReferenceOnTheSameRays) {
