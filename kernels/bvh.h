@@ -113,6 +113,26 @@ static inline intv run_blocks(__global const ShadowPrimitive* primitives, __glob
   return blocked & pending;
 }
 
+/* A walk down the BVH: the node being visited and the ones left for later (one per level at most). */
+typedef struct {
+  uint stack[PHONGCL_BVH_MAX_DEPTH];
+  int size;
+  uint node;
+} BvhWalk;
+
+/* The walk's next node once a node's children are tested: the first to enter, the second kept on
+ * the stack when both are, else the stack's top; false when the walk is over. */
+static inline bool next_node(BvhWalk* walk, __global const BvhNode* record, const int enter[2]) {
+  if (enter[0] && enter[1]) walk->stack[walk->size++] = record->first[1];
+  if (enter[0] || enter[1]) {
+    walk->node = record->first[enter[0] ? 0 : 1];
+    return true;
+  }
+  if (walk->size == 0) return false;
+  walk->node = walk->stack[--walk->size];
+  return true;
+}
+
 /* The lanes of `pending` whose ray is blocked by a plane or by a primitive under the BVH. */
 static inline intv shadow_ray_blocked(__global const BvhNode* nodes, uint node_count,
                                       __global const ShadowPrimitive* primitives,
@@ -122,11 +142,9 @@ static inline intv shadow_ray_blocked(__global const BvhNode* nodes, uint node_c
   for (uint k = 0; k < plane_count; ++k) blocked |= meets_plane(&planes[k], ray) & pending;
   pending &= ~blocked;
   if (node_count == 0 || !any_lane(pending)) return blocked;
-  uint stack[PHONGCL_BVH_MAX_DEPTH];
-  int size = 0;
-  uint node = 0;
+  BvhWalk walk = {.size = 0, .node = 0};
   for (;;) {
-    __global const BvhNode* record = &nodes[node];
+    __global const BvhNode* record = &nodes[walk.node];
     int enter[2];
     for (int c = 0; c < 2; ++c) {
       enter[c] = any_lane(meets_box(record, c, ray) & pending);
@@ -139,13 +157,7 @@ static inline intv shadow_ray_blocked(__global const BvhNode* nodes, uint node_c
         enter[c] = 0;
       }
     }
-    if (enter[0] && enter[1]) stack[size++] = record->first[1];
-    if (enter[0] || enter[1]) {
-      node = record->first[enter[0] ? 0 : 1];
-    } else {
-      if (size == 0) return blocked;
-      node = stack[--size];
-    }
+    if (!next_node(&walk, record, enter)) return blocked;
   }
 }
 

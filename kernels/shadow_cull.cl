@@ -118,11 +118,9 @@ static bool walk_bvh(CandidateList* list, const ShadowHull* hull, ShadowLight li
   for (uint k = 0; k < plane_count; ++k)
     if (hull_meets_plane(hull, &planes[k], light) && !add_run(list, k, BVH_PLANES, 1)) return false;
   if (node_count == 0) return true;
-  uint stack[PHONGCL_BVH_MAX_DEPTH];
-  int size = 0;
-  uint node = 0;
+  BvhWalk walk = {.size = 0, .node = 0};
   for (;;) {
-    __global const BvhNode* record = &nodes[node];
+    __global const BvhNode* record = &nodes[walk.node];
     int enter[2];
     for (int c = 0; c < 2; ++c) {
       const float lo[3] = {record->lo_x[c], record->lo_y[c], record->lo_z[c]};
@@ -134,13 +132,7 @@ static bool walk_bvh(CandidateList* list, const ShadowHull* hull, ShadowLight li
         if (!add_leaf(list, hull, bounds, record->first[c], kind_count)) return false;
       }
     }
-    if (enter[0] && enter[1]) stack[size++] = record->first[1];
-    if (enter[0] || enter[1]) {
-      node = record->first[enter[0] ? 0 : 1];
-    } else {
-      if (size == 0) return true;
-      node = stack[--size];
-    }
+    if (!next_node(&walk, record, enter)) return true;
   }
 }
 

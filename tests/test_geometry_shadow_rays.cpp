@@ -87,6 +87,23 @@ Scene test_scene(const std::filesystem::path& dir, const glm::dvec3& offset, int
   return scene;
 }
 
+// A scene's G-buffer (ray-cast), its BVH, and the standalone kernel holding both and the frame.
+struct Traced {
+  Scene scene;
+  GBuffer gbuffer;
+  glm::dvec3 eye;
+  SceneBvh bvh;
+  OpenClShadowRays tracer;
+  Traced(Device& device, Scene lit, int lanes)
+      : scene(std::move(lit)),
+        gbuffer(generate_gbuffer(scene)),
+        eye(scene.camera.eye),
+        bvh(build_scene_bvh(flatten_objects(scene.objects), PHONGCL_BVH_MAX_DEPTH)),
+        tracer(device.compute, device.cache, pack_device_geometry(bvh, eye), lanes) {
+    tracer.set_frame(pack_frame(gbuffer, scene), gbuffer.width, gbuffer.height, scene, eye, PHONGCL_SHADOW_OFFSET_FLOAT);
+  }
+};
+
 struct Agreement {
   std::size_t rays = 0, borderline = 0, disagree = 0;
 };
@@ -132,12 +149,8 @@ Agreement compare(const std::vector<RayOutcome>& reference, const ShadowRaySet& 
 void expect_kernel_matches_reference(const glm::dvec3& offset, int lanes) {
   REQUIRE_DEVICE(device);
   TempDir dir;
-  const Scene scene = test_scene(dir.path, offset, 96, 72);
-  const GBuffer gbuffer = generate_gbuffer(scene);
-  const SceneBvh bvh = build_scene_bvh(flatten_objects(scene.objects), PHONGCL_BVH_MAX_DEPTH);
-  const glm::dvec3 eye = scene.camera.eye;
-  OpenClShadowRays tracer(device->compute, device->cache, pack_device_geometry(bvh, eye), lanes);
-  tracer.set_frame(pack_frame(gbuffer, scene), gbuffer.width, gbuffer.height, scene, eye, PHONGCL_SHADOW_OFFSET_FLOAT);
+  Traced traced(*device, test_scene(dir.path, offset, 96, 72), lanes);
+  auto& [scene, gbuffer, eye, bvh, tracer] = traced;
   const ShadowRaySet rays = tracer.make_rays();
   const std::vector<float> traversed = tracer.trace(rays);
   const Agreement agreement = compare(reference_outcomes(bvh, eye, rays), rays, traversed, eye);
@@ -173,15 +186,10 @@ TEST(ShadowRays, AMillionUnitsFromTheOriginAgreesToo) { expect_kernel_matches_re
 TEST(ShadowRays, RaysAreTheSpecificationsWithinFloatRounding) {
   REQUIRE_DEVICE(device);
   TempDir dir;
-  const Scene scene = test_scene(dir.path, {0, 0, 0}, 40, 30);
-  const GBuffer gbuffer = generate_gbuffer(scene);
-  const glm::dvec3 eye = scene.camera.eye;
-  const SceneBvh bvh = build_scene_bvh(flatten_objects(scene.objects), PHONGCL_BVH_MAX_DEPTH);
-  OpenClShadowRays tracer(device->compute, device->cache, pack_device_geometry(bvh, eye), 16);
-  const PackedFrame frame = pack_frame(gbuffer, scene);
-  tracer.set_frame(frame, gbuffer.width, gbuffer.height, scene, eye, PHONGCL_SHADOW_OFFSET_FLOAT);
+  Traced traced(*device, test_scene(dir.path, {0, 0, 0}, 40, 30), 16);
+  auto& [scene, gbuffer, eye, bvh, tracer] = traced;
+  const std::size_t stride = pack_frame(gbuffer, scene).px.size();
   const ShadowRaySet rays = tracer.make_rays();
-  const std::size_t stride = frame.px.size();
   std::size_t checked = 0;
   for (std::size_t k = 0; k < scene.lights.size(); ++k) {
     for (std::size_t i = 0; i < gbuffer.pixel_count(); ++i) {
@@ -215,12 +223,8 @@ TEST(ShadowRays, RaysAreTheSpecificationsWithinFloatRounding) {
 void expect_march_matches_reference(int steps, float thickness) {
   REQUIRE_DEVICE(device);
   TempDir dir;
-  const Scene scene = test_scene(dir.path, {0, 0, 0}, 96, 72);
-  const GBuffer gbuffer = generate_gbuffer(scene);
-  const glm::dvec3 eye = scene.camera.eye;
-  const SceneBvh bvh = build_scene_bvh(flatten_objects(scene.objects), PHONGCL_BVH_MAX_DEPTH);
-  OpenClShadowRays tracer(device->compute, device->cache, pack_device_geometry(bvh, eye), 16);
-  tracer.set_frame(pack_frame(gbuffer, scene), gbuffer.width, gbuffer.height, scene, eye, PHONGCL_SHADOW_OFFSET_FLOAT);
+  Traced traced(*device, test_scene(dir.path, {0, 0, 0}, 96, 72), 16);
+  auto& [scene, gbuffer, eye, bvh, tracer] = traced;
   const ScreenDepth screen = screen_depth(scene.camera, gbuffer, steps, thickness);
   const std::vector<float> blocked = tracer.count_blocked(OpenClShadowRays::Method::screen, 16, &screen).blocked_lights;
   const ReferenceScreenMarch reference(scene.camera, gbuffer, steps, thickness);
@@ -260,14 +264,11 @@ TEST(ShadowRays, ScreenMarchWithThicknessFromTheStepAgreesWithTheReference) { ex
 TEST(ShadowRays, EmbreeAgreesWithTheReferenceOnTheSameRays) {
   REQUIRE_DEVICE(device);
   TempDir dir;
-  Scene scene = knot_scene(dir.path, 64, 12, 3);
-  scene.camera.width = 160;
-  scene.camera.height = 120;
-  const GBuffer gbuffer = generate_gbuffer(scene);
-  const glm::dvec3 eye = scene.camera.eye;
-  const SceneBvh bvh = build_scene_bvh(flatten_objects(scene.objects), PHONGCL_BVH_MAX_DEPTH);
-  OpenClShadowRays tracer(device->compute, device->cache, pack_device_geometry(bvh, eye), 16);
-  tracer.set_frame(pack_frame(gbuffer, scene), gbuffer.width, gbuffer.height, scene, eye, PHONGCL_SHADOW_OFFSET_FLOAT);
+  Scene knot = knot_scene(dir.path, 64, 12, 3);
+  knot.camera.width = 160;
+  knot.camera.height = 120;
+  Traced traced(*device, std::move(knot), 16);
+  auto& [scene, gbuffer, eye, bvh, tracer] = traced;
   const ShadowRaySet rays = tracer.make_rays();
   const EmbreeShadowPeer embree(bvh.shapes, eye);
   const std::vector<RayOutcome> reference = reference_outcomes(bvh, eye, rays);

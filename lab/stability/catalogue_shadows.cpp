@@ -17,49 +17,16 @@ struct ShadowPixel {
   std::vector<bool> lit;  // per light: reached (a light facing away adds nothing either way)
 };
 
-Object sphere(const glm::dvec3& center, double radius) {
-  Object o;
-  o.kind = Object::Kind::sphere;
-  o.center = center;
-  o.radius = radius;
-  return o;
-}
-
-Object plane(const glm::dvec3& normal, double offset) {
-  Object o;
-  o.kind = Object::Kind::plane;
-  o.normal = normal;
-  o.offset = offset;
-  return o;
-}
-
+Object sphere(const glm::dvec3& center, double radius) { return {.kind = Object::Kind::sphere, .center = center, .radius = radius}; }
+Object plane(const glm::dvec3& normal, double offset) { return {.kind = Object::Kind::plane, .normal = normal, .offset = offset}; }
 Object triangle(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
-  Object o;
-  o.kind = Object::Kind::triangle;
-  o.vertices = {a, b, c};
-  return o;
+  return {.kind = Object::Kind::triangle, .vertices = {a, b, c}};
 }
+Object mesh(const std::filesystem::path& file) { return {.kind = Object::Kind::mesh, .file = file}; }
 
-Object mesh(const std::filesystem::path& file) {
-  Object o;
-  o.kind = Object::Kind::mesh;
-  o.file = file;
-  return o;
-}
-
-Light point_light(const glm::dvec3& position) {
-  Light light;
-  light.position = position;
-  light.shadows = true;
-  return light;
-}
-
+Light point_light(const glm::dvec3& position) { return {.position = position, .shadows = true}; }
 Light directional_light(const glm::dvec3& direction) {
-  Light light;
-  light.type = LightType::directional;
-  light.direction = direction;
-  light.shadows = true;
-  return light;
+  return {.type = LightType::directional, .direction = direction, .shadows = true};
 }
 
 // The oracle with each pixel's unreached lights left out; the plain bounds (shadows are decided

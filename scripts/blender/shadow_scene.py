@@ -9,7 +9,6 @@ writes DIR/shadows.blend, and with export_scene.py (--geometry) DIR/scene.json, 
 DIR/meshes/*.ply, then DIR/light0.exr, DIR/light1.exr: each light alone, its DiffDir (direct diffuse
 light), DiffCol (albedo) and IndexOB (object index, for finding silhouettes) passes.
 """
-import argparse
 import os
 import sys
 
@@ -18,6 +17,7 @@ from mathutils import Vector
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import export_scene  # noqa: E402
+import make_fixtures  # noqa: E402
 
 LIGHTS = (("key", (3.0, -2.0, 5.0), 1000.0), ("fill", (-3.5, -1.0, 3.0), 600.0))
 
@@ -39,13 +39,7 @@ def diffuse_material(name, colour, pass_index):
 
 
 def build_shadow_scene(width, height):
-    bpy.ops.wm.read_factory_settings(use_empty=True)
-    scene = bpy.context.scene
-    scene.render.resolution_x, scene.render.resolution_y, scene.render.resolution_percentage = width, height, 100
-    world = bpy.data.worlds.new("World")
-    world.use_nodes = True
-    world.node_tree.nodes["Background"].inputs["Strength"].default_value = 0.0
-    scene.world = world
+    scene = make_fixtures.empty_scene(width, height, strength=0.0)  # no ambient light
 
     objects = []
     bpy.ops.mesh.primitive_plane_add(size=14.0, location=(0.0, 0.0, 0.0))
@@ -77,14 +71,9 @@ def build_shadow_scene(width, height):
     scene.camera = camera
     bpy.context.view_layer.update()
 
-    scene.render.engine = "CYCLES"
-    scene.cycles.device = "CPU"
-    scene.cycles.samples = 1
-    scene.cycles.use_denoising = False
-    scene.cycles.use_adaptive_sampling = False
+    make_fixtures.cycles(scene, 1)
     scene.cycles.max_bounces = 0
     scene.cycles.pixel_filter_type, scene.cycles.filter_width = "BOX", 0.01
-    scene.cycles.seed = 1
     layer = bpy.context.view_layer
     layer.use_pass_diffuse_direct = True
     layer.use_pass_object_index = True
@@ -106,13 +95,8 @@ def render_each_light(scene, directory):
 
 
 def main():
-    parser = argparse.ArgumentParser(prog="shadow_scene.py")
-    parser.add_argument("--out", required=True)
-    parser.add_argument("--width", type=int, default=320)
-    parser.add_argument("--height", type=int, default=240)
-    args = parser.parse_args(sys.argv[sys.argv.index("--") + 1:])
-    out = os.path.abspath(args.out)
-    os.makedirs(out, exist_ok=True)
+    args = make_fixtures.output_arguments("shadow_scene.py", 320, 240)
+    out = args.out
     scene = build_shadow_scene(args.width, args.height)
     bpy.ops.wm.save_as_mainfile(filepath=os.path.join(out, "shadows.blend"))
     export_scene.render_gbuffer(scene, os.path.join(out, "gbuffer.exr"))
