@@ -15,7 +15,6 @@
 
 typedef struct {
   vec3 origin, direction;
-  vec3 inverse; /* 1 / direction, a zero component replaced by +-2^-80: no 0 * Inf in the slabs */
   realv t_max;
 } ShadowRay;
 
@@ -37,17 +36,22 @@ static inline ShadowRay make_shadow_ray(vec3 origin, vec3 direction, realv t_max
   ShadowRay ray;
   ray.origin = origin;
   ray.direction = direction;
-  ray.inverse = make_vec3(1 / nonzero_component(direction.x), 1 / nonzero_component(direction.y),
-                          1 / nonzero_component(direction.z));
   ray.t_max = t_max;
   return ray;
 }
 
+/* 1 / direction for the slab tests, a zero component replaced by +-2^-80: no 0 * Inf there. Only a
+ * traversal needs it (tiled culling's candidates are tested without), so it is made there. */
+static inline vec3 inverse_direction(const ShadowRay* ray) {
+  return make_vec3(1 / nonzero_component(ray->direction.x), 1 / nonzero_component(ray->direction.y),
+                   1 / nonzero_component(ray->direction.z));
+}
+
 /* Lanes whose ray meets child c's box (slab test; empty boxes are met by none). */
-static inline intv meets_box(__global const BvhNode* node, int c, const ShadowRay* ray) {
-  const realv x0 = (node->lo_x[c] - ray->origin.x) * ray->inverse.x, x1 = (node->hi_x[c] - ray->origin.x) * ray->inverse.x;
-  const realv y0 = (node->lo_y[c] - ray->origin.y) * ray->inverse.y, y1 = (node->hi_y[c] - ray->origin.y) * ray->inverse.y;
-  const realv z0 = (node->lo_z[c] - ray->origin.z) * ray->inverse.z, z1 = (node->hi_z[c] - ray->origin.z) * ray->inverse.z;
+static inline intv meets_box(__global const BvhNode* node, int c, const ShadowRay* ray, vec3 inverse) {
+  const realv x0 = (node->lo_x[c] - ray->origin.x) * inverse.x, x1 = (node->hi_x[c] - ray->origin.x) * inverse.x;
+  const realv y0 = (node->lo_y[c] - ray->origin.y) * inverse.y, y1 = (node->hi_y[c] - ray->origin.y) * inverse.y;
+  const realv z0 = (node->lo_z[c] - ray->origin.z) * inverse.z, z1 = (node->hi_z[c] - ray->origin.z) * inverse.z;
   const realv t_near = BVH_MAX(BVH_MAX(BVH_MIN(x0, x1), BVH_MIN(y0, y1)), BVH_MAX(BVH_MIN(z0, z1), (realv)0));
   const realv t_far = BVH_MIN(BVH_MIN(BVH_MAX(x0, x1), BVH_MAX(y0, y1)), BVH_MIN(BVH_MAX(z0, z1), ray->t_max));
   return LANE_MASK(t_near <= t_far * BVH_FAR_SCALE);
@@ -142,12 +146,13 @@ static inline intv shadow_ray_blocked(__global const BvhNode* nodes, uint node_c
   for (uint k = 0; k < plane_count; ++k) blocked |= meets_plane(&planes[k], ray) & pending;
   pending &= ~blocked;
   if (node_count == 0 || !any_lane(pending)) return blocked;
+  const vec3 inverse = inverse_direction(ray);
   BvhWalk walk = {.size = 0, .node = 0};
   for (;;) {
     __global const BvhNode* record = &nodes[walk.node];
     int enter[2];
     for (int c = 0; c < 2; ++c) {
-      enter[c] = any_lane(meets_box(record, c, ray) & pending);
+      enter[c] = any_lane(meets_box(record, c, ray, inverse) & pending);
       const uint kind_count = record->kind_count[c];
       if (enter[c] && (kind_count & PHONGCL_BVH_KIND_MASK) != BVH_INNER) {
         const intv hit = run_blocks(primitives, planes, record->first[c], kind_count, ray, pending);

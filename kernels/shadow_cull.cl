@@ -1,6 +1,7 @@
 /* Tiled shadow culling, before shading (or tracing): per screen tile and shadow-casting light, the
  * primitives and the planes that can block any of the tile's shadow rays toward that light
  * (ShadowCandidate, shadow_layout.h), so that a pixel tests a few primitives instead of traversing:
+ *   merge_tile_boxes         the boxes of the coarse level's tiles, from the tiles' (cull.cl)
  *   count_shadow_candidates  one work-item per (light, tile): how many, or PHONGCL_SHADOW_TRAVERSE
  *   fill_shadow_candidates   the same walk again, writing them at the host's offset for the pair
  * (pair p = light * tile_count + tile). A tile's rays start within its box of shaded positions
@@ -11,6 +12,28 @@
  * could drop, never the other way round. */
 #include "bvh.h"
 #include "layout.h"
+
+/* The boxes of a coarser grid, each the union of the ratio x ratio tile boxes it covers (`fine`
+ * holds fine_tiles_x boxes per row), so the coarse level needs no second pass over the G-buffer. */
+__kernel void merge_tile_boxes(__global const TileBox* restrict fine, const uint fine_tiles_x, const uint fine_tiles,
+                               const uint ratio, const uint coarse_tiles_x, __global TileBox* restrict coarse) {
+  const uint tile = get_global_id(0);
+  const uint fine_rows = fine_tiles / fine_tiles_x;
+  const uint x0 = tile % coarse_tiles_x * ratio, y0 = tile / coarse_tiles_x * ratio;
+  TileBox box = {{INFINITY, INFINITY, INFINITY}, 0, {-INFINITY, -INFINITY, -INFINITY}, 0};
+  for (uint y = y0; y < min(y0 + ratio, fine_rows); ++y) {
+    for (uint x = x0; x < min(x0 + ratio, fine_tiles_x); ++x) {
+      const TileBox part = fine[y * fine_tiles_x + x];
+      if (part.shaded == 0) continue;
+      for (int axis = 0; axis < 3; ++axis) {
+        box.lo[axis] = fmin(box.lo[axis], part.lo[axis]);
+        box.hi[axis] = fmax(box.hi[axis], part.hi[axis]);
+      }
+      box.shaded += part.shaded;
+    }
+  }
+  coarse[tile] = box;
+}
 
 /* The hull at parameter s is a box: centre c + s d, half size h - s k (a point light: d = L - c,
  * k = h, s in [0, 1]; a directional light: d = l, k = 0, s >= 0). */

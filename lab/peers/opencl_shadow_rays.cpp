@@ -13,13 +13,6 @@ namespace {
 
 constexpr int kRayPlanes = 7;
 
-// OpenCL has no empty buffers: an empty table gets one zeroed element, which the counts never reach.
-template <typename T>
-cl::Buffer table_buffer(const cl::Context& context, const std::vector<T>& table) {
-  std::vector<T> copy = table.empty() ? std::vector<T>(1, T{}) : table;
-  return cl::Buffer(context, copy.begin(), copy.end(), true);
-}
-
 int device_lanes(const DeviceInfo& device, int lanes) {
   if (lanes == 0) {
     lanes = 1;
@@ -34,6 +27,8 @@ cl::Program build(const ComputeContext& compute, ProgramCache& cache, const char
   return cache.build(compute, load_kernel_source(file), "-cl-std=CL1.2 -DPHONGCL_LANES=" + std::to_string(lanes)).program;
 }
 
+
+
 }  // namespace
 
 std::size_t ShadowRaySet::traced() const {
@@ -45,14 +40,8 @@ OpenClShadowRays::OpenClShadowRays(const ComputeContext& compute, ProgramCache& 
     : compute_(compute),
       lanes_(device_lanes(compute.device.info, lanes)),
       program_(build(compute, cache, "shadow_rays.cl", lanes_)),
-      cull_program_(build(compute, cache, "shadow_cull.cl", lanes_)),
-      bounds_program_(build(compute, cache, "cull.cl", lanes_)),
-      nodes_(table_buffer(compute.context, geometry.nodes)),
-      primitives_(table_buffer(compute.context, geometry.primitives)),
-      bounds_(table_buffer(compute.context, geometry.bounds)),
-      planes_(table_buffer(compute.context, geometry.planes)),
-      node_count_(static_cast<cl_uint>(geometry.nodes.size())),
-      plane_count_(static_cast<cl_uint>(geometry.planes.size())) {}
+      geometry_(upload_shadow_geometry(compute.context, geometry)),
+      culler_(compute, cache, "-cl-std=CL1.2 -DPHONGCL_LANES=" + std::to_string(lanes_)) {}
 
 void OpenClShadowRays::set_frame(const PackedFrame& frame, int width, int height, const Scene& scene,
                                  const glm::dvec3& eye, float offset_scale) {
@@ -111,71 +100,11 @@ std::vector<float> OpenClShadowRays::trace(const ShadowRaySet& rays, double* ker
   cl::KernelFunctor<cl::Buffer, cl_uint, cl::Buffer, cl_uint, cl::Buffer, cl::Buffer, cl_uint, cl::Buffer> trace(
       program_, "trace_shadow_rays");
   cl::Event done = trace(cl::EnqueueArgs(compute_.queue, cl::NDRange(rays.size / lanes_)), ray_buffer,
-                         static_cast<cl_uint>(rays.size), nodes_, node_count_, primitives_, planes_, plane_count_,
-                         blocked_buffer);
+                         static_cast<cl_uint>(rays.size), geometry_.nodes, geometry_.node_count, geometry_.primitives,
+                         geometry_.planes, geometry_.plane_count, blocked_buffer);
   compute_.queue.enqueueReadBuffer(blocked_buffer, CL_TRUE, 0, blocked.size() * sizeof(float), blocked.data());
   if (kernel_ms) *kernel_ms = event_milliseconds(done);
   return blocked;
-}
-
-OpenClShadowRays::Lists OpenClShadowRays::cull_level(const TileGrid& grid, std::size_t tiles, cl_uint limit,
-                                                     const CullLevel& level, const Lists* parent, double& culling_ms) {
-  Lists lists;
-  lists.grid = grid;
-  lists.tiles = static_cast<cl_uint>(tiles);
-  const std::size_t pairs = tiles * light_count_;
-  const cl::Buffer boxes(compute_.context, CL_MEM_READ_WRITE, std::max<std::size_t>(tiles, 1) * sizeof(TileBox));
-  cl::KernelFunctor<cl::Buffer, cl_uint, cl::Buffer, cl_uint, TileGrid, cl::Buffer> bounds(bounds_program_, "tile_bounds");
-  cl::Event boxed = bounds(cl::EnqueueArgs(compute_.queue, cl::NDRange(tiles)), pixels_, static_cast<cl_uint>(stride_),
-                           materials_, static_cast<cl_uint>(stride_), grid, boxes);
-  const cl::Buffer none(compute_.context, CL_MEM_READ_ONLY, sizeof(ShadowCandidate));
-  const cl::Buffer& parent_counts = parent ? parent->counts : none;
-  const cl::Buffer& parent_offsets = parent ? parent->offsets : none;
-  const cl::Buffer& parent_candidates = parent ? parent->candidates : none;
-  lists.counts = cl::Buffer(compute_.context, CL_MEM_READ_WRITE, std::max<std::size_t>(pairs, 1) * sizeof(cl_uint));
-  cl::KernelFunctor<cl::Buffer, cl_uint, cl::Buffer, cl_float, cl_float, cl_uint, CullLevel, cl::Buffer, cl::Buffer, cl::Buffer,
-                    cl::Buffer, cl_uint, cl::Buffer, cl::Buffer, cl_uint, cl::Buffer>
-      count(cull_program_, "count_shadow_candidates");
-  cl::Event counted = count(cl::EnqueueArgs(compute_.queue, cl::NDRange(pairs)), boxes, lists.tiles, lights_,
-                            offset_scale_, eye_extent_, limit, level, parent_counts, parent_offsets, parent_candidates,
-                            nodes_, node_count_, bounds_, planes_, plane_count_, lists.counts);
-  std::vector<cl_uint> host_counts(pairs), host_offsets(pairs);
-  compute_.queue.enqueueReadBuffer(lists.counts, CL_TRUE, 0, pairs * sizeof(cl_uint), host_counts.data());
-  const auto prefix_start = std::chrono::steady_clock::now();
-  for (std::size_t p = 0; p < pairs; ++p) {
-    host_offsets[p] = static_cast<cl_uint>(lists.entries);
-    if (host_counts[p] == PHONGCL_SHADOW_TRAVERSE) ++lists.traversing;
-    else lists.entries += host_counts[p];
-  }
-  lists.offsets = table_buffer(compute_.context, host_offsets);
-  const double prefix_ms =
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - prefix_start).count();
-  lists.candidates =
-      cl::Buffer(compute_.context, CL_MEM_READ_WRITE, std::max<std::size_t>(lists.entries, 1) * sizeof(ShadowCandidate));
-  cl::KernelFunctor<cl::Buffer, cl_uint, cl::Buffer, cl_float, cl_float, CullLevel, cl::Buffer, cl::Buffer, cl::Buffer,
-                    cl::Buffer, cl_uint, cl::Buffer, cl::Buffer, cl_uint, cl::Buffer, cl::Buffer, cl::Buffer>
-      fill(cull_program_, "fill_shadow_candidates");
-  cl::Event filled = fill(cl::EnqueueArgs(compute_.queue, cl::NDRange(pairs)), boxes, lists.tiles, lights_, offset_scale_,
-                          eye_extent_, level, parent_counts, parent_offsets, parent_candidates, nodes_, node_count_,
-                          bounds_, planes_, plane_count_, lists.counts, lists.offsets, lists.candidates);
-  filled.wait();
-  culling_ms += event_milliseconds(boxed) + event_milliseconds(counted) + prefix_ms + event_milliseconds(filled);
-  return lists;
-}
-
-OpenClShadowRays::Lists OpenClShadowRays::cull(int tile_size, Counts& counts) {
-  const TileLayout fine = tile_layout(width_, height_, tile_size);
-  const TileLayout coarse = tile_layout(width_, height_, tile_size * PHONGCL_SHADOW_COARSE_RATIO);
-  const Lists parent =
-      cull_level(coarse.grid, coarse.tile_count, PHONGCL_SHADOW_COARSE_LIMIT, CullLevel{}, nullptr, counts.culling_ms);
-  const CullLevel level{PHONGCL_SHADOW_COARSE_RATIO, fine.grid.tiles_x, coarse.grid.tiles_x,
-                        static_cast<cl_uint>(coarse.tile_count)};
-  Lists lists = cull_level(fine.grid, fine.tile_count, PHONGCL_SHADOW_CANDIDATE_LIMIT, level, &parent, counts.culling_ms);
-  const std::size_t pairs = fine.tile_count * light_count_;
-  counts.candidates_per_pair =
-      static_cast<double>(lists.entries) / static_cast<double>(std::max<std::size_t>(pairs - lists.traversing, 1));
-  counts.traversing_pairs = static_cast<double>(lists.traversing) / static_cast<double>(std::max<std::size_t>(pairs, 1));
-  return lists;
 }
 
 OpenClShadowRays::Counts OpenClShadowRays::count_blocked(Method method, int tile_size, const ScreenDepth* screen) {
@@ -183,14 +112,17 @@ OpenClShadowRays::Counts OpenClShadowRays::count_blocked(Method method, int tile
   counts.blocked_lights.assign(stride_, 0.0f);
   if (stride_ == 0) return counts;
   if (method == Method::screen && screen == nullptr) throw std::invalid_argument("shadow rays: the screen march needs a depth plane");
-  Lists lists;
+  const TileLayout layout = tile_layout(width_, height_, tile_size);
+  ShadowLists lists{.grid = layout.grid, .tiles = static_cast<cl_uint>(layout.tile_count)};
   if (method == Method::culled) {
-    lists = cull(tile_size, counts);
+    const ShadowCullingStats stats = culler_.cull(pixels_, stride_, materials_, stride_, layout, geometry_, lights_,
+                                                  light_count_, offset_scale_, eye_extent_);
+    lists = culler_.lists();
+    counts.culling_ms = stats.culling_ms;
+    counts.candidates_per_pair = stats.candidates_per_pair();
+    counts.traversing_pairs = static_cast<double>(stats.traversing) / static_cast<double>(std::max<std::size_t>(stats.pairs, 1));
   } else {  // the lists' buffers are never read
     lists.counts = lists.offsets = lists.candidates = cl::Buffer(compute_.context, CL_MEM_READ_ONLY, sizeof(cl_uint) * 2);
-    const TileLayout layout = tile_layout(width_, height_, tile_size);
-    lists.grid = layout.grid;
-    lists.tiles = static_cast<cl_uint>(layout.tile_count);
   }
   const cl::Buffer depth = screen ? table_buffer(compute_.context, screen->depth)
                                   : cl::Buffer(compute_.context, CL_MEM_READ_ONLY, sizeof(float));
@@ -203,7 +135,8 @@ OpenClShadowRays::Counts OpenClShadowRays::count_blocked(Method method, int tile
   cl::Event done = kernel(cl::EnqueueArgs(compute_.queue, cl::NDRange(stride_ / lanes_)), pixels_, materials_,
                           static_cast<cl_uint>(stride_), lights_, static_cast<cl_uint>(light_count_), offset_scale_,
                           eye_extent_, static_cast<cl_int>(method), lists.grid, lists.tiles, lists.counts, lists.offsets,
-                          lists.candidates, nodes_, node_count_, primitives_, planes_, plane_count_, depth, march, out);
+                          lists.candidates, geometry_.nodes, geometry_.node_count, geometry_.primitives, geometry_.planes,
+                          geometry_.plane_count, depth, march, out);
   compute_.queue.enqueueReadBuffer(out, CL_TRUE, 0, stride_ * sizeof(float), counts.blocked_lights.data());
   counts.kernel_ms = event_milliseconds(done);
   return counts;

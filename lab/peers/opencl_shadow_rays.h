@@ -10,8 +10,8 @@
 #include "geometry/device_geometry.h"
 #include "peers/shadow_ray_set.h"
 #include "scene/scene.h"
-#include "shading/device_layout.h"  // TileGrid
 #include "shading/screen_depth.h"
+#include "shading/shadow_culling.h"
 
 namespace phongcl {
 
@@ -49,22 +49,11 @@ class OpenClShadowRays {
   int lanes() const { return lanes_; }
 
  private:
-  struct Lists {
-    cl::Buffer counts, offsets, candidates;
-    TileGrid grid{};
-    cl_uint tiles = 1;
-    std::size_t entries = 0, traversing = 0;
-  };
-  Lists cull(int tile_size, Counts& counts);
-  // One level of culling over a grid of tiles: from the BVH, or filtering `parent`'s lists.
-  Lists cull_level(const TileGrid& grid, std::size_t tiles, cl_uint limit, const CullLevel& level, const Lists* parent,
-                   double& culling_ms);
-
   ComputeContext compute_;
   int lanes_;
-  cl::Program program_, cull_program_, bounds_program_;
-  cl::Buffer nodes_, primitives_, bounds_, planes_;
-  cl_uint node_count_, plane_count_;
+  cl::Program program_;
+  ShadowGeometryBuffers geometry_;
+  ShadowCuller culler_;
   // The frame of set_frame().
   cl::Buffer pixels_, materials_, lights_;
   std::size_t stride_ = 0, light_count_ = 0;
