@@ -4,6 +4,7 @@
  *   merge_tile_boxes         the boxes of the coarse level's tiles, from the tiles' (cull.cl)
  *   count_shadow_candidates  one work-item per (light, tile): how many, or PHONGCL_SHADOW_TRAVERSE
  *   fill_shadow_candidates   the same walk again, writing them at the host's offset for the pair
+ *   collect_shadow_candidates  the tiles' level in one pass, in room the parent's count bounds
  * (pair p = light * tile_count + tile). A tile's rays start within its box of shaded positions
  * (TileBox, cull.cl's tile_bounds) grown by the largest offset there (shadow.h), so every ray lies
  * in the convex hull of that box and a point light, or of the box swept along a directional light's
@@ -219,6 +220,26 @@ __kernel void count_shadow_candidates(__global const TileBox* restrict boxes, co
   counts[pair] = pair_candidates(pair, tile_count, boxes, lights, offset_scale, eye_extent, level, parent_counts,
                                  parent_offsets, parent_candidates, nodes, node_count, bounds, planes, plane_count, 0,
                                  limit);
+}
+
+/* The tiles' level in one pass: a tile's list is part of its parent's, so the host gives each pair
+ * room for min(its parent's count, limit) entries (limit where the parent traverses) and the walk
+ * writes its list and count at once. */
+__kernel void collect_shadow_candidates(__global const TileBox* restrict boxes, const uint tile_count,
+                                        __global const ShadowLight* restrict lights, const float offset_scale,
+                                        const float eye_extent, const uint limit, const CullLevel level,
+                                        __global const uint* restrict parent_counts,
+                                        __global const uint* restrict parent_offsets,
+                                        __global const ShadowCandidate* restrict parent_candidates,
+                                        __global const BvhNode* restrict nodes, const uint node_count,
+                                        __global const ShadowBounds* restrict bounds,
+                                        __global const ShadowPlane* restrict planes, const uint plane_count,
+                                        __global const uint* restrict offsets, __global uint* restrict counts,
+                                        __global ShadowCandidate* restrict candidates) {
+  const uint pair = get_global_id(0);
+  counts[pair] = pair_candidates(pair, tile_count, boxes, lights, offset_scale, eye_extent, level, parent_counts,
+                                 parent_offsets, parent_candidates, nodes, node_count, bounds, planes, plane_count,
+                                 &candidates[offsets[pair]], limit);
 }
 
 __kernel void fill_shadow_candidates(__global const TileBox* restrict boxes, const uint tile_count,

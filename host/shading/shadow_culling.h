@@ -5,6 +5,7 @@
 // The shading kernel then tests a pixel's few candidates instead of traversing the BVH.
 #include <cstddef>
 #include <string>
+#include <vector>
 
 #include "cl/program_cache.h"
 #include "shading/device_layout.h"
@@ -19,6 +20,7 @@ struct ShadowLists {
   cl::Buffer counts, offsets, candidates;
   TileGrid grid{};
   cl_uint tiles = 0;
+  std::vector<cl_uint> host_counts;  // the coarse level's, which size the tiles' room
 };
 
 struct ShadowCullingStats {
@@ -41,10 +43,12 @@ class ShadowCuller {
   const ShadowLists& lists() const { return fine_; }
 
  private:
-  // One level: counts, the host's prefix sum, and the lists, from the BVH or from `parent`.
-  void level(ShadowLists& lists, const cl::Buffer& boxes, cl_uint limit, const CullLevel& where, const ShadowLists* parent,
-             const ShadowGeometryBuffers& geometry, const cl::Buffer& lights, std::size_t light_count, float offset_scale,
-             float eye_extent, ShadowCullingStats& stats);
+  // The coarse level from the BVH: counts, the host's prefix sum, then the lists.
+  void coarse_level(const cl::Buffer& boxes, const ShadowGeometryBuffers& geometry, const cl::Buffer& lights,
+                    std::size_t light_count, float offset_scale, float eye_extent, ShadowCullingStats& stats);
+  // The tiles' level in one pass, each pair given room for as many entries as its parent has.
+  void fine_level(const cl::Buffer& boxes, const ShadowGeometryBuffers& geometry, const cl::Buffer& lights,
+                  std::size_t light_count, float offset_scale, float eye_extent, ShadowCullingStats& stats);
 
   ComputeContext compute_;
   cl::Program bounds_program_, cull_program_;
