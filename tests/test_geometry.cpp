@@ -248,6 +248,21 @@ TEST(Bvh, RandomBoxesOfTwoGroups) {
   EXPECT_LT(bvh.depth, 32);
 }
 
+// Big enough that subtrees are built on threads of their own and grafted (kParallelItems = 2^16).
+TEST(Bvh, SubtreesBuiltInParallelGraftIntoOneValidTree) {
+  std::mt19937 rng(1999);
+  std::uniform_real_distribution<double> position(-1000.0, 1000.0), size(0.0, 2.0);
+  std::vector<Box> boxes;
+  for (int i = 0; i < 300000; ++i) {
+    const glm::dvec3 lo(position(rng), position(rng), position(rng));
+    boxes.push_back({lo, lo + glm::dvec3(size(rng), size(rng), size(rng))});
+  }
+  const std::vector<std::uint8_t> groups(boxes.size(), 0);
+  const Bvh bvh = build_bvh(boxes, groups, 64);
+  expect_valid(bvh, boxes, groups, 64);
+  EXPECT_EQ(bvh.nodes.size() % 2, 1u);  // a root and pairs of children
+}
+
 TEST(Bvh, CoincidentAndDegenerateItemsStayWithinTheDepthLimit) {
   std::vector<Box> boxes(5000, Box{glm::dvec3(1.0), glm::dvec3(1.0)});  // every item one point
   std::vector<std::uint8_t> groups(5000, 0);

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <array>
 #include <bit>
+#include <exception>
+#include <thread>
 #include <stdexcept>
 #include <string>
 
@@ -21,26 +23,25 @@ struct Split {
   double cost = std::numeric_limits<double>::infinity();  // in the units of kTraversalCost
 };
 
+// Subtrees of more items than this are built on a thread of their own, while cores allow.
+constexpr std::uint32_t kParallelItems = 1 << 16;
+
 class Builder {
  public:
-  Builder(const std::vector<Box>& boxes, const std::vector<std::uint8_t>& groups, int max_depth)
-      : boxes_(boxes), groups_(groups), max_depth_(max_depth) {
-    centres_.reserve(boxes.size());
-    for (const Box& box : boxes) centres_.push_back(box.centre());
-  }
+  // Builds into its own nodes; `order` is shared, each builder permuting its own range of it.
+  Builder(const std::vector<Box>& boxes, const std::vector<std::uint8_t>& groups, const std::vector<glm::dvec3>& centres,
+          std::vector<std::uint32_t>& order, int max_depth, int parallel_levels)
+      : boxes_(boxes), groups_(groups), centres_(centres), order_(order), max_depth_(max_depth),
+        parallel_levels_(parallel_levels) {}
 
-  Bvh build() {
-    for (std::uint32_t i = 0; i < boxes_.size(); ++i)
-      if (!boxes_[i].empty()) bvh_.order.push_back(i);
-    if (bvh_.order.empty()) return std::move(bvh_);
-    if (ceil_log2(static_cast<std::uint32_t>(bvh_.order.size())) > max_depth_)
-      throw std::length_error("a BVH of " + std::to_string(bvh_.order.size()) + " items needs more than " +
-                              std::to_string(max_depth_) + " levels");
-    bvh_.nodes.reserve(2 * bvh_.order.size());
-    bvh_.nodes.emplace_back();
-    build_node(0, 0, static_cast<std::uint32_t>(bvh_.order.size()), 0);
-    return std::move(bvh_);
+  // The subtree over order[begin, end) at `depth`, its root at nodes()[0].
+  void build(std::uint32_t begin, std::uint32_t end, int depth) {
+    nodes_.reserve(2 * (end - begin));
+    nodes_.emplace_back();
+    build_node(0, begin, end, depth);
   }
+  std::vector<Bvh::Node>& nodes() { return nodes_; }
+  int depth() const { return depth_; }
 
  private:
   // Invariant: depth + ceil_log2(end - begin) <= max_depth_, so that median splits from here on
@@ -49,11 +50,11 @@ class Builder {
     const std::uint32_t count = end - begin;
     Box box, centres;
     for (std::uint32_t i = begin; i < end; ++i) {
-      box.extend(boxes_[bvh_.order[i]]);
-      centres.extend(centres_[bvh_.order[i]]);
+      box.extend(boxes_[order_[i]]);
+      centres.extend(centres_[order_[i]]);
     }
-    bvh_.nodes[node].box = box;
-    bvh_.depth = std::max(bvh_.depth, depth);
+    nodes_[node].box = box;
+    depth_ = std::max(depth_, depth);
     if (count == 1) return make_leaf(node, begin, count);
 
     // The heuristic may split off a single item; allowed only while even that keeps the invariant.
@@ -64,29 +65,59 @@ class Builder {
     std::uint32_t middle = begin;
     if (split.axis >= 0) {
       middle = static_cast<std::uint32_t>(
-          std::partition(bvh_.order.begin() + begin, bvh_.order.begin() + end,
+          std::partition(order_.begin() + begin, order_.begin() + end,
                          [&](std::uint32_t item) { return bin_of(centres_[item], centres, split.axis) <= split.last_left_bin; }) -
-          bvh_.order.begin());
+          order_.begin());
     } else {
       middle = median_split(begin, end, centres);
     }
-    const auto children = static_cast<std::uint32_t>(bvh_.nodes.size());
-    bvh_.nodes.emplace_back();
-    bvh_.nodes.emplace_back();
-    bvh_.nodes[node].first = children;
-    bvh_.nodes[node].count = 0;
+    const auto children = static_cast<std::uint32_t>(nodes_.size());
+    nodes_.emplace_back();
+    nodes_.emplace_back();
+    nodes_[node].first = children;
+    nodes_[node].count = 0;
+    if (parallel_levels_ > 0 && end - middle >= kParallelItems) {
+      // The second subtree on another thread, into nodes of its own grafted on afterwards.
+      Builder second(boxes_, groups_, centres_, order_, max_depth_, parallel_levels_ - 1);
+      std::exception_ptr failure;
+      std::thread worker([&] {
+        try {
+          second.build(middle, end, depth + 1);
+        } catch (...) {
+          failure = std::current_exception();
+        }
+      });
+      --parallel_levels_;
+      build_node(children, begin, middle, depth + 1);
+      ++parallel_levels_;
+      worker.join();
+      if (failure) std::rethrow_exception(failure);
+      graft(children + 1, second);
+      return;
+    }
     build_node(children, begin, middle, depth + 1);
     build_node(children + 1, middle, end, depth + 1);
   }
 
+  // `other`'s root becomes nodes_[slot] and its other nodes follow ours, their links renumbered.
+  void graft(std::uint32_t slot, Builder& other) {
+    std::vector<Bvh::Node>& grafted = other.nodes();
+    const auto base = static_cast<std::uint32_t>(nodes_.size()) - 1;  // local index k >= 1 lands at base + k
+    for (Bvh::Node& node : grafted)
+      if (!node.leaf()) node.first += base;
+    nodes_[slot] = grafted[0];
+    nodes_.insert(nodes_.end(), grafted.begin() + 1, grafted.end());
+    depth_ = std::max(depth_, other.depth());
+  }
+
   void make_leaf(std::uint32_t node, std::uint32_t begin, std::uint32_t count) {
-    bvh_.nodes[node].first = begin;
-    bvh_.nodes[node].count = count;
+    nodes_[node].first = begin;
+    nodes_[node].count = count;
   }
 
   bool one_group(std::uint32_t begin, std::uint32_t end) const {
     for (std::uint32_t i = begin + 1; i < end; ++i)
-      if (groups_[bvh_.order[i]] != groups_[bvh_.order[begin]]) return false;
+      if (groups_[order_[i]] != groups_[order_[begin]]) return false;
     return true;
   }
 
@@ -105,7 +136,7 @@ class Builder {
       std::array<Box, kBins> bin_boxes;
       std::array<std::uint32_t, kBins> bin_counts{};
       for (std::uint32_t i = begin; i < end; ++i) {
-        const std::uint32_t item = bvh_.order[i];
+        const std::uint32_t item = order_[i];
         const int bin = bin_of(centres_[item], centres, axis);
         bin_boxes[bin].extend(boxes_[item]);
         ++bin_counts[bin];
@@ -135,7 +166,7 @@ class Builder {
   // Halves the range: items of one group before the other's when groups are mixed and the
   // centres coincide, else by centre along the widest axis.
   std::uint32_t median_split(std::uint32_t begin, std::uint32_t end, const Box& centres) {
-    const auto first = bvh_.order.begin() + begin, last = bvh_.order.begin() + end;
+    const auto first = order_.begin() + begin, last = order_.begin() + end;
     const glm::dvec3 extent = centres.hi - centres.lo;
     const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : extent.y >= extent.z ? 1 : 2;
     const auto middle = first + (last - first) / 2;
@@ -143,20 +174,39 @@ class Builder {
       if (groups_[a] != groups_[b]) return groups_[a] < groups_[b];
       return centres_[a][axis] < centres_[b][axis];
     });
-    return static_cast<std::uint32_t>(middle - bvh_.order.begin());
+    return static_cast<std::uint32_t>(middle - order_.begin());
   }
 
   const std::vector<Box>& boxes_;
   const std::vector<std::uint8_t>& groups_;
-  std::vector<glm::dvec3> centres_;
+  const std::vector<glm::dvec3>& centres_;
+  std::vector<std::uint32_t>& order_;
   int max_depth_;
-  Bvh bvh_;
+  int parallel_levels_;
+  std::vector<Bvh::Node> nodes_;
+  int depth_ = 0;
 };
 
 }  // namespace
 
 Bvh build_bvh(const std::vector<Box>& boxes, const std::vector<std::uint8_t>& groups, int max_depth) {
-  return Builder(boxes, groups, max_depth).build();
+  Bvh bvh;
+  for (std::uint32_t i = 0; i < boxes.size(); ++i)
+    if (!boxes[i].empty()) bvh.order.push_back(i);
+  if (bvh.order.empty()) return bvh;
+  if (ceil_log2(static_cast<std::uint32_t>(bvh.order.size())) > max_depth)
+    throw std::length_error("a BVH of " + std::to_string(bvh.order.size()) + " items needs more than " +
+                            std::to_string(max_depth) + " levels");
+  std::vector<glm::dvec3> centres;
+  centres.reserve(boxes.size());
+  for (const Box& box : boxes) centres.push_back(box.centre());
+  // One more thread per level while cores last: 2 cores, one level.
+  const int parallel_levels = std::bit_width(std::max(1u, std::thread::hardware_concurrency())) - 1;
+  Builder builder(boxes, groups, centres, bvh.order, max_depth, parallel_levels);
+  builder.build(0, static_cast<std::uint32_t>(bvh.order.size()), 0);
+  bvh.nodes = std::move(builder.nodes());
+  bvh.depth = builder.depth();
+  return bvh;
 }
 
 }  // namespace phongcl

@@ -21,6 +21,7 @@ struct ShadowRaysResult {
   std::string device, embree;  // descriptions (embree: "SKIP: ..." when absent)
   std::size_t triangles = 0, rays = 0;
   int bvh_depth = 0;
+  double mesh_read_ms = 0.0;  // the PLY through Assimp, flattened into world space
   double bvh_build_ms = 0.0;
   std::vector<ShadowTracerResult> tracers;  // opencl first
 };
