@@ -8,20 +8,17 @@
  * light reaches a box when its bounding sphere (LightBounds, widened on the host against rounding)
  * meets it, or when it has no range. The tile of a work-item is the tile of its first
  * pixel (tiles.h), so a tile's box covers every pixel its work-items shade.
- * Options: PHONGCL_LANES (as phong_shade's), HALF_STORAGE. */
+ * Options: PHONGCL_LANES and HALF_STORAGE, as phong_shade's. */
+/* The boxes are plain float whatever the shading's arithmetic. */
+#define PHONGCL_DOUBLE 0
+#define PHONGCL_FAST 0
+
 #include "layout.h"
 #include "phong_math.h"
+#include "storage.h"
 #include "tiles.h"
 
-#ifdef HALF_STORAGE
-#define STORAGE half
-#define LOAD_VALUES(plane, chunk) VLOAD_HALF(chunk, planes + (size_t)(plane) * plane_stride)
-#else
-#define STORAGE float
-#define LOAD_VALUES(plane, chunk) VLOAD_FLOAT(chunk, planes + (size_t)(plane) * plane_stride)
-#endif
-
-inline uint round_up_lanes(uint pixel) { return (pixel + PHONGCL_LANES - 1) / PHONGCL_LANES * PHONGCL_LANES; }
+uint round_up_lanes(uint pixel) { return (pixel + PHONGCL_LANES - 1) / PHONGCL_LANES * PHONGCL_LANES; }
 
 #define PLUS(a, b) ((a) + (b)) /* for REDUCE_LANES (phong_math.h) */
 
@@ -34,8 +31,9 @@ __kernel void tile_bounds(__global const STORAGE* restrict planes, uint plane_st
   const uint tile = get_global_id(0);
   const uint tile_x = tile % grid.tiles_x, tile_y = tile / grid.tiles_x;
   const uint x_begin = tile_x * grid.tile_size, x_end = min(x_begin + grid.tile_size, grid.image_width);
-  floatv lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
-  intv shaded = 0;
+  floatv lo[3] = {(floatv)INFINITY, (floatv)INFINITY, (floatv)INFINITY};
+  floatv hi[3] = {(floatv)-INFINITY, (floatv)-INFINITY, (floatv)-INFINITY};
+  intv shaded = (intv)0;
   for (uint y = tile_y * grid.tile_size; y < (tile_y + 1) * grid.tile_size; ++y) {
     const ulong row = (ulong)y * grid.image_width;
     const ulong begin = round_up_lanes(row + x_begin), end = round_up_lanes(row + x_end);
@@ -44,10 +42,10 @@ __kernel void tile_bounds(__global const STORAGE* restrict planes, uint plane_st
     const uint slot_begin = (uint)(max(begin, (ulong)grid.first_pixel) - grid.first_pixel);
     const uint slot_end = (uint)(min(end, (ulong)grid.first_pixel + slot_count) - grid.first_pixel);
     for (uint chunk = slot_begin / PHONGCL_LANES; chunk < slot_end / PHONGCL_LANES; ++chunk) {
-      const intv is_shaded = VLOAD_INT(chunk, material_index) != PHONGCL_BACKGROUND;
+      const intv is_shaded = VLOAD(chunk, material_index) != PHONGCL_BACKGROUND;
       shaded += select((intv)0, (intv)1, is_shaded);
       for (int axis = 0; axis < 3; ++axis) {
-        const floatv value = LOAD_VALUES(PLANE_PX + axis, chunk);
+        const floatv value = load_plane(planes, plane_stride, PLANE_PX + axis, chunk);
         lo[axis] = fmin(lo[axis], select((floatv)INFINITY, value, is_shaded));
         hi[axis] = fmax(hi[axis], select((floatv)-INFINITY, value, is_shaded));
       }
@@ -65,7 +63,7 @@ __kernel void tile_bounds(__global const STORAGE* restrict planes, uint plane_st
 
 /* Whether a light's bounding sphere meets a non-empty box: the squared distance from its centre to
  * the box against its radius squared. */
-inline bool reaches(LightBounds light, const TileBox* box) {
+bool reaches(LightBounds light, const TileBox* box) {
   if (light.radius < 0) return true;
   float distance_sq = 0;
   for (int axis = 0; axis < 3; ++axis) {

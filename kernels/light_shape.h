@@ -1,115 +1,87 @@
-/* F = falloff(d) * window(d) * cone(l), and light linking, for the lights that have them (README
- * "The shading, exactly"). Each part is compiled in only when the scene uses it:
- *   FALLOFF=k          every point and spot light falls off as 1/d^k (k = 1, 2, 3)
- *   FALLOFF_MIXED      powers differ between lights: read each light's
- *   RANGE_WINDOW       some light has a range R: window(d) = clamp(1 - (d/R)^4, 0, 1)^2
- *   SPOT_LIGHTS        some light is a spot: cone(l) from the smoothstep of its penumbra
- *   LIGHT_LINKING=w    some light lights only some materials: w mask words per light
+/* F = falloff(d) * window(d) * cone(l), and light linking, for the lights that have them (the
+ * formula: docs "The shading, exactly"). Each part is compiled in only when the scene uses it
+ * (features.h): FALLOFF=k or FALLOFF_MIXED (1/d^k), RANGE_WINDOW (window(d) = clamp(1 - (d/R)^4, 0, 1)^2),
+ * SPOT_LIGHTS (cone(l), the smoothstep of the penumbra), LIGHT_LINKING=w (w mask words per light).
  * Written for the formula's reader: the factors that are at most 1 multiply first, then 1/d once
  * per power, so the product overflows to +Inf only where 1/d^k itself outgrows them, and a zero
  * factor gives 0, never 0 * Inf = NaN. */
 #ifndef PHONGCL_LIGHT_SHAPE_H
 #define PHONGCL_LIGHT_SHAPE_H
 
+#include "features.h"
 #include "layout.h"
 #include "phong_math.h"
 
-#if defined(FALLOFF) || defined(FALLOFF_MIXED)
-/* 1/d^k can exceed float near a light; the sums then guard 0 * Inf (see add_light, kahan_add). */
-#define WEIGHT_CAN_OVERFLOW
-#endif
-#if defined(FALLOFF) || defined(FALLOFF_MIXED) || defined(RANGE_WINDOW)
-#define NEEDS_DISTANCE
-#endif
-#if defined(NEEDS_DISTANCE) || defined(SPOT_LIGHTS)
-#define POINT_SHAPES
-#endif
+/* value * factor for a colour or coefficient factor >= 0, where a weight of +Inf may have reached
+ * value: a factor of exactly 0 takes nothing (0, not NaN). A macro, not a function: the product
+ * stays inside the caller's expression, so `sum += NONNEGATIVE_TIMES(a, b)` contracts to one fma
+ * (OpenCL C's FP_CONTRACT is on) wherever the guard is compiled out. */
+#define NONNEGATIVE_TIMES(factor, value) \
+  (WEIGHT_CAN_OVERFLOW ? SELECT((factor) > 0, (factor) * (value), 0) : (factor) * (value))
 
-#ifdef LIGHT_LINKING
-/* 1 where the lane's material is among the light's, else 0. Background lanes (-1) get 0. */
-inline realv linked(UNIFORM_SPACE const LinkWord* mask, intv index) {
-#if LIGHT_LINKING == 1
-  const intv bits = (intv)(int)mask[0];
-#else
+/* 1 where the lane's material is among the light's (its LIGHT_LINKING mask words), else 0.
+ * Background lanes (index -1) get bit 31 of the only word with one word, and 0 with more; either
+ * way the kernel writes the background colour there. */
+realv linked(UNIFORM_SPACE const LinkWord* mask, intv index) {
   intv bits = (intv)0;
-  for (int word = 0; word < LIGHT_LINKING; ++word) bits = (index >> 5) == word ? (intv)(int)mask[word] : bits;
-#endif
+  if (LIGHT_LINKING == 1) bits = (intv)(int)mask[0];
+  else
+    for (int word = 0; word < LIGHT_LINKING; ++word) bits = (index >> 5) == word ? (intv)(int)mask[word] : bits;
   return TO_REALV((bits >> (index & 31)) & 1);
 }
-#define LINK_GATE(light) linked(&links[(light) * LIGHT_LINKING], index)
-#else
-#define LINK_GATE(light) ((realv)1)
-#endif
 
-#ifdef SPOT_LIGHTS
+/* The linking factor of a light whose mask is `mask`: 0 or 1 per lane; 1 without linking. */
+static inline realv link_gate(UNIFORM_SPACE const LinkWord* mask, intv index) {
+  return LIGHT_LINKING ? linked(mask, index) : (realv)1;
+}
+
 /* 1 - c for c = dot(-l, axis), the cosine of the angle between a spot's axis and the way to the
- * pixel, as |-l - axis|^2 / 2: no cancellation (1 - dot(-l, axis) lost a cone of 1e-3 degrees,
- * 1 - c = 4e-11, entirely: every pixel within 0.03 degrees was lit). The cone compares it with
+ * pixel, as |-l - axis|^2 / 2: no cancellation (1 - dot(-l, axis) loses a cone of 1e-3 degrees,
+ * 1 - c = 4e-11, entirely: every pixel within 0.03 degrees would be lit). The cone compares it with
  * versines: c >= cos(A/2) is 1 - c <= 1 - cos(A/2), and s = (c - co) / (ci - co) the same ratio. */
-inline realv cone_versine(UNIFORM_SPACE const LightShape* shape, vec3 toward, realv inverse) {
+realv cone_versine(UNIFORM_SPACE const LightShape* shape, vec3 toward, realv inverse) {
   const vec3 off_axis = make_vec3(fma(-inverse, toward.x, -(realv)shape->axis[0]), fma(-inverse, toward.y, -(realv)shape->axis[1]),
                                   fma(-inverse, toward.z, -(realv)shape->axis[2]));
   return (real)0.5 * dot3(off_axis, off_axis);
 }
-#endif
 
-#ifdef POINT_SHAPES
-/* F for one point or spot light; `gate` (0 or 1) is its linking. toward * inverse is l. */
-inline realv shape_weight(UNIFORM_SPACE const LightShape* shape, vec3 toward, realv inverse, realv distance,
-                          realv inverse_distance, realv gate) {
+/* F for one point or spot light; `gate` (0 or 1) is its linking. toward * inverse is l; distance and
+ * inverse_distance are d and 1/d, read only with NEEDS_DISTANCE. */
+realv shape_weight(UNIFORM_SPACE const LightShape* shape, vec3 toward, realv inverse, realv distance,
+                                 realv inverse_distance, realv gate) {
   realv bounded = gate; /* window * cone * link, in [0, 1] */
-#ifdef RANGE_WINDOW
-  const realv x = distance * shape->inverse_range, x2 = x * x;
-  const realv t = clamp(1 - x2 * x2, (real)0, (real)1);
-  bounded *= t * t;
-#endif
-#ifdef SPOT_LIGHTS
-  const realv versine = cone_versine(shape, toward, inverse);
-  const realv s = SELECT(versine <= shape->versine_inner, 1,
-                         clamp((shape->versine_outer - versine) * shape->inverse_cone_width, (real)0, (real)1));
-  bounded *= s * s * (3 - 2 * s);
-#endif
+  if (RANGE_WINDOW) {
+    const realv x = distance * shape->inverse_range, x2 = x * x;
+    const realv t = clamp(1 - x2 * x2, (real)0, (real)1);
+    bounded *= t * t;
+  }
+  if (SPOT_LIGHTS) {
+    const realv versine = cone_versine(shape, toward, inverse);
+    const realv s = SELECT(versine <= shape->versine_inner, 1,
+                           clamp((shape->versine_outer - versine) * shape->inverse_cone_width, (real)0, (real)1));
+    bounded *= s * s * (3 - 2 * s);
+  }
   realv weight = bounded;
-#if defined(FALLOFF)
-  for (int power = 0; power < FALLOFF; ++power) weight *= inverse_distance;
-#elif defined(FALLOFF_MIXED)
-  for (int power = 0; power < shape->falloff; ++power) weight *= inverse_distance;
-#endif
-#ifdef WEIGHT_CAN_OVERFLOW
-  return SELECT(bounded > 0, weight, 0); /* 0 * (1/d^k = Inf) */
-#else
-  return weight;
-#endif
+  const int powers = FALLOFF_MIXED ? shape->falloff : FALLOFF;
+  for (int power = 0; power < powers; ++power) weight *= inverse_distance;
+  return WEIGHT_CAN_OVERFLOW ? SELECT(bounded > 0, weight, 0) : weight; /* 0 * (1/d^k = Inf) */
 }
-#endif
 
-#if defined(TILED_CULLING) && defined(RANGE_WINDOW)
 /* Whether every lane is clearly beyond the light's range, |d / R|^2 > 1.01: there the window, and so
  * the light's weight, is exactly 0, so skipping the light changes no bit of the sums. A tile's list
  * holds every light that reaches some pixel of the tile; this drops, per work-item, the ones that
  * reach none of its pixels. A light without a range (inverse_range 0) is never skipped. toward is
  * scaled by 1 / R before it is squared: d^2 and 1 / R^2 apart overflow float for R = 1e20 and 1e-20
- * (Inf * a tiny factor skipped lights at R / 2). */
-inline bool beyond_range_in_every_lane(UNIFORM_SPACE const LightShape* shape, vec3 toward) {
+ * (Inf * a tiny factor would skip lights at R / 2). */
+bool beyond_range_in_every_lane(UNIFORM_SPACE const LightShape* shape, vec3 toward) {
   const vec3 in_ranges = scale3(toward, (realv)shape->inverse_range);
   return all_lanes(LANE_MASK(dot3(in_ranges, in_ranges) > (real)1.01));
 }
-#endif
 
-#if defined(TILED_CULLING) && defined(SPOT_LIGHTS)
 /* Whether every lane is outside a spot's cone, 1 - c > versine_outer: there the cone factor, and so
  * the weight, is exactly 0 (as beyond the range above). A point light (versine_outer 3) never is. */
-inline bool outside_cone_in_every_lane(UNIFORM_SPACE const LightShape* shape, vec3 toward, realv inverse) {
+bool outside_cone_in_every_lane(UNIFORM_SPACE const LightShape* shape, vec3 toward, realv inverse) {
   return all_lanes(LANE_MASK(cone_versine(shape, toward, inverse) > shape->versine_outer));
 }
-#endif
-
-/* value * factor for a colour or coefficient factor >= 0, where a weight of +Inf may have reached
- * value: a factor of exactly 0 takes nothing (0, not NaN). */
-#ifdef WEIGHT_CAN_OVERFLOW
-#define NONNEGATIVE_TIMES(factor, value) SELECT((factor) > 0, (factor) * (value), 0)
-#else
-#define NONNEGATIVE_TIMES(factor, value) ((factor) * (value))
-#endif
 
 #endif

@@ -6,14 +6,24 @@
 #ifndef PHONGCL_PHONG_MATH_H
 #define PHONGCL_PHONG_MATH_H
 
-#ifndef PHONGCL_LANES
-#define PHONGCL_LANES 1
+/* Linkage, here and in every kernel file. A helper is a plain function: defined once, with external
+ * linkage, so every compiler finds it, unoptimised too (a C99 `inline` definition is not one), and
+ * the compiler inlines it where it judges that pays. Code split out of its one caller for reading
+ * (phong.cl's steps, one-line wrappers) is `static inline`: inlined in place, as if written there.
+ * Together they keep the generated code, and the fast variant's roundings, those of the kernel
+ * written in one piece (docs/kernel.md). */
+
+#if !defined(PHONGCL_LANES) || !defined(PHONGCL_DOUBLE) || !defined(PHONGCL_FAST)
+#error "phong_math.h needs PHONGCL_LANES, PHONGCL_DOUBLE and PHONGCL_FAST defined (features.h)"
+#endif
+#if PHONGCL_LANES != 1 && PHONGCL_LANES != 2 && PHONGCL_LANES != 4 && PHONGCL_LANES != 8 && PHONGCL_LANES != 16
+#error "PHONGCL_LANES must be 1, 2, 4, 8 or 16 (OpenCL vector widths)"
 #endif
 
 #define PHONGCL_CAT(a, b) a##b
 #define PHONGCL_XCAT(a, b) PHONGCL_CAT(a, b)
 
-#ifdef PHONGCL_DOUBLE
+#if PHONGCL_DOUBLE
 #pragma OPENCL EXTENSION cl_khr_fp64 : enable
 #define PHONGCL_REAL double
 #else
@@ -25,10 +35,9 @@ typedef PHONGCL_REAL real;
 typedef real realv; /* one pixel's value */
 typedef float floatv;
 typedef int intv;
-#define VLOAD_FLOAT(i, p) ((p)[i])
+#define VLOAD(i, p) ((p)[i])
 #define VLOAD_HALF(i, p) vload_half(i, p)
-#define VLOAD_INT(i, p) ((p)[i])
-#define VSTORE_FLOAT(v, i, p) ((p)[i] = (v))
+#define VSTORE(v, i, p) ((p)[i] = (v))
 #define TO_REALV(x) ((real)(x))
 #define TO_FLOATV(x) ((float)(x))
 #define AS_INTV(x) as_int(x)
@@ -39,10 +48,9 @@ typedef int intv;
 typedef PHONGCL_XCAT(PHONGCL_REAL, PHONGCL_LANES) realv;
 typedef PHONGCL_XCAT(float, PHONGCL_LANES) floatv;
 typedef PHONGCL_XCAT(int, PHONGCL_LANES) intv;
-#define VLOAD_FLOAT(i, p) PHONGCL_XCAT(vload, PHONGCL_LANES)(i, p)
+#define VLOAD(i, p) PHONGCL_XCAT(vload, PHONGCL_LANES)(i, p)
 #define VLOAD_HALF(i, p) PHONGCL_XCAT(vload_half, PHONGCL_LANES)(i, p)
-#define VLOAD_INT(i, p) PHONGCL_XCAT(vload, PHONGCL_LANES)(i, p)
-#define VSTORE_FLOAT(v, i, p) PHONGCL_XCAT(vstore, PHONGCL_LANES)(v, i, p)
+#define VSTORE(v, i, p) PHONGCL_XCAT(vstore, PHONGCL_LANES)(v, i, p)
 #define TO_REALV(x) PHONGCL_XCAT(PHONGCL_XCAT(convert_, PHONGCL_REAL), PHONGCL_LANES)(x)
 #define TO_FLOATV(x) PHONGCL_XCAT(convert_float, PHONGCL_LANES)(x)
 #define AS_INTV(x) PHONGCL_XCAT(as_int, PHONGCL_LANES)(x)
@@ -52,7 +60,7 @@ typedef PHONGCL_XCAT(int, PHONGCL_LANES) intv;
 #endif
 
 /* A comparison of realv values as an intv mask (double comparisons give long lanes). */
-#if PHONGCL_LANES > 1 && defined(PHONGCL_DOUBLE)
+#if PHONGCL_LANES > 1 && PHONGCL_DOUBLE
 #define LANE_MASK(comparison) PHONGCL_XCAT(convert_int, PHONGCL_LANES)(comparison)
 #else
 #define LANE_MASK(comparison) (comparison)
@@ -69,14 +77,16 @@ typedef PHONGCL_XCAT(int, PHONGCL_LANES) intv;
 #define REDUCE_LANES(v, op) HALVE_LANES(HALVE_LANES(v, op), op)
 #elif PHONGCL_LANES == 8
 #define REDUCE_LANES(v, op) HALVE_LANES(HALVE_LANES(HALVE_LANES(v, op), op), op)
-#else
+#elif PHONGCL_LANES == 16
 #define REDUCE_LANES(v, op) HALVE_LANES(HALVE_LANES(HALVE_LANES(HALVE_LANES(v, op), op), op), op)
+#else
+#error "REDUCE_LANES: no reduction for this PHONGCL_LANES"
 #endif
 #define BITWISE_AND(a, b) ((a) & (b))
 
 /* Whether every lane of a mask is true, by halving the vector with ANDs: PoCL's all() and any()
  * test the lanes one by one, each with a branch. */
-inline int all_lanes(intv mask) { return REDUCE_LANES(mask, BITWISE_AND) != 0; }
+int all_lanes(intv mask) { return REDUCE_LANES(mask, BITWISE_AND) != 0; }
 
 /* Per-lane choice without branches: `condition` is a comparison of realv values. */
 #define SELECT(condition, if_true, if_false) ((condition) ? (realv)(if_true) : (realv)(if_false))
@@ -86,19 +96,19 @@ typedef struct {
   realv x, y, z;
 } vec3;
 
-inline vec3 make_vec3(realv x, realv y, realv z) {
+vec3 make_vec3(realv x, realv y, realv z) {
   vec3 v = {x, y, z};
   return v;
 }
-inline vec3 sub3(vec3 a, vec3 b) { return make_vec3(a.x - b.x, a.y - b.y, a.z - b.z); }
-inline vec3 scale3(vec3 a, realv s) { return make_vec3(a.x * s, a.y * s, a.z * s); }
-inline realv dot3(vec3 a, vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+vec3 sub3(vec3 a, vec3 b) { return make_vec3(a.x - b.x, a.y - b.y, a.z - b.z); }
+vec3 scale3(vec3 a, realv s) { return make_vec3(a.x * s, a.y * s, a.z * s); }
+realv dot3(vec3 a, vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
 
-inline realv largest_magnitude(vec3 v) { return fmax(fabs(v.x), fmax(fabs(v.y), fabs(v.z))); }
+realv largest_magnitude(vec3 v) { return fmax(fabs(v.x), fmax(fabs(v.y), fabs(v.z))); }
 
-#ifdef PHONGCL_DOUBLE
+#if PHONGCL_DOUBLE
 /* v divided by its largest |component| (v itself when zero). */
-inline vec3 rescaled(vec3 v) {
+vec3 rescaled(vec3 v) {
   const realv largest = largest_magnitude(v);
   const realv nonzero = SELECT(largest > 0, largest, 1);
   return make_vec3(v.x / nonzero, v.y / nonzero, v.z / nonzero);
@@ -108,19 +118,19 @@ inline vec3 rescaled(vec3 v) {
  * log2(1 - e) to a few ulp: u = 1 - e rounds, but log2(u) * e / (1 - u) corrects for the rounding
  * (Goldberg's log1p trick), and u == 1 only when e is below half an ulp of 1, where
  * log2(1 - e) = -e / ln 2 to double precision. Elsewhere log2(cos_vr) is the accurate one. */
-inline realv specular_exponent(realv cos_vr, realv e, realv q) {
+realv specular_exponent(realv cos_vr, realv e, realv q) {
   const realv u = 1 - e;
   const realv near_peak = SELECT(e < (real)0.5, 1, 0);
   const realv logarithm = log2(SELECT(near_peak != 0, u, cos_vr));
   const realv corrected = SELECT(near_peak != 0 && u != 1, logarithm * (e / (1 - u)), logarithm);
   return q * SELECT(near_peak != 0 && u == 1, -e * (real)M_LOG2E, corrected);
 }
-inline realv exp2_nonpositive(realv y) { return exp2(y); }
+realv exp2_nonpositive(realv y) { return exp2(y); }
 #else
 /* v scaled by the power of two that brings its largest |component| into [1, 2) (near 1 for the
  * extremes: subnormals, the top two exponents), from the exponent bits: exact, and no branches or
  * divisions. */
-inline vec3 rescaled(vec3 v) {
+vec3 rescaled(vec3 v) {
   /* |x| as bits orders like |x| (non-negative floats); NaN and Inf give the largest exponent. */
   const intv largest = max(AS_INTV(fabs(v.x)), max(AS_INTV(fabs(v.y)), AS_INTV(fabs(v.z))));
   /* 2^(127 - e) stays a normal float. A vector bound: Oclgrind 21.10 gets min(intn, int) wrong. */
@@ -136,7 +146,7 @@ inline vec3 rescaled(vec3 v) {
  * The light loop is latency-bound, so the reduction has no compares (the bits are offset by those
  * of sqrt(1/2), musl's way), the polynomial is in Estrin's form (half the depth of Horner's), and
  * q is folded into the last two steps. */
-inline realv specular_exponent(realv cos_vr, realv e, realv q) {
+realv specular_exponent(realv cos_vr, realv e, realv q) {
   /* cos_vr * 2^23 is exact and a normal float even where cos_vr is subnormal. */
   /* Unsigned arithmetic: where cos_vr <= 0 (selected away below) the difference wraps. */
   const intv offset_bits = AS_INTV(AS_UINTV(cos_vr * 0x1p23f) - 0x3f3504f3u);
@@ -159,7 +169,7 @@ inline realv specular_exponent(realv cos_vr, realv e, realv q) {
  * smallest normal float, 2^-126: subnormal results cost a microcode assist per operation on x86
  * (half the frame's time at 16 lights) and GPUs flush them anyway. The rounding to an integer goes
  * through the bits of y + 1.5 * 2^23, which -cl-fast-relaxed-math cannot fold away. */
-inline realv exp2_nonpositive(realv y) {
+realv exp2_nonpositive(realv y) {
   /* Unsigned arithmetic: y far below -126 (selected away below) wraps rather than overflows. */
   const intv k = AS_INTV(AS_UINTV(y + 0x1.8p23f) - 0x4b400000u); /* nearest integer */
   const realv r = y - INT_TO_FLOATV(k);                /* [-0.5, 0.5], exact */
@@ -173,7 +183,7 @@ inline realv exp2_nonpositive(realv y) {
 #endif
 
 /* 1 / |v| for a rescaled v, 0 for the zero vector. */
-inline realv inverse_length(vec3 scaled) {
+realv inverse_length(vec3 scaled) {
   const realv length_sq = dot3(scaled, scaled);
   return SELECT(length_sq > 0, rsqrt(length_sq), 0);
 }
@@ -181,7 +191,7 @@ inline realv inverse_length(vec3 scaled) {
 /* 1 / |v|, where |v|^2 is comfortably inside float's range in every lane; elsewhere v is replaced
  * by rescaled(v) first. The check is a branch, predicted taken: in the latency-bound light loop it
  * keeps the rescaling off each light's dependency chain. */
-inline realv inverse_length_in_range(vec3* v) {
+realv inverse_length_in_range(vec3* v) {
   const realv length_sq = dot3(*v, *v);
   if (all_lanes(LANE_MASK(length_sq >= 0x1p-100f && length_sq <= 0x1p100f))) return rsqrt(length_sq);
   *v = rescaled(*v);
@@ -191,7 +201,7 @@ inline realv inverse_length_in_range(vec3* v) {
 /* inverse_length_in_range() that also gives the length d = |v| and 1/d, for a light's falloff and
  * range: where v had to be rescaled they come from the scale, exact powers of two. A zero v gives
  * d = 0 and 1/d = 0 (its light adds nothing: n.l is 0); a d beyond float gives +Inf and 0. */
-inline realv distance_in_range(vec3* v, realv* distance, realv* inverse_distance) {
+realv distance_in_range(vec3* v, realv* distance, realv* inverse_distance) {
   const realv length_sq = dot3(*v, *v);
   if (all_lanes(LANE_MASK(length_sq >= 0x1p-100f && length_sq <= 0x1p100f))) {
     const realv inverse = rsqrt(length_sq);
@@ -211,7 +221,7 @@ inline realv distance_in_range(vec3* v, realv* distance, realv* inverse_distance
 /* normalize() that neither overflows nor underflows: components of 1e30 (squares overflow float)
  * or 1e-40 (squares vanish) still give a unit vector. A zero vector stays zero: the documented
  * policy for degenerate inputs (README). */
-inline vec3 unit_or_zero(vec3 v) {
+vec3 unit_or_zero(vec3 v) {
   const vec3 scaled = rescaled(v);
   return scale3(scaled, inverse_length(scaled));
 }
@@ -220,9 +230,41 @@ inline vec3 unit_or_zero(vec3 v) {
  * Near the highlight peak v.r rounds towards 1 and x^q multiplies that rounding error by q, so the
  * logarithm is taken from one_minus_cos = 1 - v.r, which the caller computes without cancellation
  * as |v - r|^2 / 2 (v and r unit vectors). Far from the peak, log2(v.r) is the accurate one. */
-inline realv specular_power(realv cos_vr, realv one_minus_cos, realv q) {
+realv specular_power(realv cos_vr, realv one_minus_cos, realv q) {
   const realv power = exp2_nonpositive(specular_exponent(cos_vr, one_minus_cos, q));
   return SELECT(q == 0, 1, SELECT(cos_vr > 0, power, 0));
+}
+
+/* sum += value, with the rounding error carried in compensation (Kahan). Where a value can be +Inf
+ * (`infinite_values`), Inf - Inf would make the compensation NaN: it is kept 0 there, and the sum +Inf. */
+void kahan_add(realv* sum, realv* compensation, realv value, bool infinite_values) {
+  const realv corrected = value - *compensation;
+  const realv next = *sum + corrected;
+  *compensation = infinite_values ? SELECT(next - next == 0, (next - *sum) - corrected, 0) : (next - *sum) - corrected;
+  *sum = next;
+}
+
+/* Undoes the host's radiance scaling by 2^e = a * b (two power-of-two factors, each a normal
+ * float): (value * a) * b is exact up to one rounding, and overflows only when the exact result
+ * does. Under -cl-fast-relaxed-math the compiler may reassociate that into value * (a * b), and
+ * a * b = 2^128 overflows (3e38 lights give +Inf for a finite 1.5e38, and 0 * Inf = NaN in dark
+ * pixels), so the fast variant uses ldexp, which no flag rewrites. A vector exponent rather than
+ * ldexp(floatn, int): Oclgrind 21.10 gets that overload's lanes wrong. */
+floatv unscale(realv value, float a, float b) {
+  if (PHONGCL_FAST) return TO_FLOATV(ldexp(value, (intv)(ilogb(a) + ilogb(b))));
+  return TO_FLOATV(value * a * b);
+}
+
+/* Writes a work-item's vector of one output plane. The planes are written once and not read again
+ * here: with Clang (PoCL) they are streamed past the caches, so no line is first read for ownership
+ * (16 of the 20 bytes a pixel costs at 0 lights). Planes start at multiples of PHONGCL_LANES floats,
+ * so the floatv is aligned. */
+static inline void store_plane(floatv value, size_t group, __global float* plane) {
+#if defined(__clang__) && PHONGCL_LANES > 1
+  __builtin_nontemporal_store(value, (__global floatv*)plane + group);
+#else
+  VSTORE(value, group, plane);
+#endif
 }
 
 #endif

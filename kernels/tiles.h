@@ -4,7 +4,7 @@
 
 #include "layout.h"
 
-inline uint tile_of_pixel(TileGrid grid, uint pixel) {
+uint tile_of_pixel(TileGrid grid, uint pixel) {
   const uint x = pixel % grid.image_width, y = pixel / grid.image_width;
   return (y / grid.tile_size) * grid.tiles_x + x / grid.tile_size;
 }

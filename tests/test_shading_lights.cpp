@@ -91,7 +91,7 @@ TEST(Lights, LinkingBeyondThirtyTwoMaterials) {
   spec.linking = true;
   const auto [scene, gbuffer] = shaped_scene({"linking, 40 materials", spec}, 77, 40);
   const ShadeResult result = shader.shade(scene, gbuffer, {});
-  EXPECT_NE(result.build_options.find("-DLIGHT_LINKING=2"), std::string::npos) << result.build_options;
+  EXPECT_EQ(result.recipe.value("LIGHT_LINKING"), "2") << result.build_options;
   const ErrorStats stats = kernel_vs_reference(shader, scene, gbuffer, {});
   EXPECT_LE(stats.max_rel, kRelativeBound) << describe_worst(stats);
 }
@@ -108,11 +108,12 @@ TEST(Lights, EachSpecialisedCombinationMatchesTheGeneralKernel) {
     spec.linking = mask & 8;
     const auto [scene, gbuffer] = shaped_scene({"combination", spec}, 500 + static_cast<unsigned>(mask));
     const ShadeResult specialised = shader.shade(scene, gbuffer, {});
+    const Recipe& recipe = specialised.recipe;
     const std::string& options = specialised.build_options;
-    EXPECT_EQ(options.find("-DFALLOFF") != std::string::npos, spec.falloff) << options;
-    EXPECT_EQ(options.find("-DRANGE_WINDOW") != std::string::npos, spec.range) << options;
-    EXPECT_EQ(options.find("-DSPOT_LIGHTS") != std::string::npos, spec.spots) << options;
-    EXPECT_EQ(options.find("-DLIGHT_LINKING=1") != std::string::npos, spec.linking) << options;
+    EXPECT_EQ(recipe.value("FALLOFF") != "0" || recipe.value("FALLOFF_MIXED") == "1", spec.falloff) << options;
+    EXPECT_EQ(recipe.value("RANGE_WINDOW") == "1", spec.range) << options;
+    EXPECT_EQ(recipe.value("SPOT_LIGHTS") == "1", spec.spots) << options;
+    EXPECT_EQ(recipe.value("LIGHT_LINKING") == "1", spec.linking) << options;
     const ShadeResult unspecialised = shader.shade(scene, gbuffer, general);
     // Both are float, same formula: a few ulp of the light sum apart, far inside the product's bound.
     const ErrorStats stats = shading_error(specialised.image, unspecialised.image,
@@ -122,13 +123,13 @@ TEST(Lights, EachSpecialisedCombinationMatchesTheGeneralKernel) {
 }
 
 // A scene whose lights use no shape (point and directional lights without falloff, range, cone or
-// linking) builds none of the shapes' options, so its kernel is the one without light shapes.
+// linking) compiles every shape's flag as 0: its kernel is the one without light shapes.
 TEST(Lights, UnshapedLightsBuildNoShapeOptions) {
   PHONGCL_REQUIRE_DEVICE(shader);
   const auto [scene, gbuffer] = random_scene({}, 3);
-  const std::string options = make_recipe(scene, gbuffer, shader.compute().device.info, {}).build_options();
-  for (const char* shape : {"FALLOFF", "RANGE_WINDOW", "SPOT_LIGHTS", "LIGHT_LINKING", "TILED_CULLING"})
-    EXPECT_EQ(options.find(shape), std::string::npos) << options;
+  const Recipe recipe = make_recipe(scene, gbuffer, shader.compute().device.info, {});
+  for (const char* shape : {"FALLOFF", "FALLOFF_MIXED", "RANGE_WINDOW", "SPOT_LIGHTS", "LIGHT_LINKING", "TILED_CULLING"})
+    EXPECT_EQ(recipe.value(shape), "0") << shape << ": " << recipe.build_options();
 }
 
 // d -> 0 with 1/d^3: +Inf where the exact value exceeds float, never NaN, and a colour channel or
@@ -192,7 +193,7 @@ TEST(Lights, TiledCullingEqualsUnculledAndReference) {
     unculled.lanes = lanes;
     unculled.culling = Culling::none;
     const ShadeResult all = shader.shade(scene, gbuffer, unculled);
-    EXPECT_EQ(all.build_options.find("TILED_CULLING"), std::string::npos);
+    EXPECT_EQ(all.recipe.value("TILED_CULLING"), "0");
     for (int tile : {16, 5}) {
       for (std::size_t pieces : {std::size_t{0}, std::size_t{4001}}) {
         ShadeOptions tiled = unculled;
@@ -202,7 +203,7 @@ TEST(Lights, TiledCullingEqualsUnculledAndReference) {
         const ShadeResult culled = shader.shade(scene, gbuffer, tiled);
         const std::string where = std::to_string(lanes) + " lanes, tile " + std::to_string(tile) +
                                   (pieces ? ", in pieces" : "");
-        ASSERT_NE(culled.build_options.find("-DTILED_CULLING"), std::string::npos) << culled.build_options;
+        ASSERT_EQ(culled.recipe.value("TILED_CULLING"), "1") << culled.build_options;
         const ErrorStats same = shading_error(culled.image, all.image, mask);
         EXPECT_LE(same.max_rel, 1e-5) << where << ": " << describe_worst(same);
         EXPECT_EQ(same.nonfinite_mismatches, 0u) << where;

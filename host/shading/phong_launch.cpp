@@ -11,15 +11,6 @@ namespace phongcl {
 
 namespace {
 
-// phong.cl's phong_shade, argument for argument.
-using PhongKernel = cl::KernelFunctor<
-    /* G-buffer planes, material index */ cl::Buffer, cl::Buffer,
-    /* materials, point lights, directional lights */ cl::Buffer, cl::Buffer, cl::Buffer,
-    /* per-frame scalars */ FrameScalars,
-    /* output planes, term planes */ cl::Buffer, cl::Buffer,
-    /* light shapes, linking */ cl::Buffer, cl::Buffer,
-    /* tiled culling */ cl::Buffer, cl::Buffer, cl::Buffer, TileGrid>;
-
 // OpenCL has no empty buffers: an unused table still gets one zeroed element.
 template <typename T>
 cl::Buffer uniform_buffer(const cl::Context& context, std::vector<T> values) {
@@ -77,25 +68,39 @@ std::size_t tile_pixels(const DeviceInfo& device, const Recipe& recipe, std::siz
 }
 
 DeviceUniforms upload_uniforms(const cl::Context& context, const UniformData& uniforms, std::size_t plane_stride) {
-  DeviceUniforms device{uniform_buffer(context, uniforms.materials),    uniform_buffer(context, uniforms.point_lights),
-                        uniform_buffer(context, uniforms.directional_lights), uniform_buffer(context, uniforms.point_shapes),
-                        uniform_buffer(context, uniforms.links),            uniform_buffer(context, uniforms.point_bounds),
-                        uniform_buffer(context, std::vector<cl_uint>{}),    uniforms.scalars};
+  DeviceUniforms device{.materials = uniform_buffer(context, uniforms.materials),
+                        .point_lights = uniform_buffer(context, uniforms.point_lights),
+                        .directional_lights = uniform_buffer(context, uniforms.directional_lights),
+                        .point_shapes = uniform_buffer(context, uniforms.point_shapes),
+                        .links = uniform_buffer(context, uniforms.links),
+                        .point_bounds = uniform_buffer(context, uniforms.point_bounds),
+                        .no_tiles = uniform_buffer(context, std::vector<cl_uint>{}),
+                        .scalars = uniforms.scalars};
   device.scalars.plane_stride = static_cast<layout_uint>(plane_stride);
   return device;
 }
 
+std::vector<std::string> phong_argument_names() {
+  std::vector<std::string> names;
+  PhongArguments unset;
+  for_each_argument(unset, [&names](const char* name, const auto&) { names.push_back(name); });
+  return names;
+}
+
+void set_arguments(cl::Kernel& kernel, const PhongArguments& arguments) {
+  cl_uint index = 0;
+  for_each_argument(arguments, [&](const char*, const auto& value) { kernel.setArg(index++, value); });
+}
+
 cl::Kernel phong_kernel(const cl::Program& program) { return cl::Kernel(program, "phong_shade"); }
 
-cl::Event launch_phong(const cl::Kernel& phong_shade, cl::CommandQueue& queue, const TileBuffers& tile,
-                       const DeviceUniforms& uniforms, std::size_t slots, int lanes, const TileLists* culled) {
-  PhongKernel kernel(phong_shade);
-  const TileLists unculled{uniforms.no_tiles, uniforms.no_tiles, uniforms.no_tiles, TileGrid{}};
-  const TileLists& lists = culled ? *culled : unculled;
-  return kernel(cl::EnqueueArgs(queue, cl::NDRange(slots / static_cast<std::size_t>(lanes))), tile.planes,
-                tile.material_index, uniforms.materials, uniforms.point_lights, uniforms.directional_lights,
-                uniforms.scalars, tile.output, tile.terms, uniforms.point_shapes, uniforms.links, lists.offsets,
-                lists.counts, lists.lights, lists.grid);
+cl::Event launch_phong(cl::Kernel& kernel, cl::CommandQueue& queue, const PhongArguments& arguments, std::size_t slots,
+                       int lanes) {
+  set_arguments(kernel, arguments);
+  cl::Event launched;
+  queue.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(slots / static_cast<std::size_t>(lanes)), cl::NullRange,
+                             nullptr, &launched);
+  return launched;
 }
 
 void interleave(const float* planes, std::size_t stride, std::size_t count, int channels, float* rgba) {

@@ -1,12 +1,13 @@
 #pragma once
 // The pieces of a Phong frame on the device, which the shader (phong_shader.h) puts together: tile
-// sizes, packing into device memory, the scene's tables on the device, the typed kernel launch, and
-// copying the output planes out.
+// sizes, packing into device memory, the scene's tables on the device, the launch with named
+// arguments, and copying the output planes out.
 #include <cstddef>
 
 #include "cl/device_info.h"
 #include "cl/opencl.h"
 #include "shading/pack.h"
+#include "shading/phong_arguments.h"
 #include "shading/recipe.h"
 
 namespace phongcl {
@@ -48,27 +49,12 @@ struct DeviceUniforms {
 // `plane_stride`: values per plane of the tile the kernel will shade.
 DeviceUniforms upload_uniforms(const cl::Context& context, const UniformData& uniforms, std::size_t plane_stride);
 
-// The tile's buffers, in kernels/layout.h's plane order.
-struct TileBuffers {
-  const cl::Buffer& planes;          // G-buffer planes (float, or half with half-storage)
-  const cl::Buffer& material_index;  // one int per slot, PHONGCL_BACKGROUND where not shaded
-  const cl::Buffer& output;          // PHONGCL_OUTPUT_PLANES planes
-  const cl::Buffer& terms;           // PHONGCL_TERM_PLANES planes with WRITE_TERMS, else unused
-};
-
-// The tiled-culling variant's light lists for this launch (shading/tile_culling.h).
-struct TileLists {
-  cl::Buffer offsets, counts, lights;
-  TileGrid grid{};
-};
-
-// phong.cl's phong_shade in `program`. Setting a kernel's arguments is not thread-safe: one kernel
-// object per thread that launches.
+// phong.cl's phong_shade in `program`.
 cl::Kernel phong_kernel(const cl::Program& program);
-// Enqueues phong_shade over `slots` pixels (a multiple of the recipe's lanes); `culled` only for a
-// recipe with tiled culling.
-cl::Event launch_phong(const cl::Kernel& kernel, cl::CommandQueue& queue, const TileBuffers& tile,
-                       const DeviceUniforms& uniforms, std::size_t slots, int lanes, const TileLists* culled = nullptr);
+// Sets the kernel's arguments and enqueues it over `slots` pixels (a multiple of the recipe's lanes).
+// Setting a kernel's arguments is not thread-safe: one kernel object per thread that launches.
+cl::Event launch_phong(cl::Kernel& kernel, cl::CommandQueue& queue, const PhongArguments& arguments, std::size_t slots,
+                       int lanes);
 
 // Interleaves the first `channels` of count pixels' planes (stride values each) into RGBA pixels,
 // on every core: the copy is part of each frame's end-to-end time.

@@ -37,7 +37,7 @@ void copy_terms(cl::CommandQueue& queue, const cl::Buffer& terms, std::size_t st
 
 void describe_recipe(const Recipe& recipe, ShadeReport& report) {
   report.kernel_summary = recipe.summary();
-  report.recipe_reasons = recipe.reasons;
+  report.recipe_reasons = recipe.reasons();
   report.build_options = recipe.build_options();
   report.point_lights = recipe.point_lights;
   report.spot_lights = recipe.spot_lights;
@@ -64,7 +64,7 @@ ShadeResult PhongShader::shade(const Scene& scene, const GBuffer& gbuffer, const
   return result;
 }
 
-const cl::Kernel& PhongShader::kernel_for(ShadeReport& report) {
+cl::Kernel& PhongShader::kernel_for(ShadeReport& report) {
   if (kernel_ && kernel_options_ == report.build_options) return *kernel_;
   const BuiltProgram built = cache_.build(compute_, load_kernel_source("phong.cl"), report.build_options);
   kernel_ = phong_kernel(built.program);
@@ -83,31 +83,15 @@ TileCuller& PhongShader::culler_for(const std::string& build_options) {
   return *culler_;
 }
 
-ShadeReport PhongShader::shade_into(const Scene& scene, const GBuffer& gbuffer, const Recipe& recipe,
-                                    const FrameTargets& targets, std::size_t max_tile_pixels) {
-  ShadeReport report;
-  describe_recipe(recipe, report);
-  report.disk_cache_directory = cache_.disk_directory().string();
-  report.disk_cache_problem = cache_.disk_problem();
-  const cl::Kernel& kernel = kernel_for(report);
-
-  const auto start = Clock::now();
+PhongShader::FrameSetup PhongShader::prepare(const Scene& scene, const GBuffer& gbuffer, const Recipe& recipe,
+                                             std::size_t max_tile_pixels, ShadeReport& report) {
   const cl::Context& context = compute_.context;
-  cl::CommandQueue& queue = compute_.queue;
-  TileLayout tiles = tile_layout(gbuffer.width, gbuffer.height, recipe.tile_size);
-  TileCuller* culler = recipe.tiled ? &culler_for(report.build_options) : nullptr;
-
   const std::size_t pixels = gbuffer.pixel_count();
   const bool half = recipe.precision == Precision::half_storage;
-  const std::size_t lanes = static_cast<std::size_t>(recipe.lanes);
   // Every plane holds `stride` values, a multiple of the kernel's lanes; tiles are padded to it.
-  const std::size_t stride = round_up(tile_pixels(compute_.device.info, recipe, pixels, max_tile_pixels), lanes);
+  const std::size_t stride =
+      round_up(tile_pixels(compute_.device.info, recipe, pixels, max_tile_pixels), static_cast<std::size_t>(recipe.lanes));
   const std::size_t plane_bytes = stride * recipe.plane_count() * (half ? sizeof(cl_half) : sizeof(cl_float));
-  const PackTarget pack_target{planes_.at_least(context, plane_bytes),
-                               material_index_.at_least(context, stride * sizeof(cl_int)), stride};
-  const cl::Buffer& output = output_.at_least(context, PHONGCL_OUTPUT_PLANES * stride * sizeof(cl_float));
-  const cl::Buffer& terms =
-      terms_.at_least(context, (recipe.write_terms ? PHONGCL_TERM_PLANES * stride : 1) * sizeof(cl_float));
   if (!uniforms_ || uniforms_options_ != report.build_options || uniforms_stride_ != stride) {
     const auto upload_start = Clock::now();
     uniforms_ = upload_uniforms(context, pack_uniforms(scene, recipe), stride);
@@ -115,54 +99,104 @@ ShadeReport PhongShader::shade_into(const Scene& scene, const GBuffer& gbuffer, 
     uniforms_stride_ = stride;
     report.timings.upload_ms += milliseconds(upload_start, Clock::now());
   }
-  const DeviceUniforms& uniforms = *uniforms_;
   // One launch keeps its packed G-buffer for the next frame; tiles overwrite each other's.
   const PackedFor wanted{scene.camera.eye, recipe.precision, recipe.plane_count(), stride};
   const bool resident = stride >= pixels;
   if (!resident || (packed_ && packed_->key != wanted)) packed_.reset();
-  std::size_t flushed_to_zero = 0;
+  return FrameSetup{
+      .stride = stride,
+      .pack_target = {planes_.at_least(context, plane_bytes), material_index_.at_least(context, stride * sizeof(cl_int)),
+                      stride},
+      .output = output_.at_least(context, PHONGCL_OUTPUT_PLANES * stride * sizeof(cl_float)),
+      .terms = terms_.at_least(context, (recipe.write_terms ? PHONGCL_TERM_PLANES * stride : 1) * sizeof(cl_float)),
+      .tiles = tile_layout(gbuffer.width, gbuffer.height, recipe.tile_size),
+      .culler = recipe.tiled ? &culler_for(report.build_options) : nullptr,
+      .packed_for = wanted,
+      .resident = resident};
+}
 
-  for (std::size_t first = 0; first < pixels; first += stride, ++report.tiles) {
-    const std::size_t count = std::min(stride, pixels - first);
-    const std::size_t padded = round_up(count, lanes);
-    if (!packed_) {
-      const PackedTile packed =
-          pack_into_mapped(queue, pack_target, gbuffer, scene.camera.eye, recipe, first, count, padded);
-      report.counts += packed.counts;
-      flushed_to_zero += packed.flushed_to_zero;
-      report.timings.pack_ms += packed.pack_ms;
-      report.timings.upload_ms += packed.upload_ms;
-      report.timings.gbuffer_uploaded = true;
-      if (resident) packed_ = PackedFrame{wanted, packed.counts, packed.flushed_to_zero};
-    } else {
-      report.counts = packed_->counts;
-      flushed_to_zero = packed_->flushed_to_zero;
-    }
+std::size_t PhongShader::pack_or_reuse(const FrameSetup& frame, const Scene& scene, const GBuffer& gbuffer,
+                                       const Recipe& recipe, std::size_t first, std::size_t count, std::size_t padded,
+                                       ShadeReport& report) {
+  if (packed_) {
+    report.counts = packed_->counts;
+    return packed_->flushed_to_zero;
+  }
+  const PackedTile packed =
+      pack_into_mapped(compute_.queue, frame.pack_target, gbuffer, scene.camera.eye, recipe, first, count, padded);
+  report.counts += packed.counts;
+  report.timings.pack_ms += packed.pack_ms;
+  report.timings.upload_ms += packed.upload_ms;
+  report.timings.gbuffer_uploaded = true;
+  if (frame.resident) packed_ = PackedFrame{frame.packed_for, packed.counts, packed.flushed_to_zero};
+  return packed.flushed_to_zero;
+}
 
-    tiles.grid.first_pixel = static_cast<cl_uint>(first);
-    const CullingStats culled = culler ? culler->cull(pack_target.planes, stride, pack_target.material_index, padded,
-                                                      tiles, uniforms.point_bounds, uniforms.scalars.point_count)
-                                       : CullingStats{};
+cl::Event PhongShader::cull_and_launch(cl::Kernel& kernel, FrameSetup& frame, const Recipe& recipe, std::size_t first,
+                                       std::size_t padded, ShadeReport& report) {
+  const DeviceUniforms& uniforms = *uniforms_;
+  frame.tiles.grid.first_pixel = static_cast<cl_uint>(first);
+  const PackTarget& packed = frame.pack_target;
+  TileCuller* culler = frame.culler;
+  if (culler) {
+    const CullingStats culled = culler->cull(packed.planes, frame.stride, packed.material_index, padded, frame.tiles,
+                                             uniforms.point_bounds, uniforms.scalars.point_count);
     report.culling += culled;
-    const TileLists culled_lists =
-        culler ? TileLists{culler->offsets(), culler->counts(), culler->lights(), tiles.grid} : TileLists{};
-    const cl::Event launched =
-        launch_phong(kernel, queue, {pack_target.planes, pack_target.material_index, output, terms}, uniforms, padded,
-                     recipe.lanes, culler ? &culled_lists : nullptr);
+    report.timings.kernel_ms += culled.culling_ms;
+  }
+  const PhongArguments arguments{.planes = packed.planes,
+                                 .material_index = packed.material_index,
+                                 .materials = uniforms.materials,
+                                 .point_lights = uniforms.point_lights,
+                                 .directional_lights = uniforms.directional_lights,
+                                 .frame = uniforms.scalars,
+                                 .out_rgba = frame.output,
+                                 .out_terms = frame.terms,
+                                 .point_shapes = uniforms.point_shapes,
+                                 .links = uniforms.links,
+                                 .tile_offsets = culler ? culler->offsets() : uniforms.no_tiles,
+                                 .tile_counts = culler ? culler->counts() : uniforms.no_tiles,
+                                 .tile_lights = culler ? culler->lights() : uniforms.no_tiles,
+                                 .grid = culler ? frame.tiles.grid : TileGrid{}};
+  return launch_phong(kernel, compute_.queue, arguments, padded, recipe.lanes);
+}
 
-    cl::Event map_output;
-    const auto* shaded = static_cast<const float*>(queue.enqueueMapBuffer(
-        output, CL_TRUE, CL_MAP_READ, 0, PHONGCL_OUTPUT_PLANES * stride * sizeof(cl_float), nullptr, &map_output));
-    const auto copy_start = Clock::now();
-    interleave(shaded, stride, count, PHONGCL_OUTPUT_PLANES, targets.rgba + 4 * first);
-    premultiply_by_coverage(gbuffer.coverage, first, count, targets.rgba + 4 * first);
-    const double copy_ms = milliseconds(copy_start, Clock::now());
-    queue.enqueueUnmapMemObject(output, const_cast<float*>(shaded));
-    if (recipe.write_terms && targets.ambient) copy_terms(queue, terms, stride, first, count, gbuffer.coverage, targets);
-    queue.finish();
+void PhongShader::download(const FrameSetup& frame, const GBuffer& gbuffer, const Recipe& recipe, std::size_t first,
+                           std::size_t count, const FrameTargets& targets, ShadeReport& report) {
+  cl::CommandQueue& queue = compute_.queue;
+  cl::Event map_output;
+  const auto* shaded = static_cast<const float*>(queue.enqueueMapBuffer(
+      frame.output, CL_TRUE, CL_MAP_READ, 0, PHONGCL_OUTPUT_PLANES * frame.stride * sizeof(cl_float), nullptr, &map_output));
+  const auto copy_start = Clock::now();
+  interleave(shaded, frame.stride, count, PHONGCL_OUTPUT_PLANES, targets.rgba + 4 * first);
+  premultiply_by_coverage(gbuffer.coverage, first, count, targets.rgba + 4 * first);
+  const double copy_ms = milliseconds(copy_start, Clock::now());
+  queue.enqueueUnmapMemObject(frame.output, const_cast<float*>(shaded));
+  if (recipe.write_terms && targets.ambient)
+    copy_terms(queue, frame.terms, frame.stride, first, count, gbuffer.coverage, targets);
+  queue.finish();
+  report.timings.download_ms += event_milliseconds(map_output) + copy_ms;
+}
 
-    report.timings.kernel_ms += event_milliseconds(launched) + culled.culling_ms;
-    report.timings.download_ms += event_milliseconds(map_output) + copy_ms;
+ShadeReport PhongShader::shade_into(const Scene& scene, const GBuffer& gbuffer, const Recipe& recipe,
+                                    const FrameTargets& targets, std::size_t max_tile_pixels) {
+  ShadeReport report;
+  describe_recipe(recipe, report);
+  report.disk_cache_directory = cache_.disk_directory().string();
+  report.disk_cache_problem = cache_.disk_problem();
+  cl::Kernel& kernel = kernel_for(report);
+
+  const auto start = Clock::now();
+  FrameSetup frame = prepare(scene, gbuffer, recipe, max_tile_pixels, report);
+  const std::size_t pixels = gbuffer.pixel_count();
+  std::size_t flushed_to_zero = 0;
+  for (std::size_t first = 0; first < pixels; first += frame.stride, ++report.tiles) {
+    const std::size_t count = std::min(frame.stride, pixels - first);
+    const std::size_t padded = round_up(count, static_cast<std::size_t>(recipe.lanes));
+    flushed_to_zero += pack_or_reuse(frame, scene, gbuffer, recipe, first, count, padded, report);
+    const cl::Event launched = cull_and_launch(kernel, frame, recipe, first, padded, report);
+    download(frame, gbuffer, recipe, first, count, targets, report);
+    report.timings.kernel_ms += event_milliseconds(launched);
   }
   report.timings.total_ms = milliseconds(start, Clock::now());
   if (flushed_to_zero > 0) {

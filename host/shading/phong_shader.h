@@ -70,8 +70,32 @@ class PhongShader {
     PixelCounts counts;
     std::size_t flushed_to_zero = 0;
   };
-  const cl::Kernel& kernel_for(ShadeReport& report);
+  // What a frame's launches share: the tile stride, the device buffers, the culling grid.
+  struct FrameSetup {
+    std::size_t stride = 0;  // values per plane: pixels per launch, rounded up to the lanes
+    PackTarget pack_target;
+    const cl::Buffer& output;  // PHONGCL_OUTPUT_PLANES planes
+    const cl::Buffer& terms;   // PHONGCL_TERM_PLANES planes with write_terms
+    TileLayout tiles;
+    TileCuller* culler = nullptr;  // with tiled culling
+    PackedFor packed_for;
+    bool resident = false;  // one launch holds the frame: its packed G-buffer is kept
+  };
+  cl::Kernel& kernel_for(ShadeReport& report);
   TileCuller& culler_for(const std::string& build_options);
+  // The frame's buffers and tables (uploaded unless kept), and whether the packed G-buffer is kept.
+  FrameSetup prepare(const Scene& scene, const GBuffer& gbuffer, const Recipe& recipe, std::size_t max_tile_pixels,
+                     ShadeReport& report);
+  // Packs pixels [first, first + count) unless the kept G-buffer holds them; returns the values
+  // half-storage flushed to zero.
+  std::size_t pack_or_reuse(const FrameSetup& frame, const Scene& scene, const GBuffer& gbuffer, const Recipe& recipe,
+                            std::size_t first, std::size_t count, std::size_t padded, ShadeReport& report);
+  // Culls the launch's tiles (with tiled culling) and enqueues phong_shade over `padded` slots.
+  cl::Event cull_and_launch(cl::Kernel& kernel, FrameSetup& frame, const Recipe& recipe, std::size_t first,
+                            std::size_t padded, ShadeReport& report);
+  // Copies the launch's output planes (and terms) into the targets' pixels [first, first + count).
+  void download(const FrameSetup& frame, const GBuffer& gbuffer, const Recipe& recipe, std::size_t first,
+                std::size_t count, const FrameTargets& targets, ShadeReport& report);
 
   ComputeContext compute_;
   ProgramCache& cache_;

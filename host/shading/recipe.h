@@ -22,33 +22,35 @@ struct ShadeOptions {
   int tile_size = 16;               // culling tiles of tile_size x tile_size pixels
 };
 
+// One row of the recipe: a flag of kernels/features.h, the value the kernel is built with, and why.
+struct RecipeFlag {
+  std::string name;     // "SPECULAR"
+  std::string value;    // "1" or "0"; a count; "__constant"
+  std::string why;      // one line for --explain, topic first: "specular: compiled in (some material has ks > 0)"
+  std::string summary;  // its words in the one-line summary ("specular"), or empty
+};
+
+// What the kernel is built with. `flags` is the one table: the build options, --explain's reasons
+// and the summary line are its renderings. The typed fields are the decisions the host acts on.
 struct Recipe {
   Precision precision = Precision::precise;
   bool specialised = true;
   int point_lights = 0, directional_lights = 0;  // point_lights counts spots too (one array)
   int spot_lights = 0;
-  bool point_count_in_code = false, directional_count_in_code = false;  // compile-time, loops unroll
-  bool point_code = true, directional_code = true;                      // light types compiled in
-  // Light shapes (kernels/light_shape.h), each compiled in only when some light has it.
-  int falloff_power = 0;       // every point and spot light's 1/d^k power (0: no falloff)
-  bool falloff_mixed = false;  // powers differ: each light's is read
-  bool range_window = false, spot_code = false;
-  int link_words = 0;          // light linking: mask words per light; 0: every light lights every material
-  bool tiled = false;          // tiled light culling (host/shading/tile_culling.h)
+  int link_words = 0;    // light linking: mask words per light; 0: every light lights every material
+  bool tiled = false;    // tiled light culling (host/shading/tile_culling.h)
   int tile_size = 16;
-  bool specular = true, ambient = true;
-  bool single_material = false;  // no per-pixel material fetch
-  bool material_selects = false;  // table of <= lanes materials: per-lane selects, no gather
-  int material_count = 0;
   bool per_pixel_ka = false, per_pixel_kd = false, per_pixel_ks = false, per_pixel_shininess = false;
-  bool uniforms_in_constant = false;  // lights and materials in __constant memory
   bool write_terms = false;
-  int lanes = 1;                      // pixels per work-item (explicit SIMD on CPU devices)
-  std::vector<std::string> reasons;   // one line per decision, for --explain
+  int lanes = 1;         // pixels per work-item (explicit SIMD on CPU devices)
+  std::vector<RecipeFlag> flags;
 
   int plane_count() const;  // G-buffer planes the device buffer holds
-  std::string build_options() const;
-  std::string summary() const;  // one line: "precise, specialised: 2 point (unrolled) + 1 directional, ..."
+  // The flag's value; throws std::out_of_range for a name that is not in the table.
+  const std::string& value(const std::string& name) const;
+  std::string build_options() const;          // "-cl-std=CL1.2 -DPHONGCL_LANES=16 ..."
+  std::vector<std::string> reasons() const;   // one line per flag: why, and the define
+  std::string summary() const;  // one line: "precise, specialised: 2 point (unrolled), 1 directional (unrolled), ..."
 };
 
 // Lights up to this many of a type become compile-time constants (kernels/layout.h).

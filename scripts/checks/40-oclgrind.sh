@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
-# A second OpenCL implementation: Oclgrind (Debian) simulates the kernel and checks every memory
-# access. Registered for this run only (an ICD file in a temp dir via OCL_ICD_VENDORS, nothing in
-# /etc), it shades a small G-buffer at lanes 1 (the GPU path) in every precision variant, both
-# specialised and general, with --check-api --uninitialized --data-races, and the spot-light scene
-# through tiled culling (cull.cl and the tile lists). Passes when Oclgrind reports nothing and each
+# A second OpenCL implementation: Oclgrind (Debian) compiles the recipe's kernel variants with its
+# own front end, and simulates the kernel, checking every memory access. Registered for this run
+# only (an ICD file in a temp dir via OCL_ICD_VENDORS, nothing in /etc), it shades a small G-buffer
+# at lanes 1 (the GPU path) in every precision variant, both specialised and general, with
+# --check-api --uninitialized --data-races, and the spot-light scene through tiled culling (cull.cl
+# and the tile lists). Passes when Oclgrind reports nothing and each
 # image is within that variant's bound of the C++ reference.
 # The tiled runs leave out --uninitialized: Oclgrind 21.10's checker stops on the `freeze` LLVM puts
 # between a / and a % (tile_bounds), and then takes the tile lists the fill kernel wrote for
@@ -68,4 +69,16 @@ for precision in precise half-storage; do
   OCLGRIND_UNINITIALIZED=0 shade_on_oclgrind "$precision tiled" "$work/spots" "$precision" --culling tiled --tile 8
   grep -q "tiled culling 8x8" "$work/out.txt" || { cat "$work/out.txt"; echo "oclgrind: $precision tiled: not culled"; exit 1; }
 done
+# The kernels through Oclgrind's own compiler front end, in the variants the recipe makes and once
+# with -cl-opt-disable, built and that one launched (tests/test_shading_interface.cpp).
+variants="$PWD/build/tests/test_shading_interface"
+[ -x "$variants" ] || { echo "oclgrind: $variants is missing (build with -DPHONGCL_BUILD_TESTS=ON)"; exit 1; }
+if ! PHONGCL_TEST_DEVICE=oclgrind "$variants" --gtest_filter='KernelVariants.*' > "$work/variants.txt" 2> "$work/err.txt" ||
+   [ -s "$work/err.txt" ]; then
+  cat "$work/variants.txt" "$work/err.txt" | tail -40; echo "oclgrind: kernel variants: build failed or Oclgrind reported errors"; exit 1
+fi
+grep -q "building on Oclgrind" "$work/variants.txt" || { cat "$work/variants.txt"; echo "oclgrind: variants did not build on Oclgrind"; exit 1; }
+built=$(grep -o "[0-9]* phong.cl and [0-9]* cull.cl variants" "$work/variants.txt")
+
+echo "oclgrind: $built built by Oclgrind's front end (one with -cl-opt-disable, launched)"
 echo "oclgrind: $runs runs (4 precisions x specialised/general, and tiled culling in precise and half-storage, without --uninitialized; lanes 1) clean under --check-api --uninitialized --data-races, within bounds of the reference"

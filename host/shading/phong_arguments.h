@@ -1,0 +1,57 @@
+#pragma once
+// phong_shade's arguments (kernels/phong.cl), by name: fill a PhongArguments with designated
+// initialisers and set_arguments() sets each at its parameter's position. A new argument is a
+// parameter of the kernel, a field here and a line in for_each_argument(); a test checks the names
+// and their order against the kernel's own (CL_KERNEL_ARG_NAME).
+#include <string>
+#include <vector>
+
+#include "cl/opencl.h"
+#include "shading/device_layout.h"
+
+namespace phongcl {
+
+struct PhongArguments {
+  // G-buffer tile
+  cl::Buffer planes;          // recipe.plane_count() planes of plane_stride values (half with half-storage)
+  cl::Buffer material_index;  // one int per slot, PHONGCL_BACKGROUND where not shaded
+  // scene: colours scaled by 2^-radiance_exponent
+  cl::Buffer materials, point_lights, directional_lights;
+  FrameScalars frame{};  // ambient, background, radiance scales, light counts, plane stride
+  // output
+  cl::Buffer out_rgba;   // PHONGCL_OUTPUT_PLANES planes
+  cl::Buffer out_terms;  // PHONGCL_TERM_PLANES planes with WRITE_TERMS, else unused
+  // light shapes (parallel to point_lights) and linking masks, read only when compiled in
+  cl::Buffer point_shapes, links;
+  // tiled culling: tile t's point lights are tile_lights[tile_offsets[t] ...], tile_counts[t] of them
+  cl::Buffer tile_offsets, tile_counts, tile_lights;
+  TileGrid grid{};
+};
+
+// visit(name, field) for every argument, in phong_shade's parameter order.
+template <typename Arguments, typename Visit>
+void for_each_argument(Arguments& a, Visit&& visit) {
+  visit("planes", a.planes);
+  visit("material_index", a.material_index);
+  visit("materials", a.materials);
+  visit("point_lights", a.point_lights);
+  visit("directional_lights", a.directional_lights);
+  visit("frame", a.frame);
+  visit("out_rgba", a.out_rgba);
+  visit("out_terms", a.out_terms);
+  visit("point_shapes", a.point_shapes);
+  visit("links", a.links);
+  visit("tile_offsets", a.tile_offsets);
+  visit("tile_counts", a.tile_counts);
+  visit("tile_lights", a.tile_lights);
+  visit("grid", a.grid);
+}
+
+// The kernel's parameter names as the host sets them, in order.
+std::vector<std::string> phong_argument_names();
+
+// Sets every argument of a phong_shade kernel. Not thread-safe for one kernel object: one kernel
+// object per thread that launches.
+void set_arguments(cl::Kernel& kernel, const PhongArguments& arguments);
+
+}  // namespace phongcl

@@ -1,0 +1,40 @@
+/* The flags phong.cl is built with. The host's recipe (host/shading/recipe.cpp) defines every one of
+ * them, from one table that `phongcl shade --explain` prints with a reason for each; the code tests
+ * them with `if (FLAG)`, so every variant parses and the compiler folds away what a scene does not use.
+ *   PHONGCL_LANES=n                        pixels per work-item: 1, 2, 4, 8 or 16 (phong_math.h)
+ *   PHONGCL_DOUBLE, PHONGCL_FAST           fp64 arithmetic; built with -cl-fast-relaxed-math
+ *   HALF_STORAGE                           G-buffer planes stored as half (storage.h)
+ *   UNIFORM_SPACE=__constant|__global      where the light and material tables live
+ *   POINT_LIGHTS, DIRECTIONAL_LIGHTS       light types present
+ *   POINT_COUNT=n, DIRECTIONAL_COUNT=n     light counts in the code (loops unroll); 0: read at run time
+ *   SPECULAR, AMBIENT                      terms present
+ *   SINGLE_MATERIAL                        every shaded pixel uses materials[0]: no per-pixel fetch
+ *   MATERIAL_COUNT=n                       a table of n <= PHONGCL_LANES materials: selects, no gather;
+ *                                          0: gathered per lane
+ *   PER_PIXEL_KA, _KD, _KS, _Q             the G-buffer has per-pixel material planes (material.h)
+ *   FALLOFF=k, FALLOFF_MIXED               every light falls off as 1/d^k; powers differ (light_shape.h)
+ *   RANGE_WINDOW, SPOT_LIGHTS              some light has a range; some light is a spot
+ *   LIGHT_LINKING=w                        w mask words per light; 0: every light lights every material
+ *   TILED_CULLING                          point and spot lights from the work-item's tile list (cull.cl)
+ *   WRITE_TERMS                            also write ambient, diffuse, specular apart (AOVs)
+ */
+#ifndef PHONGCL_FEATURES_H
+#define PHONGCL_FEATURES_H
+
+#if !defined(PHONGCL_LANES) || !defined(PHONGCL_DOUBLE) || !defined(PHONGCL_FAST) || !defined(HALF_STORAGE) ||  \
+    !defined(UNIFORM_SPACE) || !defined(POINT_LIGHTS) || !defined(DIRECTIONAL_LIGHTS) || !defined(POINT_COUNT) || \
+    !defined(DIRECTIONAL_COUNT) || !defined(SPECULAR) || !defined(AMBIENT) || !defined(SINGLE_MATERIAL) ||         \
+    !defined(MATERIAL_COUNT) || !defined(PER_PIXEL_KA) || !defined(PER_PIXEL_KD) || !defined(PER_PIXEL_KS) ||     \
+    !defined(PER_PIXEL_Q) || !defined(FALLOFF) || !defined(FALLOFF_MIXED) || !defined(RANGE_WINDOW) ||            \
+    !defined(SPOT_LIGHTS) || !defined(LIGHT_LINKING) || !defined(TILED_CULLING) || !defined(WRITE_TERMS)
+#error "phong.cl is built with every flag of features.h defined (host/shading/recipe.cpp writes them)"
+#endif
+
+/* 1/d^k can exceed float near a light: the sums then guard 0 * Inf (NONNEGATIVE_TIMES, kahan_add). */
+#define WEIGHT_CAN_OVERFLOW (FALLOFF > 0 || FALLOFF_MIXED)
+/* The light's distance d, not only the direction to it. */
+#define NEEDS_DISTANCE (WEIGHT_CAN_OVERFLOW || RANGE_WINDOW)
+/* Point lights read their LightShape. */
+#define POINT_SHAPES (NEEDS_DISTANCE || SPOT_LIGHTS)
+
+#endif
