@@ -6,10 +6,10 @@ phongcl_room(scene    DEPS phongcl_common glm::glm nlohmann_json::nlohmann_json)
 phongcl_room(gbuffer  DEPS phongcl_common phongcl_exr)
 phongcl_room(image    DEPS phongcl_common phongcl_exr PNG::PNG)
 phongcl_room(cl       DEPS phongcl_common phongcl_opencl phongcl_kernels)
-phongcl_room(shading  DEPS phongcl_cl phongcl_scene phongcl_gbuffer phongcl_image phongcl_kernels OpenMP::OpenMP_CXX)
 # Shadow geometry: meshes read with Assimp, the scene flattened into world space, the BVH and its
-# device layout (kernels/bvh_layout.h).
+# device layout (kernels/shadow_layout.h).
 phongcl_room(geometry DEPS phongcl_scene phongcl_kernels assimp::assimp)
+phongcl_room(shading  DEPS phongcl_cl phongcl_scene phongcl_gbuffer phongcl_image phongcl_geometry phongcl_kernels OpenMP::OpenMP_CXX)
 phongcl_room(raycast  DEPS phongcl_scene phongcl_gbuffer phongcl_geometry)
 phongcl_room(sequence DEPS phongcl_shading Threads::Threads)
 

@@ -36,6 +36,23 @@ static inline ShadowRay shadow_ray_to_direction(vec3 p, vec3 n, vec3 l, real off
   return make_shadow_ray(origin, l, (realv)SHADOW_DIRECTIONAL_T_MAX);
 }
 
+/* A shaded point's shadow ray toward a light: a point or spot light at eye-relative `where`, or a
+ * directional light whose unit l (toward it) is `where`. `traced` loses the lanes facing away from
+ * the light (n.l <= 0: the light adds nothing there, so nothing is traced). */
+static inline ShadowRay shadow_ray_toward(vec3 p, vec3 n, vec3 where, int directional, real offset_scale,
+                                          real eye_extent, intv* traced) {
+  if (directional) {
+    *traced &= LANE_MASK(dot3(n, where) > 0);
+    return shadow_ray_to_direction(p, n, where, offset_scale, eye_extent);
+  }
+  const vec3 toward = sub3(where, p);
+  vec3 scaled = toward; /* distance_in_range() may rescale it, keeping its direction */
+  realv distance, inverse_distance;
+  distance_in_range(&scaled, &distance, &inverse_distance);
+  *traced &= LANE_MASK(dot3(n, scaled) > 0);
+  return shadow_ray_to_point(p, n, toward, inverse_distance, offset_scale, eye_extent);
+}
+
 /* Screen space: the ray is sampled at `steps` points evenly spaced in the image between where it
  * starts and where it leaves the image, the depth range of the frame's surfaces or ends (at the
  * light); a sample lies in the shadow of the surface seen at its pixel when it is behind that
@@ -132,6 +149,29 @@ static inline intv screen_march_blocked(__global const float* depth, ScreenMarch
     pending &= ~hit;
   }
   return blocked;
+}
+
+/* What the shading kernel's shadow tests read (phong.cl): the geometry (shadow_layout.h), the
+ * screen march's depth plane, and the frame's shadow scalars. */
+typedef struct {
+  __global const BvhNode* nodes;
+  __global const ShadowPrimitive* primitives;
+  __global const ShadowPlane* planes;
+  __global const float* depth;
+  ShadowFrame frame;
+} ShadowInputs;
+
+/* The lanes of `pending` that a light does not reach (shadow_ray_toward's light): its ray is blocked
+ * by the geometry, or with `screen` by a surface of the depth plane. */
+static inline intv light_blocked(const ShadowInputs* shadows, vec3 p, vec3 n, vec3 where, int directional, int screen,
+                                 intv pending) {
+  const ShadowRay ray = shadow_ray_toward(p, n, where, directional, shadows->frame.offset_scale,
+                                          shadows->frame.eye_extent, &pending);
+  pending &= LANE_MASK(ray.t_max > 0);
+  if (!any_lane(pending)) return pending;
+  if (screen) return screen_march_blocked(shadows->depth, shadows->frame.march, &ray, pending);
+  return shadow_ray_blocked(shadows->nodes, shadows->frame.node_count, shadows->primitives, shadows->planes,
+                            shadows->frame.plane_count, &ray, pending);
 }
 
 #endif

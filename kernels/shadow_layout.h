@@ -100,4 +100,13 @@ typedef struct {
   unsigned int padding[2];
 } ScreenMarch;
 
+/* The shading kernel's shadow scalars (kernels/phong.cl): the geometry's counts, the self-intersection
+ * offset's scale (PHONGCL_SHADOW_OFFSET_FLOAT or _HALF) and |eye|_inf (kernels/shadow.h), and the
+ * screen-space march's camera. */
+typedef struct {
+  ScreenMarch march;
+  unsigned int node_count, plane_count;
+  float offset_scale, eye_extent;
+} ShadowFrame;
+
 #endif

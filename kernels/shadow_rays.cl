@@ -11,28 +11,19 @@
  * and facing the light. */
 static inline ShadowRay light_ray(vec3 p, vec3 n, ShadowLight light, float offset_scale, float eye_extent, intv* traced) {
   const vec3 where = make_vec3((realv)light.where[0], (realv)light.where[1], (realv)light.where[2]);
-  if (light.directional) {
-    *traced &= LANE_MASK(dot3(n, where) > 0);
-    return shadow_ray_to_direction(p, n, where, offset_scale, eye_extent);
-  }
-  const vec3 toward = sub3(where, p);
-  vec3 scaled = toward; /* distance_in_range() may rescale it, keeping its direction */
-  realv distance, inverse_distance;
-  distance_in_range(&scaled, &distance, &inverse_distance);
-  *traced &= LANE_MASK(dot3(n, scaled) > 0);
-  return shadow_ray_to_point(p, n, toward, inverse_distance, offset_scale, eye_extent);
+  return shadow_ray_toward(p, n, where, light.directional, offset_scale, eye_extent, traced);
 }
 
 /* Packed pixels: planes of `stride` (position - eye x y z, normal x y z; material index < 0:
  * background). */
 static inline vec3 pixel_position(__global const float* pixels, uint stride, size_t group) {
-  return make_vec3(TO_REALV(VLOAD_FLOAT(group, pixels)), TO_REALV(VLOAD_FLOAT(group, pixels + stride)),
-                   TO_REALV(VLOAD_FLOAT(group, pixels + 2 * (size_t)stride)));
+  return make_vec3(TO_REALV(VLOAD(group, pixels)), TO_REALV(VLOAD(group, pixels + stride)),
+                   TO_REALV(VLOAD(group, pixels + 2 * (size_t)stride)));
 }
 static inline vec3 pixel_normal(__global const float* pixels, uint stride, size_t group) {
-  return unit_or_zero(make_vec3(TO_REALV(VLOAD_FLOAT(group, pixels + 3 * (size_t)stride)),
-                                TO_REALV(VLOAD_FLOAT(group, pixels + 4 * (size_t)stride)),
-                                TO_REALV(VLOAD_FLOAT(group, pixels + 5 * (size_t)stride))));
+  return unit_or_zero(make_vec3(TO_REALV(VLOAD(group, pixels + 3 * (size_t)stride)),
+                                TO_REALV(VLOAD(group, pixels + 4 * (size_t)stride)),
+                                TO_REALV(VLOAD(group, pixels + 5 * (size_t)stride))));
 }
 
 /* One light's shadow rays from packed pixels, as the shading kernel builds them. */
@@ -40,27 +31,27 @@ __kernel void make_shadow_rays(__global const float* restrict pixels, __global c
                                const uint stride, __global const ShadowLight* restrict lights, const uint light,
                                const float offset_scale, const float eye_extent, __global float* restrict rays) {
   const size_t group = get_global_id(0);
-  intv traced = VLOAD_INT(group, material_index) >= 0;
+  intv traced = VLOAD(group, material_index) >= 0;
   const ShadowRay ray = light_ray(pixel_position(pixels, stride, group), pixel_normal(pixels, stride, group), lights[light],
                                   offset_scale, eye_extent, &traced);
   const vec3 o = ray.origin, d = ray.direction;
   const realv t_max = SELECT(LANE_MASK(ray.t_max > 0) & traced, ray.t_max, 0);
-  VSTORE_FLOAT(TO_FLOATV(o.x), group, rays);
-  VSTORE_FLOAT(TO_FLOATV(o.y), group, rays + stride);
-  VSTORE_FLOAT(TO_FLOATV(o.z), group, rays + 2 * (size_t)stride);
-  VSTORE_FLOAT(TO_FLOATV(d.x), group, rays + 3 * (size_t)stride);
-  VSTORE_FLOAT(TO_FLOATV(d.y), group, rays + 4 * (size_t)stride);
-  VSTORE_FLOAT(TO_FLOATV(d.z), group, rays + 5 * (size_t)stride);
-  VSTORE_FLOAT(TO_FLOATV(t_max), group, rays + 6 * (size_t)stride);
+  VSTORE(TO_FLOATV(o.x), group, rays);
+  VSTORE(TO_FLOATV(o.y), group, rays + stride);
+  VSTORE(TO_FLOATV(o.z), group, rays + 2 * (size_t)stride);
+  VSTORE(TO_FLOATV(d.x), group, rays + 3 * (size_t)stride);
+  VSTORE(TO_FLOATV(d.y), group, rays + 4 * (size_t)stride);
+  VSTORE(TO_FLOATV(d.z), group, rays + 5 * (size_t)stride);
+  VSTORE(TO_FLOATV(t_max), group, rays + 6 * (size_t)stride);
 }
 
 static inline ShadowRay load_ray(__global const float* rays, uint stride, size_t group) {
-  const vec3 origin = make_vec3(TO_REALV(VLOAD_FLOAT(group, rays)), TO_REALV(VLOAD_FLOAT(group, rays + stride)),
-                                TO_REALV(VLOAD_FLOAT(group, rays + 2 * (size_t)stride)));
-  const vec3 direction = make_vec3(TO_REALV(VLOAD_FLOAT(group, rays + 3 * (size_t)stride)),
-                                   TO_REALV(VLOAD_FLOAT(group, rays + 4 * (size_t)stride)),
-                                   TO_REALV(VLOAD_FLOAT(group, rays + 5 * (size_t)stride)));
-  return make_shadow_ray(origin, direction, TO_REALV(VLOAD_FLOAT(group, rays + 6 * (size_t)stride)));
+  const vec3 origin = make_vec3(TO_REALV(VLOAD(group, rays)), TO_REALV(VLOAD(group, rays + stride)),
+                                TO_REALV(VLOAD(group, rays + 2 * (size_t)stride)));
+  const vec3 direction = make_vec3(TO_REALV(VLOAD(group, rays + 3 * (size_t)stride)),
+                                   TO_REALV(VLOAD(group, rays + 4 * (size_t)stride)),
+                                   TO_REALV(VLOAD(group, rays + 5 * (size_t)stride)));
+  return make_shadow_ray(origin, direction, TO_REALV(VLOAD(group, rays + 6 * (size_t)stride)));
 }
 
 /* Out: 1 where the ray is blocked, else 0. Every ray traverses the BVH. */
@@ -73,7 +64,7 @@ __kernel void trace_shadow_rays(__global const float* restrict rays, const uint 
   const size_t group = get_global_id(0);
   const ShadowRay ray = load_ray(rays, stride, group);
   const intv hit = shadow_ray_blocked(nodes, node_count, primitives, planes, plane_count, &ray, LANE_MASK(ray.t_max > 0));
-  VSTORE_FLOAT(TO_FLOATV(hit & 1), group, blocked);
+  VSTORE(TO_FLOATV(hit & 1), group, blocked);
 }
 
 /* Every light's shadows at once, as the shading kernel meets them: per pixel the number of lights
@@ -96,7 +87,7 @@ __kernel void count_blocked_lights(__global const float* restrict pixels, __glob
                                    __global float* restrict blocked_lights) {
   const size_t group = get_global_id(0);
   const uint tile = tile_of_pixel(grid, (uint)(group * PHONGCL_LANES));
-  const intv shaded = VLOAD_INT(group, material_index) >= 0;
+  const intv shaded = VLOAD(group, material_index) >= 0;
   const vec3 p = pixel_position(pixels, stride, group), n = pixel_normal(pixels, stride, group);
   realv blocked_count = 0;
   for (uint k = 0; k < light_count && tile < tile_count; ++k) {
@@ -111,5 +102,5 @@ __kernel void count_blocked_lights(__global const float* restrict pixels, __glob
     else hit = shadow_ray_blocked(nodes, node_count, primitives, planes, plane_count, &ray, pending);
     blocked_count += TO_REALV(hit & 1);
   }
-  VSTORE_FLOAT(TO_FLOATV(blocked_count), group, blocked_lights);
+  VSTORE(TO_FLOATV(blocked_count), group, blocked_lights);
 }

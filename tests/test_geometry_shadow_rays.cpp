@@ -11,14 +11,13 @@
 #include "cl/device.h"
 #include "geometry/device_geometry.h"
 #include "geometry/scene_bvh.h"
-#include "peers/knot_mesh.h"
 #include "peers/opencl_shadow_rays.h"
 #include "peers/packed_frame.h"
 #include "raycast/raycast.h"
 #include "reference/reference_screen_shadows.h"
 #include "reference/reference_shadows.h"
 #include "shading/screen_depth.h"
-#include "scene/transform.h"
+#include "shadow_test_scene.h"
 #include "temp_dir.h"
 #ifdef PHONGCL_HAVE_EMBREE
 #include "embree/embree_peer.h"
@@ -28,6 +27,8 @@ namespace phongcl {
 namespace {
 
 using testing::TempDir;
+using testing::largest_magnitude;
+using testing::shadow_test_scene;
 
 struct Device {
   ComputeContext compute;
@@ -47,45 +48,6 @@ Device* shared_device() {
 #define REQUIRE_DEVICE(name)                                                 \
   Device* name = shared_device();                                            \
   if (!name) GTEST_SKIP() << "no OpenCL device on this machine"
-
-double largest_magnitude(const glm::dvec3& v) { return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)}); }
-
-// A scene that exercises every shape: a ground plane, a knot mesh, spheres plain and under
-// non-uniform transforms, loose triangles; point lights and a directional one. `offset` moves
-// everything (camera and lights too).
-Scene test_scene(const std::filesystem::path& dir, const glm::dvec3& offset, int width, int height) {
-  Scene scene = knot_scene(dir, 48, 10, 2);
-  scene.camera.width = width;
-  scene.camera.height = height;
-  Object plane, wall, ball, squashed, triangle, everything;
-  plane.kind = Object::Kind::plane;
-  plane.normal = {0, 1, 0};
-  plane.offset = -0.01;  // just under the ground triangles
-  wall.kind = Object::Kind::plane;  // x = 4.5, with a light beyond it: only a plane blocks that light
-  wall.normal = {-2, 0, 0};
-  wall.offset = -9;
-  ball.kind = Object::Kind::sphere;
-  ball.center = {2.5, 0.8, 1.5};
-  ball.radius = 0.8;
-  squashed.kind = Object::Kind::transform;
-  squashed.matrix = compose_transform({-2.8, 1.0, 1.8}, {30, 10, 50}, {1.4, 0.5, 0.8});
-  squashed.children = {ball};
-  squashed.children[0].center = {0, 0, 0};
-  triangle.kind = Object::Kind::triangle;
-  triangle.vertices = {glm::dvec3(-1, 0.5, 3), glm::dvec3(1, 0.5, 3.5), glm::dvec3(0, 2.5, 3.2)};
-  everything.kind = Object::Kind::transform;
-  everything.matrix = compose_transform(offset, {0, 0, 0}, {1, 1, 1});
-  everything.children = scene.objects;
-  everything.children.insert(everything.children.end(), {plane, wall, ball, squashed, triangle});
-  scene.objects = {everything};
-  scene.lights.push_back({LightType::directional, {}, {-0.4, -1.0, -0.3}, glm::dvec3(0.4)});
-  scene.lights.push_back({LightType::point, {0.5, 0.3, 2.0}, {}, glm::dvec3(0.4)});  // low: long shadows, grazing rays
-  scene.lights.push_back({LightType::point, {6.0, 2.0, 0.0}, {}, glm::dvec3(0.4)});  // behind the wall
-  scene.camera.eye += offset;
-  scene.camera.look_at += offset;
-  for (Light& light : scene.lights) light.position += offset;
-  return scene;
-}
 
 // A scene's G-buffer (ray-cast), its BVH, and the standalone kernel holding both and the frame.
 struct Traced {
@@ -149,7 +111,7 @@ Agreement compare(const std::vector<RayOutcome>& reference, const ShadowRaySet& 
 void expect_kernel_matches_reference(const glm::dvec3& offset, int lanes) {
   REQUIRE_DEVICE(device);
   TempDir dir;
-  Traced traced(*device, test_scene(dir.path, offset, 96, 72), lanes);
+  Traced traced(*device, shadow_test_scene(dir.path, offset, 96, 72), lanes);
   auto& [scene, gbuffer, eye, bvh, tracer] = traced;
   const ShadowRaySet rays = tracer.make_rays();
   const std::vector<float> traversed = tracer.trace(rays);
@@ -186,7 +148,7 @@ TEST(ShadowRays, AMillionUnitsFromTheOriginAgreesToo) { expect_kernel_matches_re
 TEST(ShadowRays, RaysAreTheSpecificationsWithinFloatRounding) {
   REQUIRE_DEVICE(device);
   TempDir dir;
-  Traced traced(*device, test_scene(dir.path, {0, 0, 0}, 40, 30), 16);
+  Traced traced(*device, shadow_test_scene(dir.path, {0, 0, 0}, 40, 30), 16);
   auto& [scene, gbuffer, eye, bvh, tracer] = traced;
   const std::size_t stride = pack_frame(gbuffer, scene).px.size();
   const ShadowRaySet rays = tracer.make_rays();
@@ -223,7 +185,7 @@ TEST(ShadowRays, RaysAreTheSpecificationsWithinFloatRounding) {
 void expect_march_matches_reference(int steps, float thickness) {
   REQUIRE_DEVICE(device);
   TempDir dir;
-  Traced traced(*device, test_scene(dir.path, {0, 0, 0}, 96, 72), 16);
+  Traced traced(*device, shadow_test_scene(dir.path, {0, 0, 0}, 96, 72), 16);
   auto& [scene, gbuffer, eye, bvh, tracer] = traced;
   const ScreenDepth screen = screen_depth(scene.camera, gbuffer, steps, thickness);
   const std::vector<float> blocked = tracer.count_blocked(OpenClShadowRays::Method::screen, 16, &screen).blocked_lights;

@@ -19,6 +19,8 @@ static_assert(sizeof(ShadowCandidate) == 8 && sizeof(ShadowLight) == 16 && offse
 static_assert(sizeof(CullLevel) == 16);
 static_assert(sizeof(ScreenMarch) == 96 && offsetof(ScreenMarch, scale_x) == 48 && offsetof(ScreenMarch, width) == 64 &&
               offsetof(ScreenMarch, steps) == 80);
+static_assert(sizeof(ShadowFrame) == 112 && offsetof(ShadowFrame, node_count) == 96 &&
+              offsetof(ShadowFrame, eye_extent) == 108);
 
 namespace phongcl {
 

@@ -25,6 +25,7 @@ ShadeOptions shade_options(const RelighterOptions& options) {
   shade.tile_size = options.tile_size;
   shade.write_terms = options.terms;
   shade.max_tile_pixels = options.max_tile_pixels;
+  shade.shadows = options.shadows;
   return shade;
 }
 

@@ -11,7 +11,9 @@ namespace phongcl {
 ShadowCuller::ShadowCuller(const ComputeContext& compute, ProgramCache& cache, const std::string& bounds_options)
     : compute_(compute),
       bounds_program_(cache.build(compute, load_kernel_source("cull.cl"), bounds_options).program),
-      cull_program_(cache.build(compute, load_kernel_source("shadow_cull.cl"), "-cl-std=CL1.2").program) {}
+      // phong_math.h as one lane of float.
+      cull_program_(cache.build(compute, load_kernel_source("shadow_cull.cl"),
+                                "-cl-std=CL1.2 -DPHONGCL_LANES=1 -DPHONGCL_DOUBLE=0 -DPHONGCL_FAST=0").program) {}
 
 namespace {
 

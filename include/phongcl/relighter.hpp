@@ -19,6 +19,7 @@
 #include "scene/scene.h"
 #include "shading/precision.h"
 #include "shading/shade_stats.h"
+#include "shading/shadow_settings.h"
 
 namespace phongcl {
 
@@ -31,6 +32,7 @@ struct RelighterOptions {
   int tile_size = 16;                        // culling tiles of tile_size x tile_size pixels
   bool terms = false;                        // also shade ambient, diffuse and specular apart: shade(TermImages&)
   std::size_t max_tile_pixels = 0;           // > 0: at most this many pixels per launch (else the device's limit)
+  ShadowSettings shadows;                    // how lights with "shadows": true cast them (docs/shadows.md)
 };
 
 class Relighter {

@@ -23,11 +23,14 @@ int device_lanes(const DeviceInfo& device, int lanes) {
   return lanes;
 }
 
-cl::Program build(const ComputeContext& compute, ProgramCache& cache, const char* file, int lanes) {
-  return cache.build(compute, load_kernel_source(file), "-cl-std=CL1.2 -DPHONGCL_LANES=" + std::to_string(lanes)).program;
+// Float arithmetic on float planes, as the shading kernel's precise variant (kernels/features.h).
+std::string build_options(int lanes) {
+  return "-cl-std=CL1.2 -DPHONGCL_LANES=" + std::to_string(lanes) + " -DPHONGCL_DOUBLE=0 -DPHONGCL_FAST=0 -DHALF_STORAGE=0";
 }
 
-
+cl::Program build(const ComputeContext& compute, ProgramCache& cache, const char* file, int lanes) {
+  return cache.build(compute, load_kernel_source(file), build_options(lanes)).program;
+}
 
 }  // namespace
 
@@ -41,7 +44,7 @@ OpenClShadowRays::OpenClShadowRays(const ComputeContext& compute, ProgramCache& 
       lanes_(device_lanes(compute.device.info, lanes)),
       program_(build(compute, cache, "shadow_rays.cl", lanes_)),
       geometry_(upload_shadow_geometry(compute.context, geometry)),
-      culler_(compute, cache, "-cl-std=CL1.2 -DPHONGCL_LANES=" + std::to_string(lanes_)) {}
+      culler_(compute, cache, build_options(lanes_)) {}
 
 void OpenClShadowRays::set_frame(const PackedFrame& frame, int width, int height, const Scene& scene,
                                  const glm::dvec3& eye, float offset_scale) {
