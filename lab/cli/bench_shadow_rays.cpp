@@ -33,16 +33,6 @@ using Clock = std::chrono::steady_clock;
 
 double elapsed_ms(Clock::time_point start) { return std::chrono::duration<double, std::milli>(Clock::now() - start).count(); }
 
-// A knot of at least `triangles` triangles: rings of 64 sides, as many rings as it takes.
-Scene mesh_scene(const std::filesystem::path& directory, int triangles, int lights, int width, int height) {
-  constexpr int kSides = 64;
-  const int segments = std::max(3, (triangles + 2 * kSides - 1) / (2 * kSides));
-  Scene scene = knot_scene(directory, segments, kSides, lights);
-  scene.camera.width = width;
-  scene.camera.height = height;
-  return scene;
-}
-
 // One untimed run, then `runs` timed; the median.
 template <typename Run>
 double median_of_runs(int runs, Run run) {
@@ -59,6 +49,16 @@ double disagreement(const std::vector<float>& a, const std::vector<float>& b, co
 }
 
 }  // namespace
+
+// A knot of at least `triangles` triangles: rings of 64 sides, as many rings as it takes.
+Scene mesh_scene(const std::filesystem::path& directory, int triangles, int lights, int width, int height) {
+  constexpr int kSides = 64;
+  const int segments = std::max(3, (triangles + 2 * kSides - 1) / (2 * kSides));
+  Scene scene = knot_scene(directory, segments, kSides, lights);
+  scene.camera.width = width;
+  scene.camera.height = height;
+  return scene;
+}
 
 ShadowRaysResult run_shadow_rays_bench(const BenchArguments& args, const std::filesystem::path& scratch) {
   ShadowRaysResult result;
