@@ -1,7 +1,8 @@
-// phongcl bench --shadows, the error-against-run-time part: on each scene, every light casting
-// shadows, the kernel with exact geometry shadows, without shadows, and with screen-space shadows
-// at 8 to 128 steps and three thicknesses, timed round-robin (drifting load falls on every variant
-// alike); each image compared with the exact one.
+// phongcl bench --shadows, the error-against-run-time part: on each scene (--scene's, scenes/spotlights,
+// scenes/large with 16 lights, a knot mesh), every light casting shadows, the kernel with exact
+// geometry shadows, without shadows, and with screen-space shadows at 8 to 128 steps and three
+// thicknesses, timed round-robin (drifting load falls on every variant alike); each image compared
+// with the exact one.
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -38,16 +39,23 @@ Scene casting_every_light(Scene scene) {
   return scene;
 }
 
+// A scene whose G-buffer is not in the repository (scenes/large) is ray-cast.
+BenchScene loaded(const SceneInputs& inputs, int lights = 0) {
+  Scene scene = inputs.load_scene();
+  GBuffer gbuffer =
+      std::filesystem::exists(inputs.gbuffer_path(scene)) ? inputs.load_gbuffer(scene) : generate_gbuffer(scene);
+  if (lights > 0) scene = with_generated_lights(scene, lights);
+  const std::string label = std::filesystem::path(inputs.scene_file).parent_path().filename().string() + " (" +
+                            std::to_string(scene.lights.size()) + " lights)";
+  return {label, casting_every_light(std::move(scene)), std::move(gbuffer)};
+}
+
 BenchScene bundled(const std::string& name, int lights = 0) {
   SceneInputs inputs;
   inputs.scene_file = "scenes/" + name + "/scene.json";
   if (!std::filesystem::exists(inputs.scene_file))
     throw std::runtime_error("bench --shadows: no " + inputs.scene_file + " (run it from the repository root)");
-  Scene scene = inputs.load_scene();
-  GBuffer gbuffer = inputs.load_gbuffer(scene);
-  if (lights > 0) scene = with_generated_lights(scene, lights);
-  const std::string label = name + " (" + std::to_string(scene.lights.size()) + " lights)";
-  return {label, casting_every_light(std::move(scene)), std::move(gbuffer)};
+  return loaded(inputs, lights);
 }
 
 // Shaded pixels whose shadows differ, and the mean absolute error over their R, G, B.
@@ -72,21 +80,27 @@ void compare_with_exact(const Image& image, const Image& exact, const Image& uns
 }
 
 ShadowSceneResult measure(PhongShader& shader, const BenchScene& bench, int runs) {
-  ShadowSceneResult result{bench.name, bench.gbuffer.width, bench.gbuffer.height,
-                           static_cast<int>(bench.scene.lights.size())};
+  ShadowSceneResult result;
+  result.name = bench.name;
+  result.width = bench.gbuffer.width;
+  result.height = bench.gbuffer.height;
+  result.lights = static_cast<int>(bench.scene.lights.size());
   std::vector<ShadeOptions> options;
-  auto add = [&](ShadowVariant variant, ShadowSettings settings) {
-    result.variants.push_back(std::move(variant));
+  auto add = [&](const std::string& label, const ShadowSettings& settings, const std::string& thickness = "") {
+    ShadowVariant& variant = result.variants.emplace_back();
+    variant.label = label;
+    variant.mode = to_string(settings.mode);
+    if (settings.mode == ShadowMode::screen) variant.steps = settings.steps, variant.thickness = thickness;
     ShadeOptions option;
     option.shadows = settings;
     options.push_back(option);
   };
-  add({"geometry", "geometry"}, {ShadowMode::geometry});
-  add({"off", "off"}, {ShadowMode::off});
+  add("geometry", {ShadowMode::geometry});
+  add("off", {ShadowMode::off});
   for (const char* thickness : kThicknesses)
     for (int steps : kSteps)
-      add({"screen " + std::to_string(steps) + " steps, " + thickness, "screen", steps, thickness},
-          {ShadowMode::screen, steps, parse_shadow_thickness(thickness)});
+      add("screen " + std::to_string(steps) + " steps, " + thickness,
+          {ShadowMode::screen, steps, parse_shadow_thickness(thickness)}, thickness);
 
   // The untimed warm-up builds each program; its image is the one compared.
   std::vector<Image> images;
@@ -112,7 +126,7 @@ std::vector<ShadowSceneResult> run_shadow_error_bench(const BenchArguments& args
   ProgramCache cache(ProgramCache::default_directory());
   PhongShader shader(make_compute_context(pick_device(args.device)), cache);
   std::vector<BenchScene> scenes;
-  scenes.push_back(bundled("default"));
+  scenes.push_back(loaded(args.inputs));
   scenes.push_back(bundled("spotlights"));
   scenes.push_back(bundled("large", 16));
   Scene knot = mesh_scene(scratch, args.mesh_triangles, 4, 960, 540);

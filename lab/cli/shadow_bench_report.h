@@ -46,8 +46,9 @@ struct ShadowSceneResult {
   std::vector<ShadowVariant> variants;  // geometry, off, then screen by steps and thickness
 };
 
-// Exact, unshadowed and screen-space shadows on the bundled scenes (every light casting shadows;
-// scenes/large with 16 lights) and a mesh scene (bench_shadow_error.cpp); mesh files go to `scratch`.
+// Exact, unshadowed and screen-space shadows (every light casting them) on --scene's scene,
+// scenes/spotlights, scenes/large with 16 lights and a mesh scene (bench_shadow_error.cpp); mesh
+// files go to `scratch`.
 std::vector<ShadowSceneResult> run_shadow_error_bench(const BenchArguments& args, const std::filesystem::path& scratch);
 
 std::string shadow_error_table(const ShadowSceneResult& scene);  // Markdown, with the Pareto front
