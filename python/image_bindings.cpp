@@ -42,10 +42,12 @@ void bind_images(py::module_& module) {
   module.def(
       "write_png",
       [](const std::filesystem::path& path, const FloatArray& image, double exposure, const std::string& tonemap) {
+        check_exposure(exposure);  // before the image is converted
         write_png(path, image_from(image), DisplaySettings{exposure, parse_tone_map(tonemap)});
       },
       py::arg("path"), py::arg("image"), py::arg("exposure") = 0.0, py::arg("tonemap") = "reinhard",
-      "Writes an 8-bit sRGB PNG: scaled by 2**exposure, tone mapped ('clamp', 'reinhard', 'aces'), atomically.");
+      "Writes an 8-bit sRGB PNG: scaled by 2**exposure (a finite number of stops in [-40, 40]), tone mapped "
+      "('clamp', 'reinhard', 'aces'), atomically.");
   module.def(
       "read_exr",
       [](const std::filesystem::path& path) {

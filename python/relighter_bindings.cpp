@@ -10,10 +10,15 @@ namespace phongcl::python {
 
 namespace {
 
+// What `phongcl shade --device` takes: an index or a name; anything else is the caller's mistake,
+// said in Python's terms rather than pybind11's cast message.
 std::string device_selector(const py::object& device) {
   if (device.is_none()) return "";
-  if (py::isinstance<py::int_>(device)) return std::to_string(device.cast<long>());
-  return device.cast<std::string>();
+  if (py::isinstance<py::int_>(device) && !py::isinstance<py::bool_>(device)) return std::to_string(device.cast<long long>());
+  if (py::isinstance<py::str>(device)) return device.cast<std::string>();
+  throw py::type_error("device must be None, an index (int) or a name (str), not " +
+                       py::str(py::type::of(device).attr("__name__")).cast<std::string>() + " " +
+                       py::repr(device).cast<std::string>());
 }
 
 py::array_t<float> shade(Relighter& relighter, const std::optional<py::array>& out) {
@@ -91,6 +96,7 @@ void bind_relighter(py::module_& module) {
                        int shadow_steps, const std::string& shadow_thickness) {
              RelighterOptions options{device_selector(device), parse_precision(precision), specialise, lanes};
              options.shadows = {parse_shadow_mode(shadows), shadow_steps, parse_shadow_thickness(shadow_thickness)};
+             check_options(options);  // before the device starts
              py::gil_scoped_release release;  // the kernel build and the packing take a while
              return Relighter(scene, gbuffer, options);
            }),
@@ -109,7 +115,10 @@ void bind_relighter(py::module_& module) {
            "array (C-contiguous float32 (H, W, 4)) and returns it. Releases the GIL while shading.")
       .def(
           "set_lights", [](Relighter& r, const py::object& lights) { r.set_lights(lights_from_python(lights)); },
-          py::arg("lights"), "New lights: Light objects or dicts in the scene file's form.")
+          py::arg("lights"),
+          "New lights: Light objects or dicts in the scene file's form, whose vectors may be lists, tuples or "
+          "NumPy arrays; linked materials must exist in the scene. Raises InputError or ValueError naming the "
+          "entry (e.g. a NaN: must be finite).")
       .def(
           "set_materials",
           [](Relighter& r, const py::object& materials) { r.set_materials(materials_from_python(materials)); },

@@ -10,8 +10,41 @@ namespace phongcl::python {
 
 namespace {
 
-std::string to_json(const py::handle& value) {
-  return py::module_::import("json").attr("dumps")(value).cast<std::string>();
+// The scene file's nesting limit (scene/json_reader.h), for self-referencing lists too.
+constexpr int kMaxDepth = 256;
+
+// Python's dicts, lists, tuples, NumPy arrays and scalars, numbers and strings as a JSON document,
+// without going through text: NaN and infinities stay numbers, which the scene reader refuses as
+// not finite, and NumPy values need no tolist() from the caller.
+nlohmann::json json_of(const py::handle& value, int depth = 0) {
+  if (depth > kMaxDepth) throw py::value_error("nested deeper than " + std::to_string(kMaxDepth) + " levels");
+  if (value.is_none()) return nullptr;
+  if (py::isinstance<py::bool_>(value)) return value.cast<bool>();
+  if (py::isinstance<py::int_>(value)) {
+    try {
+      return value.cast<long long>();
+    } catch (const py::cast_error&) {
+      return value.cast<double>();  // beyond 64 bits: as large a number as it is
+    }
+  }
+  if (py::isinstance<py::float_>(value)) return value.cast<double>();
+  if (py::isinstance<py::str>(value)) return value.cast<std::string>();
+  if (py::isinstance<py::dict>(value)) {
+    nlohmann::json object = nlohmann::json::object();
+    for (const auto& [key, item] : value.cast<py::dict>()) {
+      if (!py::isinstance<py::str>(key)) throw py::type_error("dict keys must be str, not " + py::repr(key).cast<std::string>());
+      object[key.cast<std::string>()] = json_of(item, depth + 1);
+    }
+    return object;
+  }
+  if (py::hasattr(value, "tolist")) return json_of(value.attr("tolist")(), depth + 1);  // NumPy arrays and scalars
+  if (py::isinstance<py::sequence>(value)) {
+    nlohmann::json array = nlohmann::json::array();
+    for (const auto& item : value.cast<py::sequence>()) array.push_back(json_of(item, depth + 1));
+    return array;
+  }
+  throw py::type_error("expected numbers, strings, lists, dicts or NumPy arrays, not " +
+                       py::str(py::type::of(value).attr("__name__")).cast<std::string>());
 }
 
 // A vec3 attribute of T, read and written as a 3-sequence of floats.
@@ -28,7 +61,7 @@ std::vector<Light> lights_from_python(const py::handle& lights) {
   try {
     return lights.cast<std::vector<Light>>();
   } catch (const py::cast_error&) {
-    return parse_lights(to_json(lights), "lights");  // dicts in the scene file's form
+    return read_lights(json_of(lights), "lights");  // dicts in the scene file's form
   }
 }
 
@@ -36,7 +69,7 @@ std::vector<Material> materials_from_python(const py::handle& materials) {
   try {
     return materials.cast<std::vector<Material>>();
   } catch (const py::cast_error&) {
-    return parse_materials(to_json(materials), "materials");
+    return read_materials(json_of(materials), "materials");
   }
 }
 
@@ -82,7 +115,7 @@ void bind_scene(py::module_& module) {
   scene.def(py::init<>())
       .def_static(
           "from_dict",
-          [](const py::dict& description) { return parse_scene(to_json(description), "<dict>"); },
+          [](const py::dict& description) { return read_scene(json_of(description), "<dict>"); },
           py::arg("description"),
           "A scene from a dict in the scene file's JSON form; raises InputError naming the bad entry.")
       .def_readwrite("camera", &Scene::camera)

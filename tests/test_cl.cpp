@@ -1,10 +1,14 @@
-// The default OpenCL device: what a user wants when they name none.
+// The default OpenCL device: what a user wants when they name none; the program cache's bounds.
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <string>
 #include <vector>
 
+#include "cl/compute_context.h"
 #include "cl/device.h"
+#include "cl/program_cache.h"
+#include "temp_dir.h"
 
 namespace phongcl {
 namespace {
@@ -45,6 +49,34 @@ TEST(DefaultDevice, RealGpuFirstThenTheMostComputeUnits) {
 TEST(DefaultDevice, OnlySimulatorsMeansNoDefault) {
   EXPECT_EQ(choose_default_device({kOclgrind}).index, -1);
   EXPECT_EQ(choose_default_device({}).index, -1);
+}
+
+std::size_t files_in(const std::filesystem::path& directory) {
+  std::size_t count = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(directory)) count += entry.path().extension() == ".clbin";
+  return count;
+}
+
+// Each new light-count mix built and kept a new program, in memory and on disk, without end. The
+// cache now keeps the ones used last: a program dropped from memory comes back from disk, and the
+// disk keeps its newest files.
+TEST(ProgramCache, BothCachesKeepTheProgramsUsedLast) {
+  if (list_devices().empty()) GTEST_SKIP() << "no OpenCL device on this machine";
+  testing::TempDir dir("program_cache");
+  ProgramCache cache(dir.path, {2, 3, std::uintmax_t{1} << 30});
+  const ComputeContext compute = make_compute_context(pick_device(""));
+  const auto build = [&](const std::string& name) {
+    return cache.build(compute, "kernel void " + name + "(global float* x) { x[0] = 1.0f; }", "").outcome;
+  };
+  for (const char* name : {"a", "b", "c"}) EXPECT_EQ(build(name), CacheOutcome::compiled) << name;
+  EXPECT_EQ(cache.programs_in_memory(), 2u);
+  EXPECT_EQ(files_in(dir.path), 3u);
+  EXPECT_EQ(build("c"), CacheOutcome::memory_hit);
+  EXPECT_EQ(build("a"), CacheOutcome::disk_hit) << "a left memory for b and c, and came back from disk";
+  EXPECT_EQ(build("d"), CacheOutcome::compiled);
+  EXPECT_EQ(files_in(dir.path), 3u);
+  EXPECT_EQ(build("b"), CacheOutcome::compiled) << "b's file, the one used longest ago, made room for d's";
+  EXPECT_EQ(cache.programs_in_memory(), 2u);
 }
 
 }  // namespace

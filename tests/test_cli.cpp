@@ -216,8 +216,9 @@ TEST_F(Cli, BadFlagsAreOneLineErrors) {
   expect_clean_failure(run_phongcl(std::string("shade --scene ") + kDefaultScene + " --out " + out +
                                    " --device 99999999999999999999"),
                        "--device", out);
+  // The Relighter's own check (check_options), which the Python module meets too.
   expect_clean_failure(run_phongcl(std::string("shade --scene ") + kDefaultScene + " --out " + out + " --lanes 3"),
-                       "--lanes", out);
+                       "lanes must be 0 (the device's choice), 1, 2, 4, 8 or 16 (got 3)", out);
 }
 
 TEST_F(Cli, LanesAreWhatWasAskedFor) {
@@ -244,6 +245,103 @@ TEST_F(Cli, NonFinitePixelsAreCountedNotFatal) {
   ASSERT_EQ(run.exit_code, 0) << run.err;
   EXPECT_NE(run.out.find("3 pixels had non-finite normals and were left unshaded"), std::string::npos) << run.out;
   EXPECT_TRUE(fs::exists(path("lit.exr")));
+}
+
+// An output that names an input, or another output, is refused before anything is read: one line
+// naming both options, every file as it was. Names are compared resolved (symbolic links, "..")
+// and, for files that exist, by device and inode (hard links).
+TEST_F(Cli, OutputsThatAreInputsAreRefusedBeforeAnythingIsRead) {
+  const fs::path source = fs::path(PHONGCL_SOURCE_DIR) / "scenes/default";
+  fs::copy_file(source / "scene.json", path("scene.json"));
+  fs::copy_file(source / "gbuffer.exr", path("gbuffer.exr"));
+  fs::create_directories(path("sub"));
+  fs::create_hard_link(path("gbuffer.exr"), path("linked.exr"));
+  fs::create_symlink(path("gbuffer.exr"), path("pointer.exr"));
+  const std::string gbuffer_bytes = read_text(path("gbuffer.exr")), scene_bytes = read_text(path("scene.json"));
+  const std::string out = existing_output();
+  const std::string shade = "shade --scene " + path("scene.json");
+  struct Case {
+    std::string arguments;
+    std::string says;
+  };
+  const Case cases[] = {
+      {" --gbuffer " + path("gbuffer.exr") + " --out " + path("gbuffer.exr"), "--out '" + path("gbuffer.exr") + "' and --gbuffer"},
+      {" --out " + path("scene.json"), "--out '" + path("scene.json") + "' and --scene"},
+      {" --out " + path("gbuffer.exr"), "and the scene's \"gbuffer\" entry"},
+      {" --out " + path("sub/../gbuffer.exr"), "and the scene's \"gbuffer\" entry"},
+      {" --out " + path("linked.exr"), "and the scene's \"gbuffer\" entry"},
+      {" --out " + path("pointer.exr"), "and the scene's \"gbuffer\" entry"},
+      {" --out " + out + " --png " + path("gbuffer.exr"), "--png"},
+      {" --out " + path("x.exr") + " --aov " + path("x.exr"), "two outputs cannot share a file"},
+      {" --out " + path("x.exr") + " --png " + path("x.exr"), "two outputs cannot share a file"},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.arguments);
+    expect_clean_failure(run_phongcl(shade + c.arguments), c.says, out);
+    EXPECT_EQ(read_text(path("gbuffer.exr")), gbuffer_bytes);
+    EXPECT_EQ(read_text(path("scene.json")), scene_bytes);
+    EXPECT_FALSE(fs::exists(path("x.exr")));
+  }
+}
+
+// Sequences compare the file of every requested frame, in either spelling of the pattern.
+TEST_F(Cli, SequenceOutputsThatAreInputFramesAreRefused) {
+  const fs::path source = fs::path(PHONGCL_SOURCE_DIR) / "scenes/default";
+  fs::create_directories(path("in"));
+  for (const char* frame : {"1001", "1002"}) fs::copy_file(source / "gbuffer.exr", path(std::string("in/shot.") + frame + ".exr"));
+  const std::string frame_bytes = read_text(path("in/shot.1002.exr"));
+  const std::string out = existing_output();
+  const std::string shade = "shade --scene " + (source / "scene.json").string() + " --gbuffer " + path("in/shot.####.exr");
+  const std::string cases[] = {
+      " --out " + path("lit.####.exr") + " --png " + path("in/shot.####.exr"),
+      " --out " + path("in/shot.%04d.exr") + " --overwrite",
+      " --out " + path("in/shot.####.exr"),
+  };
+  for (const std::string& arguments : cases) {
+    SCOPED_TRACE(arguments);
+    const CliRun run = run_phongcl(shade + arguments);
+    expect_clean_failure(run, "'" + path("in/shot.####.exr") + "' (" + path("in/shot.1001.exr") + ") are the same file", out);
+    EXPECT_EQ(read_text(path("in/shot.1002.exr")), frame_bytes);
+  }
+}
+
+TEST_F(Cli, ExposureIsCheckedBeforeShading) {
+  const std::string out = existing_output();
+  for (const char* exposure : {"nan", "inf", "1e308", "-1000"}) {
+    SCOPED_TRACE(exposure);
+    expect_clean_failure(run_phongcl(std::string("shade --scene ") + kDefaultScene + " --out " + out + " --png " +
+                                     path("lit.png") + " --exposure " + exposure),
+                         "--exposure: exposure must be a finite number of stops in [-40, 40]", out);
+    EXPECT_FALSE(fs::exists(path("lit.png")));
+  }
+}
+
+// The temporary beside an output is named after it: a name that fits its file system must give a
+// temporary that fits too, and one that does not is refused before shading.
+TEST_F(Cli, LongOutputNamesWriteAndTooLongOnesAreRefusedUpFront) {
+  if (!testing::have_opencl_device()) GTEST_SKIP() << "no OpenCL device";
+  const std::string longest = path(std::string(251, 'n') + ".exr");  // 255 bytes
+  const CliRun run = run_phongcl(std::string("shade --scene ") + kDefaultScene + " --out " + longest);
+  EXPECT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_TRUE(fs::exists(longest));
+  const std::string out = existing_output();
+  expect_clean_failure(run_phongcl(std::string("shade --scene ") + kDefaultScene + " --out " + out + " --png " +
+                                   path(std::string(253, 'n') + ".png")),
+                       "the file name is 257 bytes, longer than the 255 its file system allows", out);
+}
+
+// A write that runs out of space (here: a file size limit, as a full disk fails it) names the
+// output, not the unnamed temporary's /proc/self/fd/N.
+TEST_F(Cli, AFailedWriteNamesTheOutput) {
+  if (!testing::have_opencl_device()) GTEST_SKIP() << "no OpenCL device";
+  const std::string out = path("big.exr");
+  const CliRun run = run_phongcl(std::string("shade --scene ") + kDefaultScene + " --out " + out + " --compression none",
+                                 "trap '' XFSZ; ulimit -f 1024; ");
+  EXPECT_NE(run.exit_code, 0);
+  EXPECT_NE(run.err.find(out + ": cannot write EXR"), std::string::npos) << run.err;
+  EXPECT_EQ(run.err.find("/proc/self/fd"), std::string::npos) << run.err;
+  EXPECT_FALSE(fs::exists(out));
+  for (const auto& entry : fs::directory_iterator(dir_)) ADD_FAILURE() << "left behind: " << entry.path();
 }
 
 }  // namespace

@@ -1,5 +1,5 @@
-// Atomic outputs: a killed or failing writer leaves the old files and nothing else; a failed write
-// leaves no temporary.
+// Atomic outputs: a killed or failing writer leaves the old files and nothing else, a failed
+// write no temporary; outputs that are inputs; text that must be UTF-8.
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/wait.h>
@@ -9,12 +9,16 @@
 #include <fstream>
 #include <functional>
 #include <iterator>
+#include <optional>
 #include <set>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "common/atomic_file.h"
 #include "common/error.h"
+#include "common/same_file.h"
+#include "common/utf8.h"
 
 #include "temp_dir.h"
 
@@ -126,6 +130,88 @@ TEST(AtomicBatch, CommitReplacesEveryFile) {
   EXPECT_EQ(names_in(dir.path), (std::set<std::string>{"lit.exr", "lit.png"}));
   EXPECT_EQ(content(dir / "lit.png"), "new png");
   EXPECT_EQ(content(dir / "lit.exr"), "new exr");
+}
+
+// Output names of 245-255 bytes failed after shading ("File name too long"): the temporary's name
+// is longer than the output's. It now fits wherever the output's does, and two long names with one
+// beginning keep their temporaries apart.
+TEST(AtomicFile, TheLongestNameTheFileSystemTakesIsWritten) {
+  TempDir dir;
+  const std::string stem(251, 'n');
+  write_atomically(dir / (stem + ".exr"), [](const fs::path& temp) { write_text(temp, "new"); });
+  EXPECT_EQ(content(dir / (stem + ".exr")), "new");
+  {
+    AtomicBatch batch;
+    write_atomically(dir / (stem.substr(0, 250) + "a.exr"), [](const fs::path& temp) { write_text(temp, "a"); });
+    write_atomically(dir / (stem.substr(0, 250) + "b.exr"), [](const fs::path& temp) { write_text(temp, "b"); });
+    batch.commit();
+  }
+  EXPECT_EQ(content(dir / (stem.substr(0, 250) + "a.exr")), "a");
+  EXPECT_EQ(content(dir / (stem.substr(0, 250) + "b.exr")), "b");
+  EXPECT_EQ(names_in(dir.path).size(), 3u) << "no temporary left";
+}
+
+// A full disk was reported as "/proc/self/fd/5: ...": writers name the temporary they were given.
+TEST(AtomicFile, AFailedWriteNamesTheDestination) {
+  TempDir dir;
+  std::string temp_name;
+  try {
+    write_atomically(dir / "lit.exr", [&](const fs::path& temp) {
+      temp_name = temp.string();
+      throw std::runtime_error("cannot write " + temp.string() + ": No space left on device");
+    });
+    FAIL() << "the write should fail";
+  } catch (const std::exception& error) {
+    EXPECT_EQ(std::string(error.what()), "cannot write " + (dir / "lit.exr").string() + ": No space left on device");
+  }
+  EXPECT_FALSE(temp_name.empty());
+  EXPECT_TRUE(names_in(dir.path).empty());
+}
+
+TEST(Utf8, FirstInvalidByteIsFound) {
+  EXPECT_EQ(first_invalid_utf8("plain ASCII"), std::nullopt);
+  EXPECT_EQ(first_invalid_utf8("\xc3\xa9t\xc3\xa9 \xe2\x82\xac \xf0\x9f\x98\x80"), std::nullopt);  // été € 😀
+  EXPECT_EQ(first_invalid_utf8("ab\xff"), 2u);
+  EXPECT_EQ(first_invalid_utf8("a\xc0\xaf"), 1u);           // an overlong '/'
+  EXPECT_EQ(first_invalid_utf8("a\xed\xa0\x80"), 1u);       // a UTF-16 surrogate
+  EXPECT_EQ(first_invalid_utf8("\xf4\x90\x80\x80"), 0u);    // above U+10FFFF
+  EXPECT_EQ(first_invalid_utf8("\xe2\x82"), 0u);            // cut short
+  EXPECT_EQ(first_invalid_utf8("x\x80"), 1u);               // a continuation byte alone
+  EXPECT_EQ(first_invalid_utf8(std::string("a\0b", 3)), std::nullopt);
+}
+
+// Any two outputs, or an output and an input, naming one file are refused; inputs may share.
+TEST(SameFile, OutputsOverInputsOrOutputsAreRefused) {
+  TempDir dir;
+  write_text(dir / "g.exr", "gbuffer");
+  fs::create_directories(dir / "sub");
+  fs::create_hard_link(dir / "g.exr", dir / "hard.exr");
+  fs::create_symlink(dir / "g.exr", dir / "soft.exr");
+  fs::create_symlink(dir / "sub", dir / "linked_dir");
+  const auto refused = [&](const std::vector<NamedFile>& files) {
+    try {
+      refuse_shared_files(files);
+    } catch (const std::invalid_argument& error) {
+      return std::string(error.what());
+    }
+    return std::string();
+  };
+  const NamedFile input{"--gbuffer", dir / "g.exr"};
+  for (const fs::path& same : {dir / "g.exr", dir / "sub/../g.exr", dir / "hard.exr", dir / "soft.exr", dir / "./g.exr"}) {
+    SCOPED_TRACE(same);
+    EXPECT_EQ(refused({input, {"--out", same, true}}),
+              "--out '" + same.string() + "' and --gbuffer '" + (dir / "g.exr").string() +
+                  "' are the same file: an output cannot replace an input");
+  }
+  // Files that do not exist yet: compared by resolved name, through linked directories too.
+  EXPECT_NE(refused({{"--out", dir / "sub/new.exr", true}, {"--aov", dir / "linked_dir/new.exr", true}}).find(
+                "two outputs cannot share a file"),
+            std::string::npos);
+  EXPECT_NE(refused({{"--out", dir / "x.####.exr", true, "x.####.exr"}, {"--gbuffer", dir / "x.####.exr", false}}).find(
+                "--out 'x.####.exr' ("),
+            std::string::npos);
+  EXPECT_EQ(refused({input, {"--scene", dir / "hard.exr"}, {"--out", dir / "other.exr", true}}), "") << "inputs may share";
+  EXPECT_EQ(refused({{"--out", dir / "a.exr", true}, {"--out", dir / "a.exr", true}}), "") << "a frame listed twice";
 }
 
 TEST(AtomicWrite, ReplacesTheDestinationOnSuccess) {

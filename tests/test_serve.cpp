@@ -24,6 +24,7 @@
 #include "gbuffer/layouts.h"
 #include "reference/reference.h"
 #include "serve/relight_server.h"
+#include "serve_support.h"
 #include "temp_dir.h"
 
 namespace phongcl {
@@ -32,41 +33,10 @@ namespace {
 using nlohmann::json;
 using testing::TempDir;
 
-const std::filesystem::path kSceneFile = PHONGCL_SOURCE_DIR "/scenes/default/scene.json";
+using testing::RunningServer;
+const std::filesystem::path& kSceneFile = testing::kServeSceneFile;
 
 std::string file_text(const std::filesystem::path& file) { return testing::read_text(file); }
-
-// A server on an ephemeral loopback port, run on its own thread, stopped at the end.
-class RunningServer {
- public:
-  explicit RunningServer(const std::filesystem::path& save_path = {})
-      : RunningServer(read_gbuffer(PHONGCL_SOURCE_DIR "/scenes/default/gbuffer.exr"), kSceneFile, save_path) {}
-  RunningServer(GBuffer gbuffer, const std::filesystem::path& scene_file, const std::filesystem::path& save_path = {})
-      : session_(std::move(gbuffer), ""),
-        live_(session_, file_text(scene_file), scene_file, RenderSettings{}),
-        server_(live_, {"127.0.0.1", 0, save_path, "test device"}) {
-    port_ = server_.bind();
-    thread_ = std::thread([this] { server_.run(); });
-  }
-  ~RunningServer() {
-    server_.stop();
-    thread_.join();
-  }
-  httplib::Client client() const {
-    httplib::Client client("127.0.0.1", port_);
-    client.set_read_timeout(std::chrono::seconds(120));
-    return client;
-  }
-  RelightSession& session() { return session_; }
-  RelightServer& server() { return server_; }
-
- private:
-  RelightSession session_;
-  LiveRelighter live_;
-  RelightServer server_;
-  int port_ = 0;
-  std::thread thread_;
-};
 
 class Serve : public ::testing::Test {
  protected:

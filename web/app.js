@@ -109,6 +109,9 @@ async function pollFrames() {
       if (!response.ok) {
         setStatus(await errorOf(response), true);
         state.receivedVersion = Number(response.headers.get('X-Frame-Version')) || state.receivedVersion;
+        // 503: the server holds as many waiting requests as it allows (other tabs); ask again later.
+        const retry = Number(response.headers.get('Retry-After'));
+        if (response.status === 503) await new Promise((r) => setTimeout(r, 1000 * (retry > 0 ? retry : 1)));
         continue;
       }
       const headed = performance.now();

@@ -1,11 +1,13 @@
 #include "cl/program_cache.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdint>
 #include <cstdlib>
 #include <fstream>
 #include <iterator>
 #include <sstream>
+#include <vector>
 
 #include "common/atomic_file.h"
 #include "common/writable_directory.h"
@@ -62,7 +64,43 @@ const char* to_string(CacheOutcome outcome) {
   return "?";
 }
 
-ProgramCache::ProgramCache(fs::path disk_directory) : disk_directory_(std::move(disk_directory)) {}
+ProgramCache::ProgramCache(fs::path disk_directory, ProgramCacheLimits limits)
+    : limits_(limits), disk_directory_(std::move(disk_directory)) {}
+
+void ProgramCache::remember(const std::string& key, const cl::Program& program) {
+  memory_.emplace_front(key, program);
+  index_[key] = memory_.begin();
+  while (memory_.size() > std::max<std::size_t>(limits_.memory_programs, 1)) {
+    index_.erase(memory_.back().first);
+    memory_.pop_back();  // kernels made from it keep it alive as long as they need it
+  }
+}
+
+void ProgramCache::trim_disk() {
+  struct Binary {
+    fs::file_time_type used;
+    std::uintmax_t bytes;
+    fs::path file;
+  };
+  std::vector<Binary> binaries;
+  std::uintmax_t total = 0;
+  std::error_code ec;
+  for (const auto& entry : fs::directory_iterator(disk_directory_, ec)) {
+    if (entry.path().extension() != ".clbin") continue;
+    std::error_code stat_error;
+    const std::uintmax_t bytes = entry.file_size(stat_error);
+    const fs::file_time_type used = entry.last_write_time(stat_error);
+    if (stat_error) continue;  // removed by another process meanwhile
+    binaries.push_back({used, bytes, entry.path()});
+    total += bytes;
+  }
+  std::sort(binaries.begin(), binaries.end(), [](const Binary& a, const Binary& b) { return a.used < b.used; });
+  for (std::size_t i = 0; i < binaries.size() && (binaries.size() - i > limits_.disk_files || total > limits_.disk_bytes); ++i) {
+    std::error_code ignored;
+    fs::remove(binaries[i].file, ignored);
+    total -= binaries[i].bytes;
+  }
+}
 
 fs::path ProgramCache::default_directory() {
   fs::path dir;
@@ -74,8 +112,9 @@ fs::path ProgramCache::default_directory() {
 
 BuiltProgram ProgramCache::build(const ComputeContext& compute, const std::string& source, const std::string& options) {
   const std::string key = cache_key(compute.device.info, source, options);
-  if (const auto found = memory_.find(key); found != memory_.end()) {
-    return {found->second, CacheOutcome::memory_hit, 0.0};
+  if (const auto found = index_.find(key); found != index_.end()) {
+    memory_.splice(memory_.begin(), memory_, found->second);  // now the most recently used
+    return {found->second->second, CacheOutcome::memory_hit, 0.0};
   }
   const auto start = std::chrono::steady_clock::now();
   const fs::path file = disk_directory_.empty() ? fs::path() : disk_directory_ / (fnv1a_hex(key) + ".clbin");
@@ -87,7 +126,9 @@ BuiltProgram ProgramCache::build(const ComputeContext& compute, const std::strin
         cl::Program program(compute.context, {compute.device.handle},
                             cl::Program::Binaries{std::vector<unsigned char>(binary.begin(), binary.end())});
         program.build({compute.device.handle}, options.c_str());
-        memory_.emplace(key, program);
+        remember(key, program);
+        std::error_code ignored;
+        fs::last_write_time(file, fs::file_time_type::clock::now(), ignored);  // used now: kept longest
         return {program, CacheOutcome::disk_hit, milliseconds_since(start)};
       } catch (const cl::Error&) {
         disk_problem_ = file.string() + ": stale or unusable cached binary, rebuilt from source";
@@ -98,7 +139,7 @@ BuiltProgram ProgramCache::build(const ComputeContext& compute, const std::strin
   cl::Program program(compute.context, source);
   program.build({compute.device.handle}, options.c_str());
   const double build_ms = milliseconds_since(start);
-  memory_.emplace(key, program);
+  remember(key, program);
 
   if (!file.empty()) {
     try {
@@ -112,6 +153,7 @@ BuiltProgram ProgramCache::build(const ComputeContext& compute, const std::strin
         out.close();  // a failure in the final flush must not leave a truncated binary in the cache
         if (!out) throw std::runtime_error("write failed");
       });
+      trim_disk();
     } catch (const std::exception& error) {
       disk_problem_ = "cannot write program cache " + file.string() + ": " + error.what();
     }

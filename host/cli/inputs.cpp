@@ -46,6 +46,13 @@ ColourSource parse_colour_source(const std::string& text) {
 
 }  // namespace
 
+std::vector<NamedFile> SceneInputs::named_files(const Scene* scene) const {
+  std::vector<NamedFile> files{{"--scene", scene_file}};
+  if (!gbuffer_file.empty()) files.push_back({"--gbuffer", gbuffer_file});
+  else if (scene != nullptr && !scene->gbuffer.empty()) files.push_back({"the scene's \"gbuffer\" entry", scene->gbuffer});
+  return files;
+}
+
 std::filesystem::path SceneInputs::gbuffer_path(const Scene& scene) const {
   if (gbuffer_file.empty() && scene.gbuffer.empty())
     throw InputError(scene.source, "no G-buffer: give --gbuffer or a \"gbuffer\" entry in the scene");
@@ -121,7 +128,7 @@ LoadedGBuffer SceneInputs::load_described_gbuffer(const Scene& scene, bool with_
   }
   const std::filesystem::path file = gbuffer_path(scene);
   GBufferRead read = read_gbuffer(file, options);
-  std::string description = read.description;
+  std::string& description = read.description;
   if (const auto file_camera = read_file_camera(file)) {
     if (!scene.has_camera) {
       description += ", camera from the file's worldToCamera and worldToNDC";
@@ -133,12 +140,12 @@ LoadedGBuffer SceneInputs::load_described_gbuffer(const Scene& scene, bool with_
     }
   }
   if (read.needs_positions_from_depth()) {
-    positions_from_depth(read.gbuffer, read.depth, scene.camera, read.depth_convention);
     description += std::string(", depth = ") +
                    (read.depth_convention == DepthConvention::distance ? "distance along the ray" : "view-space z") +
                    " (" + read.depth_convention_reason + "; --depth-convention overrides)";
+    positions_from_depth(read, scene.camera);
   }
-  return {std::move(read.gbuffer), description, std::move(read.warnings), read.beauty};
+  return {std::move(read.gbuffer), std::move(read.description), std::move(read.warnings), read.beauty};
 }
 
 }  // namespace phongcl::cli

@@ -9,6 +9,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "common/same_file.h"
 #include "gbuffer/gbuffer.h"
 #include "gbuffer/layouts.h"
 #include "scene/scene.h"
@@ -35,6 +36,9 @@ struct SceneInputs {
 
   void add_options(CLI::App& command);
   bool camera_space() const { return space == "camera"; }
+  // The files read, for refuse_shared_files: --scene and --gbuffer; given the parsed scene and no
+  // --gbuffer, its "gbuffer" entry.
+  std::vector<NamedFile> named_files(const Scene* scene = nullptr) const;
   // --gbuffer, else the scene's "gbuffer" entry (InputError when neither names a file).
   std::filesystem::path gbuffer_path(const Scene& scene) const;
   // The scene file; without a "camera", the G-buffer header's (gbuffer/file_camera.h); with

@@ -11,6 +11,8 @@
 #include "cli/commands.h"
 #include "cli/format.h"
 #include "cli/inputs.h"
+#include "cli/outputs.h"
+#include "common/same_file.h"
 #include "common/error.h"
 #include "serve/relight_server.h"
 
@@ -53,7 +55,16 @@ void run_serve(const ServeArguments& args) {
 
   if (args.inputs.camera_space())
     throw std::invalid_argument("serve: --space camera is not supported (lights are edited in the scene's world space)");
+  // --save is checked now, not at the first POST /api/save: it must be writable and not an input.
+  const auto refuse_save_over_inputs = [&](const Scene* scene) {
+    std::vector<NamedFile> files = args.inputs.named_files(scene);
+    if (!args.save.empty()) files.push_back({"--save", args.save, true});
+    refuse_shared_files(files);
+  };
+  refuse_save_over_inputs(nullptr);
+  if (!args.save.empty()) check_destination(args.save);
   const Scene scene = args.inputs.load_scene();
+  if (args.inputs.gbuffer_file.empty()) refuse_save_over_inputs(&scene);
   const LoadedGBuffer loaded = args.inputs.load_described_gbuffer(scene, /*with_beauty=*/true);
   const std::string scene_text = read_text(args.inputs.scene_file);
   RelightSession session(loaded.gbuffer, args.device);

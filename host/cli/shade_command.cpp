@@ -54,15 +54,18 @@ RelighterOptions relighter_options(const ShadeArguments& args) {
   options.tile_size = args.tile;
   options.terms = args.outputs.wants_terms();
   options.shadows = {parse_shadow_mode(args.shadows), args.shadow_steps, parse_shadow_thickness(args.shadow_thickness)};
+  check_options(options);
   return options;
 }
 
 void run_shade(const ShadeArguments& args) {
+  const RelighterOptions options = relighter_options(args);  // checked before anything is read
   if (args.sequence.wanted(args.inputs, args.outputs)) {
-    run_shade_sequence(args.inputs, args.outputs, relighter_options(args), args.sequence);
+    run_shade_sequence(args.inputs, args.outputs, options, args.sequence);
     return;
   }
   const auto start = Clock::now();
+  refuse_outputs_over_inputs(args.inputs, args.outputs);
   args.outputs.check_destinations();
   args.sequence.start_exr_threads();
   // The G-buffer is read while the OpenCL platform starts: neither needs the other. OpenCL stays on
@@ -74,10 +77,10 @@ void run_shade(const ShadeArguments& args) {
   };
   std::future<Inputs> reading = std::async(std::launch::async, [&] {
     Scene scene = args.inputs.load_scene();
+    if (args.inputs.gbuffer_file.empty()) refuse_outputs_over_inputs(args.inputs, args.outputs, &scene);
     LoadedGBuffer loaded = args.inputs.load_described_gbuffer(scene);
     return Inputs{std::move(scene), std::move(loaded), milliseconds_since(start)};
   });
-  const RelighterOptions options = relighter_options(args);
   Relighter relighter(options);
   Inputs inputs = reading.get();
   const Scene& scene = inputs.scene;
@@ -147,13 +150,12 @@ void add_shade_command(CLI::App& app) {
   command->add_option("--precision", args->precision, "double, precise (default), fast or half-storage")
       ->check(CLI::IsMember({"double", "precise", "fast", "half-storage"}));
   command->add_flag("--no-specialise", args->no_specialise, "Use the general kernel with everything compiled in");
-  command->add_option("--lanes", args->lanes, "Pixels per work-item: 1, 2, 4, 8 or 16 (default: the device's preferred float width on CPUs, 1 on GPUs)")
-      ->check(CLI::IsMember({1, 2, 4, 8, 16}));
+  command->add_option("--lanes", args->lanes, "Pixels per work-item: 1, 2, 4, 8 or 16 (default: the device's preferred float width on CPUs, 1 on GPUs)");
   command->add_option("--culling", args->culling,
                       "Tiled light culling: auto (default: tiled from " + std::to_string(kAutoCullingLights) +
                           " point/spot lights with a range), tiled or none")
       ->check(CLI::IsMember({"auto", "tiled", "none"}));
-  command->add_option("--tile", args->tile, "Culling tile size in pixels (default 16)")->check(CLI::Range(1, 1024));
+  command->add_option("--tile", args->tile, "Culling tile size in pixels, 1 to 1024 (default 16)");
   command->add_option("--shadows", args->shadows,
                       "Shadows of the lights with \"shadows\": true: auto (default: geometry when the scene has "
                       "objects, else screen), screen (marched across the G-buffer), geometry (traced against the "

@@ -17,6 +17,7 @@
 
 #include "cli/format.h"
 #include "cli/sequence_progress.h"
+#include "common/same_file.h"
 #include "exr/exr_channels.h"
 #include "sequence/frame_list.h"
 #include "sequence/frame_pattern.h"
@@ -56,6 +57,22 @@ struct SequenceFiles {
     framed.png_file = path(png);
     framed.aov_file = path(aov);
     return framed;
+  }
+  // Every file of every frame, each named by its option and pattern, for refuse_shared_files.
+  std::vector<NamedFile> named_files(const SceneInputs& inputs, const ImageOutputs& outputs,
+                                     const std::vector<int>& frames) const {
+    const std::pair<const char*, const FramePattern*> patterns[] = {
+        {"--scene", &scene}, {"--gbuffer", &gbuffer}, {"--out", &exr}, {"--png", &png}, {"--aov", &aov}};
+    std::vector<NamedFile> files;
+    for (const int frame : frames) {
+      for (const auto& list : {inputs_of(inputs, frame).named_files(), outputs_of(outputs, frame).named_files()})
+        for (NamedFile file : list) {
+          for (const auto& [option, pattern] : patterns)
+            if (file.option == option && pattern->is_pattern()) file.pattern = pattern->text();
+          files.push_back(std::move(file));
+        }
+    }
+    return files;
   }
   // Outputs are written atomically, so one that exists is whole; the frame is done when all do.
   bool done(const ImageOutputs& outputs, int frame) const {
@@ -131,6 +148,7 @@ void run_shade_sequence(const SceneInputs& inputs, const ImageOutputs& outputs, 
   const auto start = Clock::now();
   const SequenceFiles files(inputs, outputs);
   const std::vector<int> requested = requested_frames(sequence, files);
+  refuse_shared_files(files.named_files(inputs, outputs, requested));
   std::string shard_origin;
   const Shard shard = pick_shard(sequence, shard_origin);
   const std::vector<int> mine = frames_of_shard(requested, shard);
@@ -165,6 +183,7 @@ void run_shade_sequence(const SceneInputs& inputs, const ImageOutputs& outputs, 
   stages.read = [&](FrameWork& work) {
     const SceneInputs framed = files.inputs_of(inputs, work.frame);
     work.scene = shared_scene ? *shared_scene : framed.load_scene();
+    if (framed.gbuffer_file.empty()) refuse_outputs_over_inputs(framed, files.outputs_of(outputs, work.frame), &work.scene);
     LoadedGBuffer loaded = framed.load_described_gbuffer(work.scene);
     work.gbuffer = std::move(loaded.gbuffer);
     work.layout = std::move(loaded.layout);

@@ -5,7 +5,9 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
+#include <functional>
 #include <stdexcept>
 #include <string>
 #include <system_error>
@@ -32,12 +34,42 @@ fs::path directory_of(const fs::path& destination) {
   return destination.parent_path().empty() ? fs::path(".") : destination.parent_path();
 }
 
-// The temporary keeps the destination's extension: some writers look at it.
+// Room for the pid (up to 7 digits on Linux, 10 allowed) in a temporary's name.
+constexpr std::size_t kPidDigits = 10;
+
+std::size_t name_max(const fs::path& directory) {
+  const long limit = ::pathconf(directory.c_str(), _PC_NAME_MAX);
+  return limit > 0 ? static_cast<std::size_t>(limit) : 255;
+}
+
+// The temporary keeps the destination's extension: some writers look at it. Its name must fit
+// wherever the destination's does: a stem too long for ".<stem>.tmp<pid><ext>" is cut, and a hash
+// of the whole stem keeps two long names with one beginning apart.
 std::string temp_prefix(const fs::path& destination) {
+  const std::string stem = destination.stem().string(), extension = destination.extension().string();
+  const std::size_t fixed = 1 + 4 + kPidDigits + extension.size();  // ".", ".tmp", pid, extension
+  const std::size_t limit = name_max(directory_of(destination));
   std::string prefix(1, '.');  // appends, not "." + stem: GCC 12 warns a false -Wrestrict on that
-  prefix += destination.stem().string();
+  if (fixed + stem.size() <= limit) {
+    prefix += stem;
+  } else {
+    char hash[20];
+    std::snprintf(hash, sizeof hash, "~%016zx", std::hash<std::string>{}(stem));
+    const std::size_t room = limit > fixed + std::strlen(hash) ? limit - fixed - std::strlen(hash) : 0;
+    prefix += stem.substr(0, room);
+    prefix += hash;
+  }
   prefix += ".tmp";
   return prefix;
+}
+
+// A writer's message names the temporary it was given ("/proc/self/fd/5"); the user knows the
+// destination.
+std::string with_destination(std::string message, const fs::path& temp, const fs::path& destination) {
+  const std::string from = temp.string(), to = destination.string();
+  for (std::size_t at = message.find(from); at != std::string::npos; at = message.find(from, at + to.size()))
+    message.replace(at, from.size(), to);
+  return message;
 }
 
 fs::path named_temp(const fs::path& destination) {
@@ -87,13 +119,15 @@ void discard(AtomicBatch::Pending& pending) {
 AtomicBatch::Pending write_temporary(const fs::path& destination, const std::function<void(const fs::path&)>& write) {
   remove_stale_temporaries(destination);
   AtomicBatch::Pending pending{destination, open_unnamed(destination), {}};
+  const fs::path temp = pending.fd >= 0 ? fd_path(pending.fd) : named_temp(destination);
+  if (pending.fd < 0) pending.named = temp;
   try {
-    if (pending.fd >= 0) {
-      write(fd_path(pending.fd));
-    } else {
-      pending.named = named_temp(destination);
-      write(pending.named);
-    }
+    write(temp);
+  } catch (const std::exception& error) {
+    discard(pending);
+    const std::string message = error.what();
+    if (message.find(temp.string()) == std::string::npos) throw;
+    throw InputError(with_destination(message, temp, destination));
   } catch (...) {
     discard(pending);
     throw;

@@ -256,14 +256,20 @@ GBufferRead read_gbuffer(const std::filesystem::path& file, const ReadOptions& o
     if (sky > 0) read.description += ", " + std::to_string(sky) + " sky samples with a filtered normal as background";
     const CoverageSource coverage = estimate_coverage(g, alpha);
     if (coverage != CoverageSource::none) read.description += std::string(", coverage from ") + coverage_source_name(coverage);
-    const std::size_t repaired = repair_surface_edges(g);
-    if (repaired > 0) read.description += ", " + std::to_string(repaired) + " edge pixels between surfaces given their centre surface's normal";
+    read.edges_need_positions = read.needs_positions_from_depth();
+    if (!read.edges_need_positions) repair_edges(read);
   }
   if (material_read && every_surface_is_material_zero(g))
     read.warnings.push_back("every surface pixel has material index 0: pass indices were probably never set (in "
                             "Blender: each material's Pass Index), so every surface gets material 0's ka, kd, ks and "
                             "shininess");
   return read;
+}
+
+void repair_edges(GBufferRead& read) {
+  read.edges_need_positions = false;
+  const std::size_t repaired = repair_surface_edges(read.gbuffer);
+  if (repaired > 0) read.description += ", " + std::to_string(repaired) + " edge pixels between surfaces given their centre surface's normal";
 }
 
 GBuffer read_gbuffer(const std::filesystem::path& file) { return read_gbuffer(file, ReadOptions{}).gbuffer; }

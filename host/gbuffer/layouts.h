@@ -59,6 +59,9 @@ struct GBufferRead {
   std::string depth_convention_reason;                           // "Blender's Depth pass is view-space z"
   std::vector<std::string> warnings;                             // for the user: "every pixel has material 0 ..."
   std::string beauty;  // the source of gbuffer.beauty ("Combined"), empty when the file has none
+  // A renderer's file without positions: the repair of edges between surfaces (edge_policy.h)
+  // compares positions, so it waits for them (positions_from_depth of a GBufferRead runs it).
+  bool edges_need_positions = false;
 
   bool needs_positions_from_depth() const { return gbuffer.position[0].empty(); }
 };
@@ -70,5 +73,9 @@ struct GBufferRead {
 // material pass every other pixel gets material 0. Throws InputError naming the file, the missing
 // channels and the channels found.
 GBufferRead read_gbuffer(const std::filesystem::path& file, const ReadOptions& options);
+
+// The edge repair of a renderer's file (repair_surface_edges), once read.gbuffer has positions;
+// says how many pixels it repaired in read.description and clears edges_need_positions.
+void repair_edges(GBufferRead& read);
 
 }  // namespace phongcl

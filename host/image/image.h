@@ -56,6 +56,12 @@ struct DisplaySettings {
   double exposure_stops = 0.0;
   ToneMap tone_map = ToneMap::reinhard;
 };
+// Exposure within +-40 stops (a factor of 1e12 either way): beyond it the 8-bit steps of the
+// display curve fall outside float's range, and no image needs it.
+inline constexpr double kMaxExposureStops = 40.0;
+// Throws std::invalid_argument "exposure must be a finite number of stops in [-40, 40] (got nan)";
+// every front end checks its exposure with it before shading.
+void check_exposure(double stops);
 // 8-bit sRGB RGBA of the whole image (image/display_encoder.h: of rows, for many frames). NaN
 // displays as 0, +Inf as white.
 std::vector<std::uint8_t> display_rgba8(const Image& image, const DisplaySettings& display);

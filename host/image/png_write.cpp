@@ -1,6 +1,7 @@
 // 8-bit sRGB PNGs for looking at HDR results.
 #include <png.h>
 
+#include <cerrno>
 #include <cstdint>
 #include <cstring>
 #include <fstream>
@@ -35,6 +36,7 @@ std::string encode_png(const std::vector<std::uint8_t>& rgba, int width, int hei
 }
 
 void write_png(const Image& image, const std::filesystem::path& file, const DisplaySettings& display) {
+  check_exposure(display.exposure_stops);
   std::string bytes;
   try {
     bytes = encode_png(display_rgba8(image, display), image.width, image.height);
@@ -45,7 +47,7 @@ void write_png(const Image& image, const std::filesystem::path& file, const Disp
     std::ofstream stream(temp, std::ios::binary);
     stream.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
     stream.close();
-    if (!stream) throw InputError(file, "cannot write PNG");
+    if (!stream) throw InputError(temp, std::string("cannot write PNG: ") + std::strerror(errno));
   });
 }
 

@@ -30,4 +30,9 @@ void positions_from_depth(GBuffer& g, const Plane& depth, const Camera& camera, 
   }
 }
 
+void positions_from_depth(GBufferRead& read, const Camera& camera) {
+  positions_from_depth(read.gbuffer, read.depth, camera, read.depth_convention);
+  if (read.edges_need_positions) repair_edges(read);
+}
+
 }  // namespace phongcl

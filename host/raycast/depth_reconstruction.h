@@ -17,4 +17,8 @@ namespace phongcl {
 // (material < 0) get P = 0: their depth is often "infinitely far".
 void positions_from_depth(GBuffer& gbuffer, const Plane& depth, const Camera& camera, DepthConvention convention);
 
+// The same for a G-buffer as read (its depth pass and convention), then the edge repair that
+// waited for positions (GBufferRead::edges_need_positions).
+void positions_from_depth(GBufferRead& read, const Camera& camera);
+
 }  // namespace phongcl

@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <sstream>
 
 #include "common/error.h"
+#include "common/utf8.h"
 
 namespace phongcl {
 namespace {
@@ -14,7 +16,39 @@ std::string child_path(const std::string& parent, std::string_view key) {
   return parent.empty() ? std::string(key) : parent + "." + std::string(key);
 }
 
+// nlohmann's messages start with "[json.exception.parse_error.101] "; the rest (with line and
+// column for syntax errors) is what the user needs.
+std::string json_problem(const nlohmann::json::exception& error) {
+  const std::string what = error.what();
+  const std::size_t end_of_tag = what.find("] ");
+  return "invalid JSON: " + (end_of_tag == std::string::npos ? what : what.substr(end_of_tag + 2));
+}
+
+// Deeper documents are refused while parsing: the object reader recurses into transform children
+// and every value carries its path, so an unbounded depth would exhaust the stack (and memory).
+// 256 levels allow 127 nested transforms (each is an object inside a "children" array).
+constexpr int kMaxJsonDepth = 256;
+
 }  // namespace
+
+nlohmann::json parse_json(std::string_view json_text, const std::filesystem::path& source) {
+  // Before nlohmann sees it: its message would quote the bad bytes, which no JSON message can carry.
+  if (const auto bad = first_invalid_utf8(json_text)) {
+    char byte[8];
+    std::snprintf(byte, sizeof byte, "0x%02X", static_cast<unsigned char>(json_text[*bad]));
+    throw InputError(source, "invalid JSON: not UTF-8 (byte " + std::string(byte) + " at offset " + std::to_string(*bad) + ")");
+  }
+  const auto limit_depth = [&](int depth, nlohmann::json::parse_event_t, nlohmann::json&) {
+    if (depth > kMaxJsonDepth)
+      throw InputError(source, "invalid JSON: nested deeper than " + std::to_string(kMaxJsonDepth) + " levels");
+    return true;
+  };
+  try {
+    return nlohmann::json::parse(json_text, limit_depth);
+  } catch (const nlohmann::json::exception& error) {
+    throw InputError(source, json_problem(error));
+  }
+}
 
 std::string format_number(double value) {
   std::ostringstream text;

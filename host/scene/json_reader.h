@@ -16,6 +16,10 @@ namespace phongcl {
 
 class JsonObject;
 
+// A JSON document, or a one-line InputError naming `source`: text that is not UTF-8 (the first
+// bad byte and its offset), a syntax error (line and column), nesting deeper than 256 levels.
+nlohmann::json parse_json(std::string_view json_text, const std::filesystem::path& source);
+
 // "1e+39", "-0.5": numbers as messages quote them.
 std::string format_number(double value);
 

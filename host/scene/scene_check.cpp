@@ -17,7 +17,7 @@ void require(bool ok, const std::string& entry, const char* problem) {
 
 }  // namespace
 
-void check_lights(const std::vector<Light>& lights) {
+void check_lights(const std::vector<Light>& lights, std::size_t material_count) {
   for (std::size_t i = 0; i < lights.size(); ++i) {
     const Light& light = lights[i];
     const std::string entry = "lights[" + std::to_string(i) + "]";
@@ -36,7 +36,10 @@ void check_lights(const std::vector<Light>& lights) {
               entry + ".penumbra_angle_deg", "must be >= 0 with cone_angle_deg/2 + penumbra_angle_deg <= 90");
     }
     if (light.materials)
-      for (int material : *light.materials) require(material >= 0, entry + ".materials", "must be indices >= 0");
+      for (int material : *light.materials)
+        if (material < 0 || static_cast<std::size_t>(material) >= material_count)
+          throw std::invalid_argument(entry + ".materials: material index " + std::to_string(material) +
+                                      " is out of range (the scene has " + std::to_string(material_count) + " materials)");
   }
 }
 

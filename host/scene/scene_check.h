@@ -6,13 +6,16 @@
 #include <string_view>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "scene/scene.h"
 
 namespace phongcl {
 
 // Throws std::invalid_argument naming the entry ("lights[2].color: must be finite and >= 0") for
-// non-finite values, negative colours or shininess, or a zero direction.
-void check_lights(const std::vector<Light>& lights);
+// non-finite values, negative colours or shininess, a zero direction, or a linked material index
+// not below `material_count` (the rules the scene file's reader applies, for lights built in code).
+void check_lights(const std::vector<Light>& lights, std::size_t material_count);
 void check_material_table(const std::vector<Material>& materials);
 
 // `json_text` is an array like the scene file's "lights" or "materials"; InputError names `source`.
@@ -20,5 +23,12 @@ void check_material_table(const std::vector<Material>& materials);
 std::vector<Light> parse_lights(std::string_view json_text, const std::filesystem::path& source,
                                 std::size_t material_count = std::numeric_limits<int>::max());
 std::vector<Material> parse_materials(std::string_view json_text, const std::filesystem::path& source);
+
+// The same from documents already in memory (Python's dicts and lists, converted without text, so
+// that a NaN reaches the reader as a number and is refused as one). The scene file's checks apply.
+Scene read_scene(const nlohmann::json& document, const std::filesystem::path& source);
+std::vector<Light> read_lights(const nlohmann::json& document, const std::filesystem::path& source,
+                               std::size_t material_count = std::numeric_limits<int>::max());
+std::vector<Material> read_materials(const nlohmann::json& document, const std::filesystem::path& source);
 
 }  // namespace phongcl

@@ -152,37 +152,13 @@ std::filesystem::path read_gbuffer_path(const JsonValue& value, const std::files
   return path.is_absolute() ? path : source.parent_path() / path;
 }
 
-// nlohmann's messages start with "[json.exception.parse_error.101] "; the rest (with line and
-// column for syntax errors) is what the user needs.
-std::string json_problem(const nlohmann::json::exception& error) {
-  const std::string what = error.what();
-  const std::size_t end_of_tag = what.find("] ");
-  return "invalid JSON: " + (end_of_tag == std::string::npos ? what : what.substr(end_of_tag + 2));
-}
-
-// Deeper documents are refused while parsing: the object reader recurses into transform children
-// and every value carries its path, so an unbounded depth would exhaust the stack (and memory).
-// 256 levels allow 127 nested transforms (each is an object inside a "children" array).
-constexpr int kMaxJsonDepth = 256;
-
-nlohmann::json parse_document(std::string_view json_text, const std::filesystem::path& source) {
-  const auto limit_depth = [&](int depth, nlohmann::json::parse_event_t, nlohmann::json&) {
-    if (depth > kMaxJsonDepth)
-      throw InputError(source, "invalid JSON: nested deeper than " + std::to_string(kMaxJsonDepth) + " levels");
-    return true;
-  };
-  try {
-    return nlohmann::json::parse(json_text, limit_depth);
-  } catch (const nlohmann::json::exception& error) {
-    throw InputError(source, json_problem(error));
-  }
-}
-
 }  // namespace
 
 Scene parse_scene(std::string_view json_text, const std::filesystem::path& source) {
-  const nlohmann::json document = parse_document(json_text, source);
+  return read_scene(parse_json(json_text, source), source);
+}
 
+Scene read_scene(const nlohmann::json& document, const std::filesystem::path& source) {
   const JsonObject top = JsonValue(document, "", source).object();
   top.expect_keys({"camera", "background", "ambient", "lights", "materials", "objects", "gbuffer"});
   Scene scene;
@@ -228,15 +204,22 @@ Scene load_scene(const std::filesystem::path& file) {
 
 std::vector<Light> parse_lights(std::string_view json_text, const std::filesystem::path& source,
                                 std::size_t material_count) {
-  const nlohmann::json document = parse_document(json_text, source);
+  return read_lights(parse_json(json_text, source), source, material_count);
+}
+
+std::vector<Material> parse_materials(std::string_view json_text, const std::filesystem::path& source) {
+  return read_materials(parse_json(json_text, source), source);
+}
+
+std::vector<Light> read_lights(const nlohmann::json& document, const std::filesystem::path& source,
+                               std::size_t material_count) {
   std::vector<Light> lights;
   for (const JsonValue& light : JsonValue(document, "lights", source).elements())
     lights.push_back(read_light(light, material_count));
   return lights;
 }
 
-std::vector<Material> parse_materials(std::string_view json_text, const std::filesystem::path& source) {
-  const nlohmann::json document = parse_document(json_text, source);
+std::vector<Material> read_materials(const nlohmann::json& document, const std::filesystem::path& source) {
   std::vector<Material> materials;
   for (const JsonValue& material : JsonValue(document, "materials", source).elements())
     materials.push_back(read_material(material));

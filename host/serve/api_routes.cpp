@@ -1,6 +1,8 @@
 #include "serve/api_routes.h"
 
+#include <cerrno>
 #include <chrono>
+#include <cstring>
 #include <fstream>
 
 #include <nlohmann/json.hpp>
@@ -18,17 +20,17 @@ namespace {
 using nlohmann::json;
 using Clock = std::chrono::steady_clock;
 
-// The first frame can include a kernel build of several seconds on a busy machine.
-constexpr std::chrono::seconds kFrameTimeout{120};
-constexpr long long kMaxPollMs = 60'000;
-
 double elapsed_ms(Clock::time_point since) {
   return std::chrono::duration<double, std::milli>(Clock::now() - since).count();
 }
 
+// Text from requests and files (paths, parameter names) may be any bytes: invalid UTF-8 becomes
+// U+FFFD rather than an exception from nlohmann.
+std::string json_text(const json& body) { return body.dump(-1, ' ', false, json::error_handler_t::replace) + "\n"; }
+
 void send_json(httplib::Response& response, const json& body, int status = 200) {
   response.status = status;
-  response.set_content(body.dump() + "\n", "application/json");
+  response.set_content(json_text(body), "application/json");
 }
 
 ToneMap parse_tone_map(const std::string& name) {
@@ -62,7 +64,33 @@ const std::vector<std::string_view> kBeautyParameters{"format", "width", "exposu
 const std::vector<std::string_view> kImageParameters{"format", "width", "exposure", "tonemap", "aov"};
 const std::vector<std::string_view> kPollParameters{"format", "width", "exposure", "tonemap", "aov", "after", "timeout_ms"};
 
-Term requested_term(const Query& query) { return parse_term(query.text("aov").value_or("combined")); }
+}  // namespace
+
+// What a request asks of an image, read whole from its query before it waits for a frame.
+struct ImageRequest {
+  std::string format_name;
+  ImageFormat format;
+  DisplaySettings display;
+  int width;
+  Term term;
+};
+
+namespace {
+
+ImageRequest image_request(const Query& query, int image_width) {
+  ImageRequest wanted;
+  wanted.format_name = query.text("format").value_or("png");
+  try {
+    wanted.format = parse_image_format(wanted.format_name);
+  } catch (const std::invalid_argument& error) {
+    throw BadRequest(std::string("parameter 'format': ") + error.what());
+  }
+  wanted.display.exposure_stops = query.number("exposure", -kMaxExposureStops, kMaxExposureStops, 0.0);
+  wanted.display.tone_map = parse_tone_map(query.text("tonemap").value_or("reinhard"));
+  wanted.width = static_cast<int>(query.integer("width", 1, image_width, image_width));
+  wanted.term = parse_term(query.text("aov").value_or("combined"));
+  return wanted;
+}
 
 json timings_json(const FrameTimings& t) {
   return {{"build_ms", t.build_ms}, {"kernel_ms", t.kernel_ms}, {"transfer_ms", t.transfer_ms}, {"shade_ms", t.shade_ms}};
@@ -71,13 +99,8 @@ json timings_json(const FrameTimings& t) {
 json vec3_json(const glm::dvec3& v) { return json::array({v.x, v.y, v.z}); }
 
 RenderSettings parse_settings(const std::string& body, RenderSettings settings) {
-  json document;
-  try {
-    document = json::parse(body);
-  } catch (const json::exception& error) {
-    throw BadRequest(std::string("settings: invalid JSON: ") + error.what());
-  }
   const std::filesystem::path source = "settings";
+  const json document = parse_json(body, source);
   const JsonObject object = JsonValue(document, "", source).object();
   object.expect_keys({"precision", "specialise", "shadows", "shadow_steps", "shadow_thickness"});
   if (auto value = object.find("precision")) {
@@ -113,17 +136,27 @@ json settings_json(const RenderSettings& settings) {
 
 }  // namespace
 
-std::string error_json(const std::string& message) { return json{{"error", message}}.dump() + "\n"; }
+std::string error_json(const std::string& message) { return json_text({{"error", message}}); }
 
 void ApiRoutes::add_to(httplib::Server& server) {
   auto route = [this](void (ApiRoutes::*handler)(const httplib::Request&, httplib::Response&)) {
     return [this, handler](const httplib::Request& request, httplib::Response& response) {
+      // Nothing leaves a handler: whatever a request sends, the server answers it and goes on.
       try {
         (this->*handler)(request, response);
       } catch (const BadRequest& error) {
         send_json(response, {{"error", error.what()}}, 400);
       } catch (const InputError& error) {
         send_json(response, {{"error", error.what()}}, 400);
+      } catch (const Unavailable& error) {
+        response.set_header("Retry-After", "1");
+        send_json(response, {{"error", error.what()}}, 503);
+      } catch (const ServerError& error) {
+        send_json(response, {{"error", error.what()}}, 500);
+      } catch (const std::exception& error) {
+        send_json(response, {{"error", std::string("internal error: ") + error.what()}}, 500);
+      } catch (...) {
+        send_json(response, {{"error", "internal error"}}, 500);
       }
     };
   };
@@ -164,67 +197,73 @@ void ApiRoutes::put_settings(const httplib::Request& request, httplib::Response&
   send_json(response, settings_json(settings));
 }
 
+ApiRoutes::WaitingPlace::WaitingPlace(ApiRoutes& routes) : routes_(routes) {
+  std::lock_guard lock(routes_.waiting_mutex_);
+  const std::size_t limit = routes_.options_.limits.max_waiting;
+  if (routes_.waiting_ >= limit)
+    throw Unavailable("too many requests waiting for frames (" + std::to_string(limit) + "): try again");
+  ++routes_.waiting_;
+}
+
+ApiRoutes::WaitingPlace::~WaitingPlace() {
+  std::lock_guard lock(routes_.waiting_mutex_);
+  --routes_.waiting_;
+}
+
 void ApiRoutes::get_image(const httplib::Request& request, httplib::Response& response) {
-  const Query query(request, kImageParameters);
-  const auto frame = live_.current_frame(requested_term(query) != Term::combined, kFrameTimeout);
+  const ImageRequest wanted = image_request(Query(request, kImageParameters), live_.session().width());
+  const WaitingPlace place(*this);
+  const auto frame = live_.current_frame(wanted.term != Term::combined, options_.frame_timeout);
   if (!frame) return send_json(response, {{"error", "no frame within the time limit (server busy or stopping)"}}, 503);
-  send_frame(query, *frame, response);
+  send_frame(wanted, *frame, response);
 }
 
 void ApiRoutes::get_frame(const httplib::Request& request, httplib::Response& response) {
   const Query query(request, kPollParameters);
+  const ImageRequest wanted = image_request(query, live_.session().width());
   const auto after = static_cast<std::uint64_t>(query.integer("after", 0, std::numeric_limits<long long>::max(), 0));
-  const auto timeout = std::chrono::milliseconds(query.integer("timeout_ms", 0, kMaxPollMs, 20'000));
-  const auto frame = live_.wait_for_frame(after, requested_term(query) != Term::combined, timeout);
+  const auto timeout = std::chrono::milliseconds(
+      query.integer("timeout_ms", 0, options_.max_poll.count(), std::min<long long>(20'000, options_.max_poll.count())));
+  const WaitingPlace place(*this);
+  const auto frame = live_.wait_for_frame(after, wanted.term != Term::combined, timeout);
   if (!frame) {
     response.status = 204;  // nothing newer yet: poll again
     return;
   }
-  send_frame(query, *frame, response);
+  send_frame(wanted, *frame, response);
 }
 
 void ApiRoutes::get_beauty(const httplib::Request& request, httplib::Response& response) {
-  const Query query(request, kBeautyParameters);
+  const ImageRequest wanted = image_request(Query(request, kBeautyParameters), live_.session().width());
   const Image* beauty = live_.session().beauty();
   if (!beauty)
     return send_json(response, {{"error", "the G-buffer file has no beauty pass (the renderer's own image, e.g. Blender's Combined)"}}, 404);
-  send_image(query, *beauty, response);
+  send_image(wanted, *beauty, response);
 }
 
-void ApiRoutes::send_frame(const Query& query, const RenderedFrame& frame, httplib::Response& response) {
-  const Term term = requested_term(query);
+void ApiRoutes::send_frame(const ImageRequest& wanted, const RenderedFrame& frame, httplib::Response& response) {
   response.set_header("X-Frame-Version", std::to_string(frame.version));
   response.set_header("X-Scene-Version", std::to_string(frame.scene_version));
   if (!frame.error.empty()) return send_json(response, {{"error", frame.error}}, 422);
   response.set_header("X-Shade-Ms", format_number(frame.frame.timings.shade_ms));
   response.set_header("X-Kernel-Ms", format_number(frame.frame.timings.kernel_ms));
-  send_image(query, term_image(frame.frame, term), response);
+  send_image(wanted, term_image(frame.frame, wanted.term), response);
 }
 
-// The image in the query's format, display settings and width.
-void ApiRoutes::send_image(const Query& query, const Image& image, httplib::Response& response) {
-  const std::string format_name = query.text("format").value_or("png");
-  ImageFormat format;
-  try {
-    format = parse_image_format(format_name);
-  } catch (const std::invalid_argument& error) {
-    throw BadRequest(std::string("parameter 'format': ") + error.what());
-  }
-  DisplaySettings display;
-  display.exposure_stops = query.number("exposure", -40.0, 40.0, 0.0);
-  display.tone_map = parse_tone_map(query.text("tonemap").value_or("reinhard"));
-  const int width = static_cast<int>(query.integer("width", 1, image.width, image.width));
+// The image in the request's format, display settings and width.
+void ApiRoutes::send_image(const ImageRequest& wanted, const Image& image, httplib::Response& response) {
   const Clock::time_point start = Clock::now();
-  const std::string bytes = width == image.width ? encode_image(image, format, display)
-                                                 : encode_image(scale_to_width(image, width), format, display);
+  const std::string bytes = wanted.width == image.width
+                                ? encode_image(image, wanted.format, wanted.display)
+                                : encode_image(scale_to_width(image, wanted.width), wanted.format, wanted.display);
   const double encode_ms = elapsed_ms(start);
   {
     std::lock_guard lock(encode_mutex_);
-    last_encode_ms_[format_name] = encode_ms;
+    last_encode_ms_[wanted.format_name] = encode_ms;
   }
   response.set_header("X-Encode-Ms", format_number(encode_ms));
   response.set_header("Cache-Control", "no-store");
-  response.set_content(bytes, content_type(format));
+  response.set_content(bytes, content_type(wanted.format));
 }
 
 void ApiRoutes::get_stats(const httplib::Request& request, httplib::Response& response) {
@@ -276,12 +315,17 @@ void ApiRoutes::post_save(const httplib::Request& request, httplib::Response& re
   if (options_.save_path.empty())
     return send_json(response, {{"error", "no --save path: start phongcl serve with --save FILE to save on the server"}}, 409);
   const SceneSnapshot scene = live_.scene();
-  write_atomically(options_.save_path, [&](const std::filesystem::path& temp) {
-    std::ofstream stream(temp, std::ios::binary);
-    stream << scene.json;
-    stream.close();
-    if (!stream) throw InputError(options_.save_path, "cannot write");
-  });
+  // The request was fine: a failed write is the server's problem (500), with the reason.
+  try {
+    write_atomically(options_.save_path, [&](const std::filesystem::path& temp) {
+      std::ofstream stream(temp, std::ios::binary);
+      stream << scene.json;
+      stream.close();
+      if (!stream) throw InputError(temp, std::string("cannot write: ") + std::strerror(errno));
+    });
+  } catch (const std::exception& error) {
+    throw ServerError(std::string("save failed: ") + error.what());
+  }
   send_json(response, {{"saved", options_.save_path.string()}, {"bytes", scene.json.size()}, {"scene_version", scene.scene_version}});
 }
 

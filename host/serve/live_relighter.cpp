@@ -1,5 +1,7 @@
 #include "serve/live_relighter.h"
 
+#include <malloc.h>
+
 #include <algorithm>
 #include <exception>
 
@@ -12,6 +14,7 @@ namespace phongcl {
 namespace {
 
 constexpr std::chrono::seconds kFpsWindow{2};
+constexpr std::size_t kLargeSceneBytes = 1u << 20;  // scenes of tens of thousands of materials
 
 // The document is kept as sent (keys this program does not know survive for later readers),
 // normalised to one pretty-printed form.
@@ -125,11 +128,13 @@ void LiveRelighter::render_loop() {
   for (;;) {
     auto frame = std::make_shared<RenderedFrame>();
     Scene scene;
+    bool large_scene = false;
     {
       std::unique_lock lock(mutex_);
       state_changed_.wait(lock, [&] { return stopping_ || (version_ > rendered && (latest_taken_ || waiting_ > 0)); });
       if (stopping_) return;
       scene = scene_;
+      large_scene = scene_json_.size() >= kLargeSceneBytes;
       frame->version = version_;
       frame->scene_version = scene_version_;
       frame->settings = settings_;
@@ -141,6 +146,11 @@ void LiveRelighter::render_loop() {
       frame->error = error.what();
     }
     frame->finished = std::chrono::steady_clock::now();
+    scene = Scene();
+    // The copies a large scene's frame made (its tables, this thread's scene) are free now: back
+    // to the system, or this thread's malloc arena keeps them (RoutedServer::answer does the same
+    // for the request threads).
+    if (large_scene) ::malloc_trim(0);
     rendered = frame->version;
     std::lock_guard lock(mutex_);
     latest_ = std::move(frame);

@@ -2,19 +2,15 @@
 // Reading a request's query string strictly: unknown parameters, malformed numbers and values out
 // of range are errors (BadRequest, which the server answers with 400 and the message).
 #include <optional>
-#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include <httplib.h>
 
-namespace phongcl {
+#include "serve/http_errors.h"
 
-class BadRequest : public std::invalid_argument {
- public:
-  using std::invalid_argument::invalid_argument;
-};
+namespace phongcl {
 
 class Query {
  public:

@@ -1,30 +1,31 @@
 #pragma once
 // `phongcl serve`'s HTTP server: the page (web/, embedded) and the JSON/image API over a
-// LiveRelighter. README "Interactive relighting" lists the endpoints.
-#include <cstddef>
+// LiveRelighter. README "Interactive relighting" lists the endpoints; serve/http_limits.h says
+// what one client may hold.
+#include <chrono>
 #include <filesystem>
 #include <memory>
 #include <string>
 
+#include "serve/connection_room.h"
+#include "serve/http_limits.h"
 #include "serve/live_relighter.h"
-
-namespace httplib {
-class Server;
-}
 
 namespace phongcl {
 
 class ApiRoutes;
+class RoutedServer;
 
 struct ServeOptions {
   std::string host = "127.0.0.1";
   int port = 8080;                  // 0: any free port (bind() says which)
   std::filesystem::path save_path;  // POST /api/save writes the scene here; empty: refused
   std::string device;               // the device's description, for /api/stats
+  HttpLimits limits;
+  // The longest a request waits for a frame: an image of the state not yet shaded (the first
+  // frame can include a kernel build of several seconds on a busy machine), a long poll.
+  std::chrono::milliseconds frame_timeout{120'000}, max_poll{60'000};
 };
-
-// Request bodies larger than this are refused with 413: a scene file is kilobytes.
-inline constexpr std::size_t kMaxRequestBytes = 8u << 20;
 
 class RelightServer {
  public:
@@ -32,16 +33,21 @@ class RelightServer {
   ~RelightServer();
   // Binds the listening socket; returns the port. Throws std::runtime_error when it cannot.
   int bind();
-  // Serves until stop(); call bind() first.
+  // Serves until stop(); call bind() first. Returns once every connection is closed: at most
+  // HttpLimits::stop_time after stop() for responses in flight.
   void run();
   // Wakes waiting requests and makes run() return; safe from any thread, idempotent.
   void stop();
+  // Answers one request whole (as the connection room hands it to a worker), without a socket:
+  // the HTTP fuzzer's way in. Never throws.
+  void answer(Exchange& exchange);
+  RoomCounters counters() const;
 
  private:
   LiveRelighter& live_;
   ServeOptions options_;
-  std::unique_ptr<httplib::Server> http_;
   std::unique_ptr<ApiRoutes> api_;
+  std::unique_ptr<RoutedServer> http_;
 };
 
 }  // namespace phongcl

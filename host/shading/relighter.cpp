@@ -31,6 +31,15 @@ ShadeOptions shade_options(const RelighterOptions& options) {
 
 }  // namespace
 
+void check_options(const RelighterOptions& options) {
+  const int lanes = options.lanes;
+  if (lanes != 0 && lanes != 1 && lanes != 2 && lanes != 4 && lanes != 8 && lanes != 16)
+    throw std::invalid_argument("lanes must be 0 (the device's choice), 1, 2, 4, 8 or 16 (got " + std::to_string(lanes) + ")");
+  if (options.tile_size < 1 || options.tile_size > 1024)
+    throw std::invalid_argument("tile size must be in [1, 1024] pixels (got " + std::to_string(options.tile_size) + ")");
+  check_shadow_settings(options.shadows);
+}
+
 struct Relighter::State {
   explicit State(const RelighterOptions& options)
       : options(shade_options(options)),
@@ -76,13 +85,18 @@ Relighter::Relighter(const Scene& scene, GBuffer&& gbuffer, const RelighterOptio
   set_frame(scene, std::move(gbuffer));
 }
 
-Relighter::Relighter(const RelighterOptions& options) : state_(std::make_unique<State>(options)) {}
+Relighter::Relighter(const RelighterOptions& options) {
+  check_options(options);
+  state_ = std::make_unique<State>(options);
+}
 
 Relighter::~Relighter() = default;
 Relighter::Relighter(Relighter&&) noexcept = default;
 Relighter& Relighter::operator=(Relighter&&) noexcept = default;
 
 void Relighter::set_frame(const Scene& scene, GBuffer&& gbuffer) {
+  check_material_table(scene.materials);
+  check_lights(scene.lights, scene.materials.size());
   const std::lock_guard lock(state_->mutex);
   phongcl::check_materials(gbuffer, scene.materials.size());
   Recipe recipe = state_->recipe_for(scene, gbuffer);
@@ -93,9 +107,9 @@ void Relighter::set_frame(const Scene& scene, GBuffer&& gbuffer) {
 }
 
 void Relighter::set_lights(const std::vector<Light>& lights) {
-  check_lights(lights);
   const std::lock_guard lock(state_->mutex);
   State::Frame& frame = state_->frame();
+  check_lights(lights, frame.scene.materials.size());
   Scene next = frame.scene;
   next.lights = lights;
   frame.recipe = state_->recipe_for(next, frame.gbuffer);  // the light counts are compiled in

@@ -19,8 +19,10 @@ struct ReferenceArguments {
 };
 
 void run_reference(const ReferenceArguments& args) {
+  refuse_outputs_over_inputs(args.inputs, args.outputs);
   args.outputs.check_destinations();
   const Scene scene = args.inputs.load_scene();
+  if (args.inputs.gbuffer_file.empty()) refuse_outputs_over_inputs(args.inputs, args.outputs, &scene);
   const GBuffer gbuffer = args.inputs.load_gbuffer(scene);
   check_materials(gbuffer, scene.materials.size());
   const auto start = std::chrono::steady_clock::now();

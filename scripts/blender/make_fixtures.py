@@ -1,10 +1,12 @@
 """Makes the Blender fixtures of tests/fixtures/blender/ (docs/formats.md "Renderers' G-buffers"):
 
     blender -b --factory-startup --python scripts/blender/make_fixtures.py -- --out tests/fixtures/blender
-        [--width 64 --height 48]
+        [--width 64 --height 48] [--only cycles_depth.exr,...]
 
 A sphere, a cube and a ground plane under a point light and a sun, sky above the horizon, rendered as
   cycles.exr       Cycles multilayer render (Position, Normal, Depth, IndexMA, DiffCol, GlossCol), opaque film
+  cycles_depth.exr Cycles with Blender's default passes plus Normal, IndexMA, DiffCol, GlossCol: no Position
+                   (positions are rebuilt from Depth), 4 samples
   file_output.exr  the same passes through a compositor File Output node (no view-layer prefix)
   eevee.exr        EEVEE: Depth, Normal, DiffCol, GlossCol (no position, no material pass)
   transparent.exr  Cycles with a transparent film and pass indices never set (all 0)
@@ -110,32 +112,37 @@ def add_file_output(scene, directory):
     return os.path.join(directory, "file_output_[0-9]*")
 
 
-def output_arguments(prog, width, height):
-    """--out DIR (made if missing) and the image size, from the arguments after Blender's "--"."""
+def output_arguments(prog, width, height, only=False):
+    """--out DIR (made if missing) and the image size, from the arguments after Blender's "--"; with
+    only, also --only."""
     parser = argparse.ArgumentParser(prog=prog)
     parser.add_argument("--out", required=True)
     parser.add_argument("--width", type=int, default=width)
     parser.add_argument("--height", type=int, default=height)
+    if only:
+        parser.add_argument("--only", help="comma-separated fixture names to make (default: all); the others are left as they are")
     args = parser.parse_args(sys.argv[sys.argv.index("--") + 1:])
     args.out = os.path.abspath(args.out)
     os.makedirs(args.out, exist_ok=True)
     return args
 
 
-def main():
-    args = output_arguments("make_fixtures.py", 64, 48)
-    out = args.out
-
-    scene = build_scene(args.width, args.height)
+def make_scene_json(scene, out):
     export_scene.enable_passes(bpy.context.view_layer)
     export_scene.write_json(export_scene.scene_json(scene), os.path.join(out, "scene.json"))
 
+
+def make_cycles_and_file_output(scene, out):
+    export_scene.enable_passes(bpy.context.view_layer)
     pattern = add_file_output(scene, out)
     render(scene, os.path.join(out, "cycles.exr"))
     written = glob.glob(pattern)
     shutil.move(written[0], os.path.join(out, "file_output.exr"))
     scene.use_nodes = False
 
+
+def make_supersampled(scene, out):
+    export_scene.enable_passes(bpy.context.view_layer)
     scene.cycles.pixel_filter_type, scene.cycles.filter_width, scene.cycles.samples = "BOX", 0.01, 1
     scene.render.resolution_percentage = 400
     bpy.context.view_layer.use_pass_glossy_color = False  # not needed there; keeps the file small
@@ -144,18 +151,61 @@ def main():
     scene.cycles.pixel_filter_type, scene.cycles.filter_width, scene.cycles.samples = "BLACKMAN_HARRIS", 1.5, 16
     scene.render.resolution_percentage = 100
 
+
+def make_transparent(scene, out):
+    export_scene.enable_passes(bpy.context.view_layer)
+    pass_indices = [m.pass_index for m in bpy.data.materials]
     scene.render.film_transparent = True
     for m in bpy.data.materials:
         m.pass_index = 0
     render(scene, os.path.join(out, "transparent.exr"))
     scene.render.film_transparent = False
+    for m, index in zip(bpy.data.materials, pass_indices):
+        m.pass_index = index
 
+
+def make_cycles_depth(scene, out):
+    """Position is off by default in Blender: positions come from Depth and the camera."""
+    export_scene.enable_passes(bpy.context.view_layer, position=False)
+    bpy.context.view_layer.use_pass_position = False
+    samples = scene.cycles.samples
+    scene.cycles.samples = 4
+    render(scene, os.path.join(out, "cycles_depth.exr"))
+    scene.cycles.samples = samples
+
+
+def make_eevee(scene, out):
     scene.render.engine = "BLENDER_EEVEE"
     scene.eevee.taa_render_samples = 16
     view_layer = bpy.context.view_layer
     view_layer.use_pass_position = False
     view_layer.use_pass_material_index = False
     render(scene, os.path.join(out, "eevee.exr"))
+    scene.render.engine = "CYCLES"
+
+
+# In the order `main` makes them all (EEVEE last: it changes the engine).
+MAKERS = {
+    "scene.json": make_scene_json,
+    "cycles.exr": make_cycles_and_file_output,  # and file_output.exr
+    "supersampled.exr": make_supersampled,
+    "transparent.exr": make_transparent,
+    "cycles_depth.exr": make_cycles_depth,
+    "eevee.exr": make_eevee,
+}
+
+
+def main():
+    args = output_arguments("make_fixtures.py", 64, 48, only=True)
+    out = args.out
+
+    scene = build_scene(args.width, args.height)
+    if args.only:
+        for name in args.only.split(","):
+            MAKERS[name](scene, out)
+        return
+    for make in MAKERS.values():
+        make(scene, out)
 
 
 if __name__ == "__main__":
