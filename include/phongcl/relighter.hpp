@@ -36,8 +36,9 @@ struct RelighterOptions {
 };
 
 // Throws std::invalid_argument naming the option for a value no device takes: lanes other than 0,
-// 1, 2, 4, 8 or 16; tile_size outside [1, 1024]; shadow settings out of range. The Relighter checks its options with it, and
-// front ends call it before reading any input, so every one refuses the same values alike.
+// 1, 2, 4, 8 or 16; tile_size outside [1, 1024]; shadow steps or thickness out of range. The
+// Relighter checks its options with it, and front ends call it before reading any input, so every
+// one refuses the same values alike.
 void check_options(const RelighterOptions& options);
 
 class Relighter {
