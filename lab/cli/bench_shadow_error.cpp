@@ -138,7 +138,7 @@ std::vector<ShadowSceneResult> run_shadow_error_bench(const BenchArguments& args
     std::cout << "  scene      " << scene.name << ", " << scene.gbuffer.width << "x" << scene.gbuffer.height << "..."
               << std::flush;
     results.push_back(measure(shader, scene, args.runs));
-    std::cout << " " << results.back().geometry << "\n";
+    std::cout << " " << results.back().geometry << "\n\n" << shadow_error_table(results.back()) << "\n";
   }
   return results;
 }

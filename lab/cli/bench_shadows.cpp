@@ -15,9 +15,6 @@ void run_shadows_bench(const BenchArguments& args) {
   std::cout << "phongcl bench --shadows (" << args.runs << " timed runs per variant after one warm-up)\n";
   const std::vector<ShadowSceneResult> scenes = run_shadow_error_bench(args, scratch.path());
   const ShadowRaysResult rays = run_shadow_rays_bench(args, scratch.path());
-  for (const ShadowSceneResult& scene : scenes)
-    std::cout << "\n" << scene.name << ", " << scene.width << "x" << scene.height << ": " << scene.geometry << "\n\n"
-              << shadow_error_table(scene);
   std::cout << "\nShadow rays: " << rays.rays << " rays on " << rays.triangles << " triangles; " << rays.device << "; "
             << rays.embree << "\n\n" << shadow_rays_table(rays);
   if (!args.report_dir.empty()) std::cout << "\n  wrote      " << write_shadow_report(args.report_dir, scenes, rays) << "\n";
