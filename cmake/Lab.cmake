@@ -13,6 +13,15 @@ phongcl_lab_room(stability DEPS phongcl_reference phongcl_report)
 add_library(phongcl_lab INTERFACE)
 target_link_libraries(phongcl_lab INTERFACE phongcl_reference phongcl_report phongcl_peers phongcl_stability)
 
+# The Embree peer of the shadow rays (optional, as the Halide peer is: without libembree-dev its rows
+# say SKIP). PHONGCL_HAVE_EMBREE tells the lab's commands and tests it is there.
+find_package(embree 3 CONFIG QUIET)
+if(embree_FOUND)
+  phongcl_lab_room(embree DEPS phongcl_peers embree OpenMP::OpenMP_CXX)
+  target_compile_definitions(phongcl_embree PUBLIC PHONGCL_HAVE_EMBREE)
+  target_link_libraries(phongcl_lab INTERFACE phongcl_embree)
+endif()
+
 # phongcl-lab: reference, compare, bench, stability. `phongcl` hands those commands to it.
 file(GLOB PHONGCL_LAB_CLI_SOURCES CONFIGURE_DEPENDS lab/cli/*.cpp)
 add_executable(phongcl-lab ${PHONGCL_LAB_CLI_SOURCES})

@@ -6,8 +6,11 @@ phongcl_room(scene    DEPS phongcl_common glm::glm nlohmann_json::nlohmann_json)
 phongcl_room(gbuffer  DEPS phongcl_common phongcl_exr)
 phongcl_room(image    DEPS phongcl_common phongcl_exr PNG::PNG)
 phongcl_room(cl       DEPS phongcl_common phongcl_opencl phongcl_kernels)
-phongcl_room(shading  DEPS phongcl_cl phongcl_scene phongcl_gbuffer phongcl_image phongcl_kernels OpenMP::OpenMP_CXX)
-phongcl_room(raycast  DEPS phongcl_scene phongcl_gbuffer)
+# Shadow geometry: meshes read with Assimp, the scene flattened into world space, the BVH and its
+# device layout (kernels/shadow_layout.h).
+phongcl_room(geometry DEPS phongcl_scene phongcl_kernels assimp::assimp)
+phongcl_room(shading  DEPS phongcl_cl phongcl_scene phongcl_gbuffer phongcl_image phongcl_geometry phongcl_kernels OpenMP::OpenMP_CXX)
+phongcl_room(raycast  DEPS phongcl_scene phongcl_gbuffer phongcl_geometry)
 phongcl_room(color    DEPS phongcl_image phongcl_scene phongcl_gbuffer PkgConfig::OCIO OpenMP::OpenMP_CXX)
 # The display transforms' AVX2 loops, chosen at run time where the CPU has AVX2 and FMA
 # (host/color/pixel_kernels.h): the rest of the product stays baseline x86-64. Multiply-adds are fused

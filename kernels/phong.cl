@@ -4,6 +4,8 @@
  * shade_pixel() is that formula. What one light adds is add_point_light() or add_directional_light(),
  * its F_i (falloff, range, cone, linking) light_shape.h's, the specular lobe specular.h's; the tuned
  * arithmetic (robust normalisation, the power, compensated sums, streaming stores) is phong_math.h's.
+ * With SHADOWS a light that casts shadows is multiplied by its visibility (shadow.h: a ray traced
+ * against the scene's geometry, or with SCREEN_SHADOWS marched across the frame's depth plane).
  * Only what the scene needs is compiled in: the host's recipe defines every flag of features.h.
  * Every buffer is planar with frame.plane_stride values per plane, a multiple of PHONGCL_LANES (the
  * host pads each tile with background pixels).
@@ -13,6 +15,7 @@
 #include "light_shape.h"
 #include "material.h"
 #include "phong_math.h"
+#include "shadow.h"
 #include "specular.h"
 #include "storage.h"
 #include "tiles.h"
@@ -44,6 +47,9 @@ typedef struct {
   UNIFORM_SPACE const LinkWord* directional_links;   /* LIGHT_LINKING words per directional light */
   __global const uint* point_list;                   /* TILED_CULLING: the work-item's tile's lights */
   int point_count, directional_count;                /* lights to loop over (of point_list when culled) */
+  __global const uint* point_casters;                /* SHADOWS: 1 where point light i casts shadows */
+  __global const uint* directional_casters;          /* SHADOWS: the same per directional light */
+  const ShadowInputs* shadows;                       /* SHADOWS: what the shadow rays test (shadow.h) */
 } Lights;
 
 /* A work-item's slots of the G-buffer planes. */
@@ -92,7 +98,19 @@ void add_lobes(LightSums* sums, vec3 n, vec3 v, realv shininess, vec3 toward, re
   }
 }
 
-/* What a point or spot light adds, F from its shape and linking mask. In a tile's list a light
+/* F times the light's visibility: 0 in the lanes where its shadow ray is blocked (a select, not a
+ * product: F may be +Inf at a light), traced only where the light casts shadows and lights the lane.
+ * `where` is a point light's eye-relative position or a directional light's unit l. */
+static inline realv shadowed_weight(realv weight, const Surface* surface, const Lights* lights, vec3 where,
+                                    int directional, uint casts) {
+  if (!casts) return weight;
+  const intv pending = LANE_MASK(weight > 0) & LANE_MASK(surface->material != PHONGCL_BACKGROUND);
+  const intv blocked = light_blocked(lights->shadows, surface->p, surface->n, where, directional, SCREEN_SHADOWS, pending);
+  return SELECT(TO_REALV(blocked) != 0, 0, weight);
+}
+
+/* What a point or spot light adds, F from its shape and linking mask, times its visibility with
+ * SHADOWS. In a tile's list a light
  * whose F is 0 in every lane is left early: that changes no bit of the sums. */
 static inline void add_point_light(LightSums* sums, const Surface* surface, const Lights* lights, int i) {
   UNIFORM_SPACE const PointLight* light = &lights->point[i];
@@ -106,17 +124,19 @@ static inline void add_point_light(LightSums* sums, const Surface* surface, cons
                                        : inverse_length_in_range(&toward);
   if (TILED_CULLING && SPOT_LIGHTS && outside_cone_in_every_lane(shape, toward, inverse)) return;
   const realv gate = link_gate(link_mask, surface->material);
-  const realv weight = POINT_SHAPES ? shape_weight(shape, toward, inverse, distance, inverse_distance, gate) : gate;
+  realv weight = POINT_SHAPES ? shape_weight(shape, toward, inverse, distance, inverse_distance, gate) : gate;
+  if (SHADOWS) weight = shadowed_weight(weight, surface, lights, position, 0, lights->point_casters[i]);
   add_lobes(sums, surface->n, surface->v, surface->shininess, toward, inverse, light->color, weight);
 }
 
-/* What a directional light adds; F is its linking. */
+/* What a directional light adds; F is its linking, times its visibility with SHADOWS. */
 static inline void add_directional_light(LightSums* sums, const Surface* surface, const Lights* lights, int k) {
   UNIFORM_SPACE const DirectionalLight* light = &lights->directional[k];
   UNIFORM_SPACE const LinkWord* link_mask = &lights->directional_links[k * LIGHT_LINKING];
   const vec3 l = make_vec3(light->to_light[0], light->to_light[1], light->to_light[2]);
-  add_lobes(sums, surface->n, surface->v, surface->shininess, l, 1, light->color,
-            link_gate(link_mask, surface->material));
+  realv weight = link_gate(link_mask, surface->material);
+  if (SHADOWS) weight = shadowed_weight(weight, surface, lights, l, 1, lights->directional_casters[k]);
+  add_lobes(sums, surface->n, surface->v, surface->shininess, l, 1, light->color, weight);
 }
 
 void add_block(LightSums* sums, LightSums* compensation, const LightSums* block) {
@@ -243,11 +263,18 @@ __kernel void phong_shade(
     UNIFORM_SPACE const LightShape* restrict point_shapes, UNIFORM_SPACE const LinkWord* restrict links,
     /* tiled culling (cull.cl): tile t's point lights are tile_lights[tile_offsets[t] ...] */
     __global const uint* restrict tile_offsets, __global const uint* restrict tile_counts,
-    __global const uint* restrict tile_lights, const TileGrid grid) {
+    __global const uint* restrict tile_lights, const TileGrid grid,
+    /* shadows (shadow.h), read only with SHADOWS: 1 per light where it casts shadows (point lights',
+     * then directional lights'), the geometry (shadow_layout.h), the screen march's depth plane and
+     * the frame's shadow scalars */
+    __global const uint* restrict shadow_casters, __global const BvhNode* restrict shadow_nodes,
+    __global const ShadowPrimitive* restrict shadow_primitives, __global const ShadowPlane* restrict shadow_planes,
+    __global const float* restrict shadow_depth, const ShadowFrame shadow_frame) {
   const size_t group = get_global_id(0);
   const PixelOutputs outputs = {out_rgba, out_terms, frame.plane_stride, group};
   const float radiance_scale_a = frame.radiance_scale_a, radiance_scale_b = frame.radiance_scale_b;
   const uint tile = TILED_CULLING ? tile_of_pixel(grid, grid.first_pixel + (uint)(group * PHONGCL_LANES)) : 0;
+  const ShadowInputs shadows = {shadow_nodes, shadow_primitives, shadow_planes, shadow_depth, shadow_frame};
   const Lights lights = {
       .point = point_lights,
       .point_shapes = point_shapes,
@@ -257,6 +284,9 @@ __kernel void phong_shade(
       .point_list = tile_lights + (TILED_CULLING ? tile_offsets[tile] : 0),
       .point_count = TILED_CULLING ? (int)tile_counts[tile] : POINT_COUNT > 0 ? POINT_COUNT : frame.point_count,
       .directional_count = DIRECTIONAL_COUNT > 0 ? DIRECTIONAL_COUNT : frame.directional_count,
+      .point_casters = shadow_casters,
+      .directional_casters = shadow_casters + frame.point_count,
+      .shadows = &shadows,
   };
   MaterialLookup material;
   look_up_materials(&material, materials, material_index, group);

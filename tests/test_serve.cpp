@@ -54,7 +54,8 @@ class Serve : public ::testing::Test {
     // Each test starts from the scene file and the default settings.
     auto client = server_->client();
     ASSERT_EQ(client.Put("/api/scene", file_text(kSceneFile), "application/json")->status, 200);
-    ASSERT_EQ(client.Put("/api/settings", R"({"precision": "precise", "specialise": true})", "application/json")->status, 200);
+    ASSERT_EQ(client.Put("/api/settings", R"({"precision": "precise", "specialise": true, "shadows": "auto"})",
+                         "application/json")->status, 200);
   }
   static RunningServer* server_;
 };
@@ -374,6 +375,30 @@ TEST_F(Serve, SettingsChangeThePrecisionAndRejectBadInput) {
   expect_error(client.Put("/api/settings", R"({"specialise": 1})", "application/json"), 400, "true or false");
   expect_error(client.Put("/api/settings", "{", "application/json"), 400, "invalid JSON");
   EXPECT_EQ(body_json(client.Get("/api/settings"))["precision"], "fast");
+}
+
+TEST_F(Serve, ShadowsAreASettingAndRejectBadInput) {
+  auto client = server_->client();
+  json scene = default_scene();
+  for (json& light : scene["lights"]) light["shadows"] = true;
+  ASSERT_EQ(client.Put("/api/scene", scene.dump(), "application/json")->status, 200);
+  auto kernel_for = [&](const char* settings) {
+    EXPECT_EQ(client.Put("/api/settings", settings, "application/json")->status, 200) << settings;
+    client.Get("/api/image?format=jpeg");
+    return body_json(client.Get("/api/stats"))["frame"]["kernel"].get<std::string>();
+  };
+  EXPECT_NE(kernel_for(R"({"shadows": "geometry"})").find("geometry shadows"), std::string::npos);
+  EXPECT_NE(kernel_for(R"({"shadows": "screen", "shadow_steps": 16, "shadow_thickness": "0.5"})").find("screen shadows"),
+            std::string::npos);
+  EXPECT_EQ(kernel_for(R"({"shadows": "off"})").find("shadows"), std::string::npos);
+  const json settings = body_json(client.Get("/api/settings"));
+  EXPECT_EQ(settings["shadows"], "off");
+  EXPECT_EQ(settings["shadow_steps"], 16);
+  EXPECT_EQ(settings["shadow_thickness"], "0.5");
+  expect_error(client.Put("/api/settings", R"({"shadows": "soft"})", "application/json"), 400, "shadow mode");
+  expect_error(client.Put("/api/settings", R"({"shadow_steps": 0})", "application/json"), 400, "steps");
+  expect_error(client.Put("/api/settings", R"({"shadow_thickness": "-1"})", "application/json"), 400, "thickness");
+  EXPECT_EQ(body_json(client.Get("/api/settings"))["shadows"], "off");
 }
 
 TEST_F(Serve, StatsDescribeTheKernelAndTheFrameTimes) {

@@ -159,6 +159,14 @@ TEST(KernelVariants, EveryVariantBuilds) {
     options.lanes = lanes;
     add(scenes[1].first, scenes[1].second, options);
   }
+  // Shadows, every light casting them: marched (no objects), and traced (a sphere), culled too.
+  Scene shadowed = scenes[1].first;
+  for (Light& light : shadowed.lights) light.shadows = true;
+  add(shadowed, scenes[1].second, narrow);
+  Object sphere;
+  sphere.kind = Object::Kind::sphere;
+  shadowed.objects.push_back(sphere);
+  for (const ShadeOptions& options : {narrow, culled}) add(shadowed, scenes[1].second, options);
   // Unoptimised too (-cl-opt-disable), built and launched once: an implementation may link a kernel
   // only for its first launch.
   const auto& [scene, gbuffer] = scenes[1];

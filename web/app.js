@@ -226,6 +226,7 @@ async function refreshKernel() {
     loadBeauty();
   }
   $('precision').value = stats.settings.precision;
+  $('shadows').value = stats.settings.shadows;
   $('save-server').disabled = !stats.save_path;
   $('save-server').title = stats.save_path ? `writes ${stats.save_path}` : 'start phongcl serve with --save FILE';
 }
@@ -568,12 +569,14 @@ async function start() {
   window.addEventListener('resize', viewChanged);
   $('exposure').addEventListener('input', () => { $('exposure-value').textContent = $('exposure').value; viewChanged(); });
   $('split').addEventListener('input', () => { $('split-value').textContent = `${$('split').value}%`; drawView(); });
-  $('precision').addEventListener('change', async () => {
-    const response = await fetch('api/settings', {
-      method: 'PUT', headers: { 'Content-Type': 'application/json' }, body: JSON.stringify({ precision: $('precision').value }),
+  for (const setting of ['precision', 'shadows']) {
+    $(setting).addEventListener('change', async () => {
+      const response = await fetch('api/settings', {
+        method: 'PUT', headers: { 'Content-Type': 'application/json' }, body: JSON.stringify({ [setting]: $(setting).value }),
+      });
+      if (!response.ok) setStatus(await errorOf(response), true);
     });
-    if (!response.ok) setStatus(await errorOf(response), true);
-  });
+  }
   $('download-scene').addEventListener('click', downloadScene);
   $('save-server').addEventListener('click', saveOnServer);
   setUpImageInput();

@@ -11,7 +11,7 @@ namespace phongcl::cli {
 
 namespace {
 
-constexpr const char* kLabCommands[] = {"reference", "compare", "bench", "stability"};
+constexpr const char* kLabCommands[] = {"reference", "compare", "bench", "stability", "agreement"};
 
 }  // namespace
 
@@ -37,7 +37,7 @@ int hand_over_to_lab(char** argv) {
 }
 
 std::string lab_commands_note() {
-  return "Lab commands (reference, compare, bench, stability) run phongcl-lab, built with the lab "
+  return "Lab commands (reference, compare, bench, stability, agreement) run phongcl-lab, built with the lab "
          "(-DPHONGCL_BUILD_LAB=ON) and not installed.";
 }
 

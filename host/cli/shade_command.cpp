@@ -27,6 +27,9 @@ struct ShadeArguments {
   int lanes = 0;
   std::string culling = "auto";
   int tile = 16;
+  std::string shadows = "auto";
+  int shadow_steps = ShadowSettings{}.steps;
+  std::string shadow_thickness = format_shadow_thickness(ShadowSettings{}.thickness);
   bool explain = false;
   SequenceOptions sequence;
 };
@@ -50,6 +53,7 @@ RelighterOptions relighter_options(const ShadeArguments& args) {
   options.culling = parse_culling(args.culling);
   options.tile_size = args.tile;
   options.terms = args.outputs.wants_terms();
+  options.shadows = {parse_shadow_mode(args.shadows), args.shadow_steps, parse_shadow_thickness(args.shadow_thickness)};
   check_options(options);
   return options;
 }
@@ -121,6 +125,7 @@ void run_shade(const ShadeArguments& args) {
               << c.mean_lights_per_tile() << std::defaultfloat << ", max "
               << c.max_lights_per_tile << "; " << milliseconds(c.culling_ms) << " (inside kernel time)\n";
   }
+  if (!result.shadows.empty()) std::cout << "  shadows    " << result.shadows << "\n";
   if (result.tiles > 1) std::cout << "  tiles      " << result.tiles << " (frame larger than one device allocation)\n";
   print_unshaded(result.counts);
   for (const auto& warning : loaded.warnings) std::cout << "  warning    " << warning << "\n";
@@ -152,6 +157,27 @@ void add_shade_command(CLI::App& app) {
                           " point/spot lights with a range), tiled or none")
       ->check(CLI::IsMember({"auto", "tiled", "none"}));
   command->add_option("--tile", args->tile, "Culling tile size in pixels, 1 to 1024 (default 16)");
+  command->add_option("--shadows", args->shadows,
+                      "Shadows of the lights with \"shadows\": true: auto (default: geometry when the scene has "
+                      "objects, else screen), screen (marched across the G-buffer), geometry (traced against the "
+                      "scene's objects) or off")
+      ->check(CLI::IsMember({"auto", "screen", "geometry", "off"}));
+  command->add_option("--shadow-steps", args->shadow_steps,
+                      "Screen-space shadows: samples along each ray (default " + std::to_string(args->shadow_steps) + ")")
+      ->check(CLI::Range(1, 1024));
+  command->add_option("--shadow-thickness", args->shadow_thickness,
+                      "Screen-space shadows: how deep a surface is taken to be, in world units (0.25) or as a "
+                      "percentage of its depth (default " + args->shadow_thickness + ")")
+      ->check(CLI::Validator(
+          [](const std::string& text) {
+            try {
+              parse_shadow_thickness(text);
+              return std::string();
+            } catch (const std::invalid_argument& error) {
+              return std::string(error.what());
+            }
+          },
+          "LENGTH|PERCENT"));
   args->sequence.add_options(*command);
   command->add_flag("--explain", args->explain, "Print what was compiled in and out, and why, and the build options");
   command->callback([args] { run_shade(*args); });

@@ -1,7 +1,5 @@
 #pragma once
-// The scene file's pinhole camera: rays from the eye through pixel centres, and the pyramid of
-// rays through a block of pixels (to cull objects once per block rather than once per ray).
-#include <array>
+// The scene file's pinhole camera: rays from the eye through pixel centres.
 
 #include <glm/glm.hpp>
 
@@ -16,23 +14,12 @@ struct Ray {
   glm::dvec3 direction;
 };
 
-// An infinite pyramid from `apex` bounded by four planes through it.
-struct Frustum {
-  glm::dvec3 apex;
-  std::array<glm::dvec3, 4> inward_normals;  // unit length
-
-  // False only if the ball lies wholly outside; may be true for a ball that misses a corner.
-  bool may_overlap_ball(const glm::dvec3& center, double radius) const;
-};
-
 class PerspectiveCamera {
  public:
   explicit PerspectiveCamera(const Camera& camera);
 
   // Through the centre of pixel (x, y); y = 0 is the top row, x = 0 the left column.
   Ray ray_through_pixel(int x, int y) const;
-  // Holds every ray through the pixels x_begin <= x < x_end, y_begin <= y < y_end.
-  Frustum frustum_through_pixels(int x_begin, int y_begin, int x_end, int y_end) const;
 
  private:
   // Unnormalised, through the image point (x, y) in pixel units: pixel (i, j) spans [i, i+1) x [j, j+1).

@@ -1,6 +1,4 @@
-#include <algorithm>
 #include <cstddef>
-#include <vector>
 
 #include "common/error.h"
 #include "raycast/camera.h"
@@ -12,9 +10,6 @@ namespace {
 
 // Primary rays start at the eye, so this only drops surfaces passing through the eye itself.
 constexpr double kMinHitDistance = 1e-9;
-// Objects are culled once per block of pixels: big enough to pay for the culling, small enough
-// that each block sees few objects.
-constexpr int kBlockSize = 16;
 
 GBuffer empty_gbuffer(int width, int height) {
   GBuffer gbuffer;
@@ -30,10 +25,9 @@ GBuffer empty_gbuffer(int width, int height) {
   return gbuffer;
 }
 
-void cast_pixel(const PerspectiveCamera& camera, const SceneGeometry& geometry,
-                const std::vector<std::size_t>& candidates, int x, int y, GBuffer& gbuffer) {
+void cast_pixel(const PerspectiveCamera& camera, const SceneGeometry& geometry, int x, int y, GBuffer& gbuffer) {
   const Ray ray = camera.ray_through_pixel(x, y);
-  const std::optional<SurfaceHit> hit = geometry.nearest_hit(ray, kMinHitDistance, candidates);
+  const std::optional<SurfaceHit> hit = geometry.nearest_hit(ray, kMinHitDistance);
   if (!hit) return;
   const glm::dvec3 position = ray.origin + hit->t * ray.direction;
   // Shading wants the side the viewer sees: a normal pointing back along the ray.
@@ -53,16 +47,8 @@ GBuffer generate_gbuffer(const Scene& scene) {
   const PerspectiveCamera camera(scene.camera);
   const SceneGeometry geometry(scene.objects);
   GBuffer gbuffer = empty_gbuffer(scene.camera.width, scene.camera.height);
-  for (int block_y = 0; block_y < gbuffer.height; block_y += kBlockSize) {
-    for (int block_x = 0; block_x < gbuffer.width; block_x += kBlockSize) {
-      const int x_end = std::min(block_x + kBlockSize, gbuffer.width);
-      const int y_end = std::min(block_y + kBlockSize, gbuffer.height);
-      const std::vector<std::size_t> candidates =
-          geometry.candidates(camera.frustum_through_pixels(block_x, block_y, x_end, y_end));
-      for (int y = block_y; y < y_end; ++y)
-        for (int x = block_x; x < x_end; ++x) cast_pixel(camera, geometry, candidates, x, y, gbuffer);
-    }
-  }
+  for (int y = 0; y < gbuffer.height; ++y)
+    for (int x = 0; x < gbuffer.width; ++x) cast_pixel(camera, geometry, x, y, gbuffer);
   return gbuffer;
 }
 

@@ -1,98 +1,94 @@
 #include "raycast/geometry.h"
 
 #include <algorithm>
-#include <cmath>
+#include <array>
 #include <limits>
-
-#include "raycast/intersect.h"
+#include <utility>
 
 namespace phongcl {
 namespace {
 
-// The primitive's bounding ball in its own space: exact for a sphere, about the centroid for a
-// triangle.
-BoundingBall object_space_bound(const Object& shape) {
-  if (shape.kind == Object::Kind::sphere) return {shape.center, shape.radius};
-  const auto& v = shape.vertices;
-  const glm::dvec3 centroid = (v[0] + v[1] + v[2]) / 3.0;
-  return {centroid, std::max({glm::length(v[0] - centroid), glm::length(v[1] - centroid),
-                              glm::length(v[2] - centroid)})};
-}
+// The deepest tree the traversal's fixed stack below holds.
+constexpr int kMaxDepth = 64;
 
-// A linear map stretches lengths by at most its largest singular value, which the Frobenius norm
-// bounds; loose for anisotropic scales, but a bound only ever skips work.
-double max_stretch(const glm::dmat3& linear) {
-  return std::sqrt(glm::dot(linear[0], linear[0]) + glm::dot(linear[1], linear[1]) +
-                   glm::dot(linear[2], linear[2]));
-}
-
-std::optional<PrimitiveHit> intersect_shape(const Object& shape, const Ray& ray, double t_min, double t_max) {
-  switch (shape.kind) {
-    case Object::Kind::sphere: return intersect_sphere(ray, shape.center, shape.radius, t_min, t_max);
-    case Object::Kind::plane: return intersect_plane(ray, shape.normal, shape.offset, t_min, t_max);
-    case Object::Kind::triangle: return intersect_triangle(ray, shape.vertices, t_min, t_max);
-    case Object::Kind::transform: break;  // flattened away in add()
+// The parameter interval (t_near, t_far) in which the ray is inside the box, clipped to
+// (t_min, t_max); empty when t_near > t_far. An axis the ray runs parallel to clips nothing when
+// the origin is within the slab and everything when it is not.
+std::pair<double, double> box_interval(const Box& box, const Ray& ray, double t_min, double t_max) {
+  double t_near = t_min, t_far = t_max;
+  for (int axis = 0; axis < 3; ++axis) {
+    if (ray.direction[axis] == 0.0) {
+      if (ray.origin[axis] < box.lo[axis] || ray.origin[axis] > box.hi[axis]) return {1.0, 0.0};
+      continue;
+    }
+    const double inverse = 1.0 / ray.direction[axis];
+    double t0 = (box.lo[axis] - ray.origin[axis]) * inverse, t1 = (box.hi[axis] - ray.origin[axis]) * inverse;
+    if (t0 > t1) std::swap(t0, t1);
+    t_near = std::max(t_near, t0);
+    t_far = std::min(t_far, t1);
   }
-  return std::nullopt;
+  return {t_near, t_far};
 }
 
 }  // namespace
 
-SceneGeometry::SceneGeometry(const std::vector<Object>& objects) { add(objects, glm::dmat4(1.0), false); }
+SceneGeometry::SceneGeometry(const std::vector<Object>& objects)
+    : scene_(build_scene_bvh(flatten_objects(objects), kMaxDepth)) {}
 
-void SceneGeometry::add(const std::vector<Object>& objects, const glm::dmat4& object_to_world,
-                        bool transformed) {
-  for (const Object& object : objects) {
-    if (object.kind == Object::Kind::transform) {
-      add(object.children, object_to_world * object.matrix, true);
-      continue;
-    }
-    Primitive primitive;
-    primitive.shape = object;
-    if (object.kind == Object::Kind::plane) primitive.shape.normal = glm::normalize(object.normal);
-    primitive.transformed = transformed;
-    const glm::dmat3 linear(object_to_world);
-    primitive.world_to_object = glm::inverse(object_to_world);
-    primitive.normal_to_world = glm::transpose(glm::inverse(linear));
-    if (object.kind != Object::Kind::plane) {
-      const BoundingBall ball = object_space_bound(object);
-      primitive.bound = BoundingBall{glm::dvec3(object_to_world * glm::dvec4(ball.center, 1.0)),
-                                     ball.radius * (transformed ? max_stretch(linear) : 1.0)};
-      primitive.test_bound_per_ray = transformed || object.kind == Object::Kind::triangle;
-    }
-    primitives_.push_back(std::move(primitive));
-  }
+int SceneGeometry::material_of(std::uint32_t item) const {
+  const SceneShapes& shapes = scene_.shapes;
+  return scene_.group(item) == ShapeGroup::triangle ? shapes.triangles[item].material
+                                                    : shapes.spheres[item - shapes.triangles.size()].material;
 }
 
-std::vector<std::size_t> SceneGeometry::candidates(const Frustum& frustum) const {
-  std::vector<std::size_t> indices;
-  for (std::size_t i = 0; i < primitives_.size(); ++i) {
-    const std::optional<BoundingBall>& bound = primitives_[i].bound;
-    if (!bound || frustum.may_overlap_ball(bound->center, bound->radius)) indices.push_back(i);
-  }
-  return indices;
+std::optional<PrimitiveHit> SceneGeometry::intersect_item(std::uint32_t item, const Ray& ray, double t_min,
+                                                          double t_max) const {
+  const SceneShapes& shapes = scene_.shapes;
+  if (scene_.group(item) == ShapeGroup::triangle) return intersect_triangle(ray, shapes.corners(item), t_min, t_max);
+  const ShapeSphere& sphere = shapes.spheres[item - shapes.triangles.size()];
+  if (!sphere.transformed) return intersect_sphere(ray, sphere.center, sphere.radius, t_min, t_max);
+  // An affine map keeps t: the object-space point at t is the image of the world point at t.
+  const Ray local{glm::dvec3(sphere.world_to_object * glm::dvec4(ray.origin, 1.0)),
+                  glm::dmat3(sphere.world_to_object) * ray.direction};
+  std::optional<PrimitiveHit> hit = intersect_sphere(local, sphere.center, sphere.radius, t_min, t_max);
+  if (hit) hit->normal = glm::normalize(sphere.normal_to_world * hit->normal);
+  return hit;
 }
 
-std::optional<SurfaceHit> SceneGeometry::nearest_hit(const Ray& ray, double t_min,
-                                                     const std::vector<std::size_t>& candidates) const {
+std::optional<SurfaceHit> SceneGeometry::nearest_hit(const Ray& ray, double t_min) const {
   std::optional<SurfaceHit> nearest;
   double t_max = std::numeric_limits<double>::infinity();
-  for (std::size_t index : candidates) {
-    const Primitive& primitive = primitives_[index];
-    if (primitive.test_bound_per_ray &&
-        !ray_meets_ball(ray, primitive.bound->center, primitive.bound->radius, t_min, t_max))
+  for (const ShapePlane& plane : scene_.shapes.planes) {
+    if (auto hit = intersect_plane(ray, plane.normal, plane.offset, t_min, t_max)) {
+      t_max = hit->t;
+      nearest = SurfaceHit{hit->t, hit->normal, plane.material};
+    }
+  }
+  const std::vector<Bvh::Node>& nodes = scene_.bvh.nodes;
+  if (nodes.empty()) return nearest;
+  std::array<std::uint32_t, kMaxDepth + 1> stack;
+  int size = 0;
+  stack[size++] = 0;
+  while (size > 0) {
+    const Bvh::Node& node = nodes[stack[--size]];
+    const auto [t_near, t_far] = box_interval(node.box, ray, t_min, t_max);
+    if (t_near > t_far) continue;
+    if (!node.leaf()) {
+      // Nearer child on top, so that its hits shorten the ray before the other is visited.
+      const std::uint32_t first = node.first;
+      const bool second_nearer = box_interval(nodes[first + 1].box, ray, t_min, t_max).first <
+                                 box_interval(nodes[first].box, ray, t_min, t_max).first;
+      stack[size++] = second_nearer ? first : first + 1;
+      stack[size++] = second_nearer ? first + 1 : first;
       continue;
-    // An affine map keeps t: the object-space point at t is the image of the world point at t.
-    const Ray local = primitive.transformed
-                          ? Ray{glm::dvec3(primitive.world_to_object * glm::dvec4(ray.origin, 1.0)),
-                                glm::dmat3(primitive.world_to_object) * ray.direction}
-                          : ray;
-    const std::optional<PrimitiveHit> hit = intersect_shape(primitive.shape, local, t_min, t_max);
-    if (!hit) continue;
-    t_max = hit->t;
-    const glm::dvec3 normal =
-        primitive.transformed ? glm::normalize(primitive.normal_to_world * hit->normal) : hit->normal;
-    nearest = SurfaceHit{hit->t, normal, primitive.shape.material};
+    }
+    for (std::uint32_t i = node.first; i < node.first + node.count; ++i) {
+      const std::uint32_t item = scene_.bvh.order[i];
+      if (auto hit = intersect_item(item, ray, t_min, t_max)) {
+        t_max = hit->t;
+        nearest = SurfaceHit{hit->t, hit->normal, material_of(item)};
+      }
+    }
   }
   return nearest;
 }

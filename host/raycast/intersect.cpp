@@ -58,9 +58,4 @@ std::optional<PrimitiveHit> intersect_triangle(const Ray& ray, const std::array<
   return PrimitiveHit{t, glm::normalize(glm::cross(edge1, edge2))};
 }
 
-bool ray_meets_ball(const Ray& ray, const glm::dvec3& center, double radius, double t_min, double t_max) {
-  const auto interval = ball_interval(ray, center, radius);
-  return interval && (*interval)[1] > t_min && (*interval)[0] < t_max;
-}
-
 }  // namespace phongcl

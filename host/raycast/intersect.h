@@ -26,8 +26,4 @@ std::optional<PrimitiveHit> intersect_plane(const Ray& ray, const glm::dvec3& un
 std::optional<PrimitiveHit> intersect_triangle(const Ray& ray, const std::array<glm::dvec3, 3>& vertices,
                                                double t_min, double t_max);
 
-// Whether the ray passes through the ball (center, radius) anywhere in (t_min, t_max): a cheap
-// test that lets the caller skip a primitive the ball encloses.
-bool ray_meets_ball(const Ray& ray, const glm::dvec3& center, double radius, double t_min, double t_max);
-
 }  // namespace phongcl

@@ -88,6 +88,11 @@ std::string JsonValue::string() const {
   return json_->get<std::string>();
 }
 
+bool JsonValue::boolean() const {
+  if (!json_->is_boolean()) fail("must be true or false");
+  return json_->get<bool>();
+}
+
 std::vector<double> JsonValue::numbers(std::size_t count) const {
   if (!json_->is_array() || json_->size() != count)
     fail("must be an array of " + std::to_string(count) + " numbers");

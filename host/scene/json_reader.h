@@ -41,6 +41,7 @@ class JsonValue {
   double number() const;
   int integer() const;  // a whole number that fits an int (640 and 640.0 both accepted)
   std::string string() const;
+  bool boolean() const;  // true or false, nothing else (no 0/1, no "true")
   std::vector<double> numbers(std::size_t count) const;  // an array of exactly `count` numbers
   glm::dvec3 vec3() const;
   std::vector<JsonValue> elements() const;               // an array, each element with its path

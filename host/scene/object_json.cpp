@@ -44,6 +44,16 @@ void read_triangle(const JsonObject& object, Object& triangle) {
   if (glm::cross(v[1] - v[0], v[2] - v[0]) == glm::dvec3(0.0)) vertices.fail("must not be collinear");
 }
 
+// The file is resolved relative to the scene file, as "gbuffer" is; reading it is the geometry
+// room's job (geometry/mesh_file.h), when shadows or the generator need the triangles.
+void read_mesh(const JsonObject& object, Object& mesh) {
+  object.expect_keys({"type", "file", "material"});
+  const JsonValue file = object.at("file");
+  const std::filesystem::path path = file.string();
+  if (path.empty()) file.fail("must not be empty");
+  mesh.file = path.is_absolute() ? path : file.file().parent_path() / path;
+}
+
 void read_transform(const JsonObject& object, Object& transform, std::size_t material_count) {
   object.expect_keys({"type", "matrix", "translate", "rotate_deg", "scale", "children"});
   const bool has_parts = object.has("translate") || object.has("rotate_deg") || object.has("scale");
@@ -76,13 +86,16 @@ Object read_object(const JsonValue& value, std::size_t material_count) {
   } else if (type == "triangle") {
     result.kind = Object::Kind::triangle;
     read_triangle(object, result);
+  } else if (type == "mesh") {
+    result.kind = Object::Kind::mesh;
+    read_mesh(object, result);
   } else if (type == "transform") {
     result.kind = Object::Kind::transform;
     read_transform(object, result, material_count);
     return result;  // a transform has no material of its own
   } else {
     throw InputError(value.file(), "unknown object type '" + type + "' in " + value.place() +
-                                       " (expected sphere, plane, triangle or transform)");
+                                       " (expected sphere, plane, triangle, mesh or transform)");
   }
   result.material = read_material(object, material_count);
   return result;

@@ -34,6 +34,7 @@ struct Light {
   double range = 0.0;                                  // > 0: windowed to 0 at this distance; 0: no range
   double cone_angle_deg = 0.0, penumbra_angle_deg = 0.0;  // spot: full angle of the lit cone, soft edge
   std::optional<std::vector<int>> materials{};         // light linking: lights only these; absent: every material
+  bool shadows = false;                                // casts shadows (when the shade's shadow mode is not off)
 
   bool has_range() const { return range > 0.0; }
   bool reaches(int material) const;  // light linking
@@ -45,9 +46,9 @@ struct Material {
   double shininess = 1.0;  // >= 0, validated
 };
 
-// Geometry for the G-buffer generator. A tagged struct rather than a variant: transforms nest.
+// Geometry for the G-buffer generator and for shadows. A tagged struct rather than a variant: transforms nest.
 struct Object {
-  enum class Kind { sphere, plane, triangle, transform };
+  enum class Kind { sphere, plane, triangle, mesh, transform };
   Kind kind = Kind::sphere;
   int material = 0;                          // sphere, plane, triangle
   glm::dvec3 center{0.0};                    // sphere
@@ -55,6 +56,7 @@ struct Object {
   glm::dvec3 normal{0.0, 1.0, 0.0};          // plane: points x with dot(normalize(normal), x) == offset
   double offset = 0.0;                       // plane
   std::array<glm::dvec3, 3> vertices{};      // triangle, counter-clockwise seen from the front
+  std::filesystem::path file;                // mesh: its triangles' file (PLY, OBJ, glTF), resolved relative to the scene
   glm::dmat4 matrix{1.0};                    // transform: object-to-parent
   std::vector<Object> children;              // transform
 };

@@ -94,7 +94,7 @@ std::vector<int> read_linked_materials(const JsonValue& value, std::size_t mater
 Light read_light(const JsonValue& value, std::size_t material_count) {
   const JsonObject object = value.object();
   object.expect_keys({"type", "position", "direction", "color", "falloff", "range", "cone_angle_deg",
-                      "penumbra_angle_deg", "materials"});
+                      "penumbra_angle_deg", "materials", "shadows"});
   const std::string type = object.at("type").string();
   Light light;
   if (type == "point" || type == "spot") {
@@ -126,6 +126,7 @@ Light read_light(const JsonValue& value, std::size_t material_count) {
   }
   if (auto color = object.find("color")) light.color = read_non_negative_vec3(*color);
   if (auto materials = object.find("materials")) light.materials = read_linked_materials(*materials, material_count);
+  if (auto shadows = object.find("shadows")) light.shadows = shadows->boolean();
   return light;
 }
 

@@ -127,7 +127,7 @@ RenderSettings parse_settings(const std::string& body, RenderSettings settings) 
   const std::filesystem::path source = "settings";
   const json document = parse_json(body, source);
   const JsonObject object = JsonValue(document, "", source).object();
-  object.expect_keys({"precision", "specialise"});
+  object.expect_keys({"precision", "specialise", "shadows", "shadow_steps", "shadow_thickness"});
   if (auto value = object.find("precision")) {
     try {
       settings.precision = parse_precision(value->string());
@@ -139,11 +139,24 @@ RenderSettings parse_settings(const std::string& body, RenderSettings settings) 
     if (!value->json().is_boolean()) value->fail("must be true or false");
     settings.specialise = value->json().get<bool>();
   }
+  try {
+    if (auto value = object.find("shadows")) settings.shadows.mode = parse_shadow_mode(value->string());
+    if (auto value = object.find("shadow_steps")) settings.shadows.steps = value->integer();
+    if (auto value = object.find("shadow_thickness"))
+      settings.shadows.thickness = parse_shadow_thickness(value->string());
+    check_shadow_settings(settings.shadows);
+  } catch (const std::invalid_argument& error) {
+    throw BadRequest(std::string("settings: ") + error.what());
+  }
   return settings;
 }
 
 json settings_json(const RenderSettings& settings) {
-  return {{"precision", to_string(settings.precision)}, {"specialise", settings.specialise}};
+  return {{"precision", to_string(settings.precision)},
+          {"specialise", settings.specialise},
+          {"shadows", to_string(settings.shadows.mode)},
+          {"shadow_steps", settings.shadows.steps},
+          {"shadow_thickness", format_shadow_thickness(settings.shadows.thickness)}};
 }
 
 }  // namespace

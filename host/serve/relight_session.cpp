@@ -29,13 +29,14 @@ RelightSession::~RelightSession() = default;
 
 void RelightSession::check(const Scene& scene) const { material_check_.check(gbuffer_, scene.materials.size()); }
 
-// The Relighter keeps its precision, ambient, background and whether it shades the terms from
+// The Relighter keeps its precision, ambient, background, shadow settings and whether it shades the terms from
 // construction: a change of those builds a new one (which packs the G-buffer again); lights,
 // materials and the eye are updates.
 Relighter& RelightSession::relighter_for(const Scene& scene, const RenderSettings& settings) {
   const bool same = relighter_ && relighter_settings_.precision == settings.precision &&
                     relighter_settings_.specialise == settings.specialise &&
-                    relighter_settings_.terms == settings.terms && relighter_->scene().ambient == scene.ambient &&
+                    relighter_settings_.terms == settings.terms && relighter_settings_.shadows == settings.shadows &&
+                    relighter_->scene().ambient == scene.ambient &&
                     relighter_->scene().background == scene.background;
   if (!same) {
     relighter_.reset();  // first: two copies of a large G-buffer need not fit on the device
@@ -44,6 +45,7 @@ Relighter& RelightSession::relighter_for(const Scene& scene, const RenderSetting
     options.precision = settings.precision;
     options.specialise = settings.specialise;
     options.terms = settings.terms;
+    options.shadows = settings.shadows;
     relighter_.emplace(scene, gbuffer_, options);
     relighter_settings_ = settings;
   }

@@ -19,6 +19,7 @@ struct RenderSettings {
   Precision precision = Precision::precise;
   bool specialise = true;
   bool terms = false;  // also shade the ambient, diffuse and specular terms separately
+  ShadowSettings shadows;  // how lights with "shadows": true cast them
 };
 
 // Milliseconds. transfer: packing and moving data between host and device (the G-buffer only

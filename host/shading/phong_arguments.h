@@ -9,6 +9,10 @@
 #include "cl/opencl.h"
 #include "shading/device_layout.h"
 
+extern "C" {
+#include "kernels/shadow_layout.h"
+}
+
 namespace phongcl {
 
 struct PhongArguments {
@@ -26,6 +30,10 @@ struct PhongArguments {
   // tiled culling: tile t's point lights are tile_lights[tile_offsets[t] ...], tile_counts[t] of them
   cl::Buffer tile_offsets, tile_counts, tile_lights;
   TileGrid grid{};
+  // shadows (kernels/shadow.h), read only with SHADOWS: 1 per light where it casts shadows, point
+  // lights' then directional lights'; the geometry; the screen march's depth plane; the scalars
+  cl::Buffer shadow_casters, shadow_nodes, shadow_primitives, shadow_planes, shadow_depth;
+  ShadowFrame shadow_frame{};
 };
 
 // visit(name, field) for every argument, in phong_shade's parameter order.
@@ -45,6 +53,12 @@ void for_each_argument(Arguments& a, Visit&& visit) {
   visit("tile_counts", a.tile_counts);
   visit("tile_lights", a.tile_lights);
   visit("grid", a.grid);
+  visit("shadow_casters", a.shadow_casters);
+  visit("shadow_nodes", a.shadow_nodes);
+  visit("shadow_primitives", a.shadow_primitives);
+  visit("shadow_planes", a.shadow_planes);
+  visit("shadow_depth", a.shadow_depth);
+  visit("shadow_frame", a.shadow_frame);
 }
 
 // The kernel's parameter names as the host sets them, in order.

@@ -4,6 +4,7 @@
 #include <chrono>
 
 #include "cl/kernel_source.h"
+#include "shading/shadow_buffers.h"
 
 namespace phongcl {
 
@@ -83,6 +84,17 @@ TileCuller& PhongShader::culler_for(const std::string& build_options) {
   return *culler_;
 }
 
+void PhongShader::prepare_shadows(const Scene& scene, const GBuffer& gbuffer, const Recipe& recipe,
+                                  ShadeReport& report) {
+  if (recipe.shadows == ShadowMode::off) return;
+  const ShadowsFor wanted{scene.camera.eye, recipe.shadows, recipe.shadow_settings.steps,
+                          recipe.shadow_settings.thickness, recipe.precision == Precision::half_storage};
+  if (!shadows_ || shadows_->key != wanted)
+    shadows_ = ResidentShadows{wanted, make_shadow_device(compute_.context, scene, gbuffer, recipe.shadows,
+                                                          recipe.shadow_settings, wanted.half)};
+  report.shadows = describe_shadows(recipe.shadows, recipe.shadow_casters, recipe.shadow_settings, shadows_->device);
+}
+
 PhongShader::FrameSetup PhongShader::prepare(const Scene& scene, const GBuffer& gbuffer, const Recipe& recipe,
                                              std::size_t max_tile_pixels, ShadeReport& report) {
   const cl::Context& context = compute_.context;
@@ -95,10 +107,12 @@ PhongShader::FrameSetup PhongShader::prepare(const Scene& scene, const GBuffer& 
   if (!uniforms_ || uniforms_options_ != report.build_options || uniforms_stride_ != stride) {
     const auto upload_start = Clock::now();
     uniforms_ = upload_uniforms(context, pack_uniforms(scene, recipe), stride);
+    shadow_casters_ = table_buffer(context, shadow_casters(scene.lights));
     uniforms_options_ = report.build_options;
     uniforms_stride_ = stride;
     report.timings.upload_ms += milliseconds(upload_start, Clock::now());
   }
+  prepare_shadows(scene, gbuffer, recipe, report);
   // One launch keeps its packed G-buffer for the next frame; tiles overwrite each other's.
   const PackedFor wanted{scene.camera.eye, recipe.precision, recipe.plane_count(), stride};
   const bool resident = stride >= pixels;
@@ -138,6 +152,7 @@ cl::Event PhongShader::cull_and_launch(cl::Kernel& kernel, FrameSetup& frame, co
   frame.tiles.grid.first_pixel = static_cast<cl_uint>(first);
   const PackTarget& packed = frame.pack_target;
   TileCuller* culler = frame.culler;
+  const ResidentShadows* shadows = recipe.shadows != ShadowMode::off ? &*shadows_ : nullptr;
   if (culler) {
     const CullingStats culled = culler->cull(packed.planes, frame.stride, packed.material_index, padded, frame.tiles,
                                              uniforms.point_bounds, uniforms.scalars.point_count);
@@ -157,7 +172,13 @@ cl::Event PhongShader::cull_and_launch(cl::Kernel& kernel, FrameSetup& frame, co
                                  .tile_offsets = culler ? culler->offsets() : uniforms.no_tiles,
                                  .tile_counts = culler ? culler->counts() : uniforms.no_tiles,
                                  .tile_lights = culler ? culler->lights() : uniforms.no_tiles,
-                                 .grid = culler ? frame.tiles.grid : TileGrid{}};
+                                 .grid = culler ? frame.tiles.grid : TileGrid{},
+                                 .shadow_casters = shadows ? shadow_casters_ : uniforms.no_tiles,
+                                 .shadow_nodes = shadows ? shadows->device.nodes : uniforms.no_tiles,
+                                 .shadow_primitives = shadows ? shadows->device.primitives : uniforms.no_tiles,
+                                 .shadow_planes = shadows ? shadows->device.planes : uniforms.no_tiles,
+                                 .shadow_depth = shadows ? shadows->device.depth : uniforms.no_tiles,
+                                 .shadow_frame = shadows ? shadows->device.frame : ShadowFrame{}};
   return launch_phong(kernel, compute_.queue, arguments, padded, recipe.lanes);
 }
 

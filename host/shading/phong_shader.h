@@ -14,6 +14,7 @@
 #include "shading/pack.h"
 #include "shading/recipe.h"
 #include "shading/shade_stats.h"
+#include "shading/shadow_inputs.h"
 #include "shading/tile_culling.h"
 
 namespace phongcl {
@@ -49,8 +50,12 @@ class PhongShader {
   // `max_tile_pixels` > 0 caps the pixels per launch.
   ShadeReport shade_into(const Scene& scene, const GBuffer& gbuffer, const Recipe& recipe, const FrameTargets& targets,
                          std::size_t max_tile_pixels = 0);
-  // The next shade_into packs the G-buffer again (another G-buffer) / uploads the tables again.
-  void forget_gbuffer() { packed_.reset(); }
+  // The next shade_into packs the G-buffer again (another G-buffer: its shadows' geometry and depth
+  // plane too) / uploads the tables again.
+  void forget_gbuffer() {
+    packed_.reset();
+    shadows_.reset();
+  }
   void forget_uniforms() { uniforms_.reset(); }
 
   const ComputeContext& compute() const { return compute_; }
@@ -70,6 +75,19 @@ class PhongShader {
     PixelCounts counts;
     std::size_t flushed_to_zero = 0;
   };
+  // What the resident shadow inputs were built for.
+  struct ShadowsFor {
+    glm::dvec3 eye;
+    ShadowMode mode;
+    int steps;
+    double thickness;
+    bool half;
+    bool operator==(const ShadowsFor&) const = default;
+  };
+  struct ResidentShadows {
+    ShadowsFor key;
+    ShadowDevice device;
+  };
   // What a frame's launches share: the tile stride, the device buffers, the culling grid.
   struct FrameSetup {
     std::size_t stride = 0;  // values per plane: pixels per launch, rounded up to the lanes
@@ -83,6 +101,8 @@ class PhongShader {
   };
   cl::Kernel& kernel_for(ShadeReport& report);
   TileCuller& culler_for(const std::string& build_options);
+  // With shadows: their inputs, built unless kept.
+  void prepare_shadows(const Scene& scene, const GBuffer& gbuffer, const Recipe& recipe, ShadeReport& report);
   // The frame's buffers and tables (uploaded unless kept), and whether the packed G-buffer is kept.
   FrameSetup prepare(const Scene& scene, const GBuffer& gbuffer, const Recipe& recipe, std::size_t max_tile_pixels,
                      ShadeReport& report);
@@ -105,6 +125,8 @@ class PhongShader {
   std::string uniforms_options_;
   std::size_t uniforms_stride_ = 0;
   std::optional<PackedFrame> packed_;  // the planes hold the whole frame, packed for this
+  std::optional<ResidentShadows> shadows_;
+  cl::Buffer shadow_casters_;  // uploaded with the tables
   // ALLOC_HOST_PTR + map/unmap: on a CPU device packing writes straight into device memory.
   ReusableBuffer planes_{CL_MEM_READ_ONLY | CL_MEM_ALLOC_HOST_PTR};
   ReusableBuffer material_index_{CL_MEM_READ_ONLY | CL_MEM_ALLOC_HOST_PTR};

@@ -249,6 +249,38 @@ void decide_materials(Recipe& recipe, const Scene& scene, const GBuffer& gbuffer
   per_pixel("PER_PIXEL_Q", recipe.per_pixel_shininess, "shininess");
 }
 
+// Lights cast shadows when they ask ("shadows": true) and the mode is not off: auto traces the
+// scene's objects when it has some, else marches across the G-buffer's depth. Decided by the scene
+// in the general kernel too: without a light that casts them nothing of it is compiled in.
+void decide_shadows(Recipe& recipe, const Scene& scene, const ShadeOptions& options) {
+  const ShadowSettings& asked = options.shadows;
+  check_shadow_settings(asked);
+  recipe.shadow_settings = asked;
+  recipe.shadow_casters = static_cast<int>(
+      std::count_if(scene.lights.begin(), scene.lights.end(), [](const Light& light) { return light.shadows; }));
+  const bool objects = !scene.objects.empty();
+  if (recipe.shadow_casters > 0 && asked.mode == ShadowMode::geometry && !objects)
+    throw std::invalid_argument("shadows geometry: the scene has no objects to cast them (use screen or auto)");
+  const ShadowMode mode = recipe.shadow_casters == 0 || asked.mode == ShadowMode::off ? ShadowMode::off
+                          : asked.mode == ShadowMode::automatic ? (objects ? ShadowMode::geometry : ShadowMode::screen)
+                                                                : asked.mode;
+  recipe.shadows = mode;
+  const std::string casters = plural(recipe.shadow_casters, "light");
+  const std::string march = std::to_string(asked.steps) + " steps, thickness " + format_shadow_thickness(asked.thickness);
+  const std::string why = recipe.shadow_casters == 0 ? "shadows: compiled out (no light casts them)"
+                          : mode == ShadowMode::off  ? "shadows: compiled out (off as asked)"
+                          : mode == ShadowMode::geometry
+                              ? "shadows: " + casters + ", rays traced against the scene's objects (BVH)"
+                              : "shadows: " + casters + ", marched across the G-buffer's depth (" + march + ")";
+  const std::string chosen = asked.mode == ShadowMode::automatic ? (objects ? " (auto: the scene has objects)"
+                                                                            : " (auto: the scene has no objects)")
+                                                                 : "";
+  add_flag(recipe, "SHADOWS", mode != ShadowMode::off, why + chosen,
+           mode == ShadowMode::off ? "" : to_string(mode) + " shadows (" + casters + ")");
+  add_flag(recipe, "SCREEN_SHADOWS", mode == ShadowMode::screen,
+           mode == ShadowMode::screen ? "screen-space shadows: " + march : "screen-space shadows: none");
+}
+
 void decide_memory(Recipe& recipe, const Scene& scene, const DeviceInfo& device) {
   const bool shapes = recipe.value("FALLOFF") != "0" || recipe.value("FALLOFF_MIXED") == "1" ||
                       recipe.value("RANGE_WINDOW") == "1" || recipe.value("SPOT_LIGHTS") == "1";
@@ -323,6 +355,7 @@ Recipe make_recipe(const Scene& scene, const GBuffer& gbuffer, const DeviceInfo&
   decide_terms(recipe, scene, gbuffer);
   decide_materials(recipe, scene, gbuffer);
   decide_memory(recipe, scene, device);
+  decide_shadows(recipe, scene, options);
   recipe.write_terms = add_flag(recipe, "WRITE_TERMS", options.write_terms,
                                 options.write_terms ? "terms: ambient, diffuse and specular also written apart (AOVs)"
                                                     : "terms: not written apart");

@@ -9,6 +9,7 @@
 #include "scene/scene.h"
 #include "shading/device_layout.h"
 #include "shading/precision.h"
+#include "shading/shadow_settings.h"
 
 namespace phongcl {
 
@@ -20,6 +21,7 @@ struct ShadeOptions {
   int lanes = 0;                    // pixels per work-item: 1, 2, 4, 8 or 16; 0: the device's choice
   Culling culling = Culling::automatic;
   int tile_size = 16;               // culling tiles of tile_size x tile_size pixels
+  ShadowSettings shadows;           // how lights with "shadows": true cast them (docs/shadows.md)
 };
 
 // One row of the recipe: a flag of kernels/features.h, the value the kernel is built with, and why.
@@ -43,6 +45,9 @@ struct Recipe {
   bool per_pixel_ka = false, per_pixel_kd = false, per_pixel_ks = false, per_pixel_shininess = false;
   bool write_terms = false;
   int lanes = 1;         // pixels per work-item (explicit SIMD on CPU devices)
+  ShadowMode shadows = ShadowMode::off;  // geometry, screen or off (no light casts shadows, or off as asked)
+  ShadowSettings shadow_settings;        // the screen-space march's steps and thickness
+  int shadow_casters = 0;                // lights that cast shadows
   std::vector<RecipeFlag> flags;
 
   int plane_count() const;  // G-buffer planes the device buffer holds

@@ -25,6 +25,7 @@ ShadeOptions shade_options(const RelighterOptions& options) {
   shade.tile_size = options.tile_size;
   shade.write_terms = options.terms;
   shade.max_tile_pixels = options.max_tile_pixels;
+  shade.shadows = options.shadows;
   return shade;
 }
 
@@ -36,6 +37,7 @@ void check_options(const RelighterOptions& options) {
     throw std::invalid_argument("lanes must be 0 (the device's choice), 1, 2, 4, 8 or 16 (got " + std::to_string(lanes) + ")");
   if (options.tile_size < 1 || options.tile_size > 1024)
     throw std::invalid_argument("tile size must be in [1, 1024] pixels (got " + std::to_string(options.tile_size) + ")");
+  check_shadow_settings(options.shadows);
 }
 
 struct Relighter::State {

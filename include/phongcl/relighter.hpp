@@ -19,6 +19,7 @@
 #include "scene/scene.h"
 #include "shading/precision.h"
 #include "shading/shade_stats.h"
+#include "shading/shadow_settings.h"
 
 namespace phongcl {
 
@@ -31,11 +32,13 @@ struct RelighterOptions {
   int tile_size = 16;                        // culling tiles of tile_size x tile_size pixels
   bool terms = false;                        // also shade ambient, diffuse and specular apart: shade(TermImages&)
   std::size_t max_tile_pixels = 0;           // > 0: at most this many pixels per launch (else the device's limit)
+  ShadowSettings shadows;                    // how lights with "shadows": true cast them (docs/shadows.md)
 };
 
 // Throws std::invalid_argument naming the option for a value no device takes: lanes other than 0,
-// 1, 2, 4, 8 or 16; tile_size outside [1, 1024]. The Relighter checks its options with it, and
-// front ends call it before reading any input, so every one refuses the same values alike.
+// 1, 2, 4, 8 or 16; tile_size outside [1, 1024]; shadow steps or thickness out of range. The
+// Relighter checks its options with it, and front ends call it before reading any input, so every
+// one refuses the same values alike.
 void check_options(const RelighterOptions& options);
 
 class Relighter {

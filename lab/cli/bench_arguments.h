@@ -22,12 +22,15 @@ struct BenchArguments {
   int sequence_frames = 8;   // --sequence: frames in the shot
   int rounds = 3;            // --sequence: rounds of every mode; each mode's fastest is kept
   std::string compressions = "zip,piz";  // --sequence: G-buffer and output compressions
+  bool shadows = false;
+  int mesh_triangles = 128000;  // --shadows: the mesh scene's triangles (at least)
 };
 
 void run_error_vs_time_bench(const BenchArguments& args);  // bench_error_vs_time.cpp
 void run_throughput_bench(const BenchArguments& args);     // bench_throughput.cpp
 void run_many_lights_bench(const BenchArguments& args);    // bench_many_lights.cpp
 void run_sequence_bench(const BenchArguments& args);       // bench_sequence.cpp
+void run_shadows_bench(const BenchArguments& args);        // bench_shadows.cpp
 void run_display_bench(const BenchArguments& args);        // bench_display.cpp
 
 }  // namespace phongcl::cli

@@ -29,12 +29,19 @@ void add_bench_command(CLI::App& app) {
   command->add_option("--rounds", args->rounds, "--sequence: rounds of every mode, the fastest kept (default 3)")
       ->check(CLI::Range(1, 100));
   command->add_option("--compressions", args->compressions, "--sequence: EXR compressions to measure (default zip,piz)");
+  command->add_flag("--shadows", args->shadows,
+                    "Shadows: screen-space marches against exact geometry shadows (error against run time), and the "
+                    "BVH traversal against Embree on the same rays");
+  command->add_option("--mesh-triangles", args->mesh_triangles, "--shadows: triangles of the mesh scene (default 128000)")
+      ->check(CLI::Range(1000, 100000000));
   command->add_flag("--display", args->display,
                     "Time the PNG/serve display transforms (built-in views, Blender's Filmic with looks) on the scene's "
                     "shaded frame against OpenColorIO's own processor");
   command->callback([args] {
-    if (args->throughput + args->many_lights + args->sequence + args->display > 1)
-      throw CLI::ValidationError("--throughput, --sequence, --many-lights and --display are separate benchmarks: pick one");
+    if (args->throughput + args->many_lights + args->sequence + args->shadows + args->display > 1)
+      throw CLI::ValidationError(
+          "--throughput, --sequence, --many-lights, --shadows and --display are separate benchmarks: pick one");
+    if (args->shadows) return run_shadows_bench(*args);
     if (args->sequence) return run_sequence_bench(*args);
     if (args->display) return run_display_bench(*args);
     if (args->many_lights) return run_many_lights_bench(*args);

@@ -28,6 +28,7 @@
 #include "gbuffer/layouts.h"
 #include "peers/machine_limits.h"
 #include "raycast/raycast.h"
+#include "report/scratch_directory.h"
 #include "scene/json_reader.h"
 #include "sequence/frame_pattern.h"
 #include "sequence/frame_pipeline.h"
@@ -290,15 +291,8 @@ void run_sequence_bench(const BenchArguments& args) {
   for (std::string name; std::getline(list, name, ',');) compressions.push_back(exr::parse_compression(name));
   // The product's command line, which phongcl-lab is installed and built beside.
   const std::string exe = (fs::read_symlink("/proc/self/exe").parent_path() / "phongcl").string();
-  const fs::path dir = fs::temp_directory_path() / ("phongcl-bench-sequence-" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  struct Cleanup {
-    fs::path dir;
-    ~Cleanup() {
-      std::error_code ignored;
-      fs::remove_all(dir, ignored);
-    }
-  } cleanup{dir};
+  const ScratchDirectory scratch("phongcl-bench-sequence");
+  const fs::path& dir = scratch.path();
   const fs::path log = dir / "errors.log";
 
   std::cout << "phongcl bench --sequence: " << args.sequence_frames << " frames of " << args.inputs.scene_file

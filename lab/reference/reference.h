@@ -2,6 +2,8 @@
 // The scalar reference: the Phong formula in double precision, written from the specification
 // (docs/shading.md "The formula"), single-threaded and plain. It checks the OpenCL kernel, so it
 // shares no code with kernels/ or host/shading/.
+#include <functional>
+
 #include <glm/glm.hpp>
 
 #include "gbuffer/gbuffer.h"
@@ -25,12 +27,16 @@ struct ShadingTerms {
   glm::dvec3 total() const { return ambient + diffuse + specular; }
 };
 
-ShadingTerms reference_shade_point(const Scene& scene, const SurfacePoint& point);
+// Whether a light that casts shadows reaches a point (lab/reference/reference_shadows.h decides it
+// by brute force, reference_screen_shadows.h by the march); empty: every light reaches everything.
+using LightReach = std::function<bool(const SurfacePoint& point, const Light& light)>;
+
+ShadingTerms reference_shade_point(const Scene& scene, const SurfacePoint& point, const LightReach& reaches = {});
 
 // The material of a shaded pixel: per-pixel channels where present, else the scene's table.
 SurfacePoint reference_surface(const Scene& scene, const GBuffer& gbuffer, std::size_t index);
 
 // The whole image: shaded pixels get total() (alpha 1), the rest the scene background (alpha 0).
-Image reference_image(const Scene& scene, const GBuffer& gbuffer);
+Image reference_image(const Scene& scene, const GBuffer& gbuffer, const LightReach& reaches = {});
 
 }  // namespace phongcl

@@ -55,7 +55,7 @@ glm::dvec3 product(const glm::dvec3& x, const glm::dvec3& y) {
 
 }  // namespace
 
-ShadingTerms reference_shade_point(const Scene& scene, const SurfacePoint& point) {
+ShadingTerms reference_shade_point(const Scene& scene, const SurfacePoint& point, const LightReach& reaches) {
   ShadingTerms terms;
   terms.ambient = point.ka * scene.ambient;
 
@@ -66,6 +66,7 @@ ShadingTerms reference_shade_point(const Scene& scene, const SurfacePoint& point
   glm::dvec3 diffuse(0.0), specular(0.0);  // sums of Li * F * (n.l) and Li * F * (v.r)^q
   for (const Light& light : scene.lights) {
     if (!light.reaches(point.material)) continue;
+    if (reaches && light.shadows && !reaches(point, light)) continue;
     // l points from the surface towards the light; a directional light's direction is the way it
     // travels, hence the minus sign.
     const bool positional = light.type != LightType::directional;

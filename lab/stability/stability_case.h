@@ -69,6 +69,9 @@ struct StabilityCase {
   std::vector<std::vector<ExactColor>> across;
   bool edge_is_step = true;
   std::size_t nonfinite_pixels = 0;  // pixels ShadeResult::counts must report as non-finite
+  // Shadow cases: per pixel, per light, whether the light reaches the pixel (decided from the
+  // geometry by hand); `exact` leaves out the lights that do not. Empty: no shadows.
+  std::vector<std::vector<bool>> lit;
   VariantExpectations expect;
   Expectation reference = Expectation::within(1e-6, "float rounding of the result");  // the double reference
 };

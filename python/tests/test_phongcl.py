@@ -164,6 +164,28 @@ def test_scene_from_dict_reads_the_files_form():
     assert scene.materials[0].name == "red" and scene.materials[0].shininess == 32
 
 
+@needs_device
+def test_shadows_are_a_relighter_option(scene, gbuffer):
+    casting = phongcl.load_scene(str(DEFAULT))
+    lights = casting.lights
+    for light in lights:
+        light.shadows = True
+    casting.lights = lights
+    shadowed = phongcl.Relighter(casting, gbuffer, shadows="geometry")
+    image = shadowed.shade()
+    assert shadowed.last_report["shadows"].startswith("geometry: ")
+    unshadowed = phongcl.Relighter(casting, gbuffer, shadows="off")
+    plain = unshadowed.shade()
+    assert unshadowed.last_report["shadows"] == ""
+    check_against_reference(plain, scene, gbuffer, "shadows off")
+    assert (image[..., :3] < plain[..., :3]).any(axis=2).sum() > 100, "the default scene's objects shadow each other"
+    assert (image[..., :3] <= plain[..., :3]).all()
+    with pytest.raises(ValueError, match="shadow mode"):
+        phongcl.Relighter(casting, gbuffer, shadows="sideways")
+    with pytest.raises(ValueError, match="thickness"):
+        phongcl.Relighter(casting, gbuffer, shadows="screen", shadow_thickness="-3")
+
+
 def test_write_png_through_a_view_over_a_background(tmp_path):
     """The binding passes each setting on (the display transform itself is tested in C++):
     equal settings make equal files, and each setting changes the file."""

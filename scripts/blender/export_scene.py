@@ -1,7 +1,7 @@
 """Writes phongcl's scene JSON from a .blend, and with --render the G-buffer EXR phongcl reads.
 
     blender -b file.blend --python scripts/blender/export_scene.py -- --out scene.json [--render gbuffer.exr]
-        [--samples N] [--falloff quadratic|none]
+        [--samples N] [--falloff quadratic|none] [--geometry DIR]
 
 Conventions (docs/formats.md "Renderers' G-buffers", "From a Blender scene"):
 - Camera: eye, forward (-Z) and up (+Y) of the camera's world matrix; the vertical field of view
@@ -23,13 +23,20 @@ Conventions (docs/formats.md "Renderers' G-buffers", "From a Blender scene"):
   Blinn-Phong exponent, /4 for Phong's reflection-vector lobe), ka = kd; the ambient is the world
   colour times its strength (a uniform environment lights an unoccluded Lambertian surface with
   rho * L). Indices no material uses get a grey material.
+- Shadows: a light that casts shadows in Cycles (its cast_shadow setting) gets "shadows": true.
+- --geometry DIR writes every visible mesh that casts shadows (Object.visible_shadow) as a
+  world-space binary little-endian PLY in DIR, modifiers applied and triangulated, one file per
+  object and material slot (DIR/<object>.<slot>.ply), and lists each as a {"type": "mesh"} object
+  of its material's pass index, so phongcl's shadows trace the very triangles Cycles traced.
 - --render enables the passes phongcl reads (Position, Normal, Depth, IndexMA, DiffCol, GlossCol)
   and renders a multilayer 32-bit EXR with Cycles on the CPU.
 """
 import argparse
+import array
 import json
 import math
 import os
+import re
 import sys
 
 import bpy
@@ -100,6 +107,12 @@ def spot_cone(light):
             "penumbra_angle_deg": round(max(math.degrees(outer_half - inner_half), 0.0), 6)}
 
 
+def with_shadows(light, entry):
+    if light.data.cycles.cast_shadow:
+        entry["shadows"] = True
+    return entry
+
+
 def lights_json(scene, falloff):
     lights = []
     centre = meshes_centre(scene)
@@ -108,8 +121,8 @@ def lights_json(scene, falloff):
         colour = Vector(data.color)
         if data.type == "SUN":
             direction = light.matrix_world.to_3x3() @ Vector((0.0, 0.0, -1.0))
-            lights.append({"type": "directional", "direction": rounded(direction.normalized()),
-                           "color": rounded(colour * data.energy / math.pi)})
+            lights.append(with_shadows(light, {"type": "directional", "direction": rounded(direction.normalized()),
+                                               "color": rounded(colour * data.energy / math.pi)}))
             continue
         if data.type not in ("POINT", "SPOT"):
             note("light '%s' is an %s light, which phongcl has not: skipped" % (light.name, data.type.lower()))
@@ -126,7 +139,7 @@ def lights_json(scene, falloff):
             intensity = intensity / distance ** 2
             note("point light '%s' at %.3g from the meshes' centre, taken at that distance (no falloff)" % (light.name, distance))
         entry["color"] = rounded(intensity)
-        lights.append(entry)
+        lights.append(with_shadows(light, entry))
     return lights
 
 
@@ -180,9 +193,72 @@ def ambient_json(scene):
     return rounded(world.color)
 
 
-def scene_json(scene, falloff="none", gbuffer=None):
+def write_ply(path, vertices, triangles):
+    """Binary little-endian PLY: float x y z, faces as uchar-counted int lists; written atomically."""
+    header = ("ply\nformat binary_little_endian 1.0\nelement vertex %d\nproperty float x\nproperty float y\n"
+              "property float z\nelement face %d\nproperty list uchar int vertex_indices\nend_header\n"
+              % (len(vertices) // 3, len(triangles) // 3))
+    faces = bytearray()
+    corners = array.array("i", triangles)
+    if sys.byteorder != "little":
+        corners.byteswap()
+    raw = corners.tobytes()
+    for t in range(len(triangles) // 3):
+        faces += b"\x03" + raw[12 * t:12 * t + 12]
+    coordinates = array.array("f", vertices)
+    if sys.byteorder != "little":
+        coordinates.byteswap()
+    temp = path + ".tmp"
+    with open(temp, "wb") as out:
+        out.write(header.encode("ascii"))
+        out.write(coordinates.tobytes())
+        out.write(faces)
+    os.replace(temp, path)
+
+
+def safe_name(name):
+    return re.sub(r"[^A-Za-z0-9_.-]", "_", name)
+
+
+def export_geometry(scene, directory, json_directory):
+    """Each visible, shadow-casting mesh, evaluated (modifiers applied), in world space and triangulated,
+    one PLY per object and material slot; returns the scene's "objects" entries for them."""
+    os.makedirs(directory, exist_ok=True)
+    depsgraph = bpy.context.evaluated_depsgraph_get()
+    objects = []
+    for obj in visible_meshes(scene):
+        if not obj.visible_shadow:
+            note("mesh '%s' casts no shadow in Cycles: left out of --geometry" % obj.name)
+            continue
+        evaluated = obj.evaluated_get(depsgraph)
+        mesh = evaluated.to_mesh()
+        try:
+            mesh.transform(obj.matrix_world)
+            mesh.calc_loop_triangles()
+            by_slot = {}
+            for triangle in mesh.loop_triangles:
+                by_slot.setdefault(triangle.material_index, []).append(triangle.vertices)
+            for slot, triangles in sorted(by_slot.items()):
+                used = sorted({v for t in triangles for v in t})
+                remap = {v: i for i, v in enumerate(used)}
+                vertices = [c for v in used for c in mesh.vertices[v].co]
+                corners = [remap[v] for t in triangles for v in t]
+                path = os.path.join(directory, "%s.%d.ply" % (safe_name(obj.name), slot))
+                write_ply(path, vertices, corners)
+                material = obj.material_slots[slot].material if slot < len(obj.material_slots) else None
+                objects.append({"type": "mesh", "file": os.path.relpath(os.path.abspath(path), json_directory),
+                                "material": material.pass_index if material is not None else 0})
+                note("wrote %s (%d triangles)" % (path, len(triangles)))
+        finally:
+            evaluated.to_mesh_clear()
+    return objects
+
+
+def scene_json(scene, falloff="none", gbuffer=None, objects=None):
     document = {"camera": camera_json(scene), "background": [0.0, 0.0, 0.0], "ambient": ambient_json(scene),
                 "lights": lights_json(scene, falloff), "materials": materials_json(scene)}
+    if objects:
+        document["objects"] = objects
     if gbuffer:
         document["gbuffer"] = gbuffer
     return document
@@ -239,6 +315,8 @@ def parse(argv):
     parser.add_argument("--out", required=True, help="scene JSON to write")
     parser.add_argument("--render", help="also render the G-buffer EXR here (Cycles, CPU)")
     parser.add_argument("--samples", type=int, help="Cycles samples for --render (default: the file's)")
+    parser.add_argument("--geometry", help="write the visible meshes as world-space PLY files in this directory and "
+                        "list them as the scene's objects (exact shadows)")
     parser.add_argument("--falloff", choices=("none", "quadratic"), default="quadratic",
                         help="quadratic (default): point and spot lights fall off with 1/d^2 as in Blender; none: "
                              "each light's colour taken at its distance to the meshes' centre")
@@ -252,7 +330,10 @@ def main():
     if args.render:
         render_gbuffer(scene, args.render, args.samples)
         gbuffer = os.path.relpath(os.path.abspath(args.render), os.path.dirname(os.path.abspath(args.out)))
-    write_json(scene_json(scene, args.falloff, gbuffer), args.out)
+    objects = None
+    if args.geometry:
+        objects = export_geometry(scene, args.geometry, os.path.dirname(os.path.abspath(args.out)))
+    write_json(scene_json(scene, args.falloff, gbuffer, objects), args.out)
     note("wrote " + args.out + (" and " + args.render if args.render else ""))
 
 

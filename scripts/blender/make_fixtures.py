@@ -38,14 +38,22 @@ def material(name, colour, roughness, pass_index):
     return m
 
 
-def build_scene(width, height):
+def empty_scene(width, height, sky=(0.05, 0.05, 0.06), strength=1.0):
+    """A new empty scene of width x height pixels under a uniform sky."""
     bpy.ops.wm.read_factory_settings(use_empty=True)
     scene = bpy.context.scene
     scene.render.resolution_x, scene.render.resolution_y, scene.render.resolution_percentage = width, height, 100
     world = bpy.data.worlds.new("World")
     world.use_nodes = True
-    world.node_tree.nodes["Background"].inputs["Color"].default_value = (0.05, 0.05, 0.06, 1.0)
+    background = world.node_tree.nodes["Background"]
+    background.inputs["Color"].default_value = (*sky, 1.0)
+    background.inputs["Strength"].default_value = strength
     scene.world = world
+    return scene
+
+
+def build_scene(width, height):
+    scene = empty_scene(width, height)
 
     bpy.ops.mesh.primitive_plane_add(size=30.0, location=(0.0, 0.0, 0.0))
     bpy.context.object.data.materials.append(material("ground", (0.5, 0.5, 0.45), 0.8, 0))
@@ -68,13 +76,18 @@ def build_scene(width, height):
     scene.camera = camera
     bpy.context.view_layer.update()  # matrix_world of the objects just placed
 
+    cycles(scene, 16)
+    return scene
+
+
+def cycles(scene, samples):
+    """Cycles on the CPU, a fixed number of samples and seed, no denoising: renders that repeat."""
     scene.render.engine = "CYCLES"
     scene.cycles.device = "CPU"
-    scene.cycles.samples = 16
+    scene.cycles.samples = samples
     scene.cycles.use_denoising = False
     scene.cycles.use_adaptive_sampling = False
     scene.cycles.seed = 1
-    return scene
 
 
 def render(scene, path):
@@ -97,6 +110,21 @@ def add_file_output(scene, directory):
         node.layer_slots.new(name)
         tree.links.new(layers.outputs[name], node.inputs[name])
     return os.path.join(directory, "file_output_[0-9]*")
+
+
+def output_arguments(prog, width, height, only=False):
+    """--out DIR (made if missing) and the image size, from the arguments after Blender's "--"; with
+    only, also --only."""
+    parser = argparse.ArgumentParser(prog=prog)
+    parser.add_argument("--out", required=True)
+    parser.add_argument("--width", type=int, default=width)
+    parser.add_argument("--height", type=int, default=height)
+    if only:
+        parser.add_argument("--only", help="comma-separated fixture names to make (default: all); the others are left as they are")
+    args = parser.parse_args(sys.argv[sys.argv.index("--") + 1:])
+    args.out = os.path.abspath(args.out)
+    os.makedirs(args.out, exist_ok=True)
+    return args
 
 
 def make_scene_json(scene, out):
@@ -168,14 +196,8 @@ MAKERS = {
 
 
 def main():
-    parser = argparse.ArgumentParser(prog="make_fixtures.py")
-    parser.add_argument("--out", required=True)
-    parser.add_argument("--width", type=int, default=64)
-    parser.add_argument("--height", type=int, default=48)
-    parser.add_argument("--only", help="comma-separated fixture names to make (default: all); the others are left as they are")
-    args = parser.parse_args(sys.argv[sys.argv.index("--") + 1:])
-    out = os.path.abspath(args.out)
-    os.makedirs(out, exist_ok=True)
+    args = output_arguments("make_fixtures.py", 64, 48, only=True)
+    out = args.out
 
     scene = build_scene(args.width, args.height)
     if args.only:

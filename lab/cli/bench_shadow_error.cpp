@@ -1,0 +1,146 @@
+// phongcl bench --shadows, the error-against-run-time part: on each scene (--scene's, scenes/spotlights,
+// scenes/large with 16 lights, a knot mesh), every light casting shadows, the kernel with exact
+// geometry shadows, without shadows, and with screen-space shadows at 8 to 128 steps and three
+// thicknesses, timed round-robin (drifting load falls on every variant alike); each image compared
+// with the exact one.
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <iostream>
+
+#include "cl/compute_context.h"
+#include "cli/bench_arguments.h"
+#include "cli/shadow_bench_report.h"
+#include "peers/light_sweep.h"
+#include "raycast/raycast.h"
+#include "report/statistics.h"
+#include "shading/phong_shader.h"
+
+namespace phongcl::cli {
+
+namespace {
+
+// A pixel's shadows differ when the two images differ there by more than this fraction of the
+// unshadowed pixel (largest channel): a light's shadow decided otherwise changes the pixel by that
+// light's whole contribution, rounding by 1e-6 of it.
+constexpr double kDifferentShadows = 0.01;
+
+const int kSteps[] = {8, 16, 32, 64, 128};
+const char* const kThicknesses[] = {"2%", "6%", "20%"};
+
+struct BenchScene {
+  std::string name;
+  Scene scene;
+  GBuffer gbuffer;
+};
+
+Scene casting_every_light(Scene scene) {
+  for (Light& light : scene.lights) light.shadows = true;
+  return scene;
+}
+
+// A scene whose G-buffer is not in the repository (scenes/large) is ray-cast.
+BenchScene loaded(const SceneInputs& inputs, int lights = 0) {
+  Scene scene = inputs.load_scene();
+  GBuffer gbuffer =
+      std::filesystem::exists(inputs.gbuffer_path(scene)) ? inputs.load_gbuffer(scene) : generate_gbuffer(scene);
+  if (lights > 0) scene = with_generated_lights(scene, lights);
+  const std::string label = std::filesystem::path(inputs.scene_file).parent_path().filename().string() + " (" +
+                            std::to_string(scene.lights.size()) + " lights)";
+  return {label, casting_every_light(std::move(scene)), std::move(gbuffer)};
+}
+
+BenchScene bundled(const std::string& name, int lights = 0) {
+  SceneInputs inputs;
+  inputs.scene_file = "scenes/" + name + "/scene.json";
+  if (!std::filesystem::exists(inputs.scene_file))
+    throw std::runtime_error("bench --shadows: no " + inputs.scene_file + " (run it from the repository root)");
+  return loaded(inputs, lights);
+}
+
+// Shaded pixels whose shadows differ, and the mean absolute error over their R, G, B.
+void compare_with_exact(const Image& image, const Image& exact, const Image& unshadowed, const GBuffer& gbuffer,
+                        ShadowVariant& variant) {
+  std::size_t shaded = 0, differ = 0;
+  double error = 0.0;
+  for (std::size_t i = 0; i < gbuffer.pixel_count(); ++i) {
+    if (classify_pixel(gbuffer, i) != PixelClass::shaded) continue;
+    ++shaded;
+    double largest = 0.0, reach = 0.0;
+    for (int c = 0; c < 3; ++c) {
+      const double miss = std::abs(static_cast<double>(image.pixel(i)[c]) - exact.pixel(i)[c]);
+      largest = std::max(largest, miss);
+      reach = std::max(reach, static_cast<double>(unshadowed.pixel(i)[c]));
+      error += miss;
+    }
+    differ += largest > kDifferentShadows * reach;
+  }
+  variant.mismatch = static_cast<double>(differ) / static_cast<double>(std::max<std::size_t>(shaded, 1));
+  variant.mean_abs_error = error / (3.0 * static_cast<double>(std::max<std::size_t>(shaded, 1)));
+}
+
+ShadowSceneResult measure(PhongShader& shader, const BenchScene& bench, int runs) {
+  ShadowSceneResult result;
+  result.name = bench.name;
+  result.width = bench.gbuffer.width;
+  result.height = bench.gbuffer.height;
+  result.lights = static_cast<int>(bench.scene.lights.size());
+  std::vector<ShadeOptions> options;
+  auto add = [&](const std::string& label, const ShadowSettings& settings, const std::string& thickness = "") {
+    ShadowVariant& variant = result.variants.emplace_back();
+    variant.label = label;
+    variant.mode = to_string(settings.mode);
+    if (settings.mode == ShadowMode::screen) variant.steps = settings.steps, variant.thickness = thickness;
+    ShadeOptions option;
+    option.shadows = settings;
+    options.push_back(option);
+  };
+  add("geometry", {ShadowMode::geometry});
+  add("off", {ShadowMode::off});
+  for (const char* thickness : kThicknesses)
+    for (int steps : kSteps)
+      add("screen " + std::to_string(steps) + " steps, " + thickness,
+          {ShadowMode::screen, steps, parse_shadow_thickness(thickness)}, thickness);
+
+  // The untimed warm-up builds each program; its image is the one compared.
+  std::vector<Image> images;
+  for (const ShadeOptions& option : options) {
+    ShadeResult shaded = shader.shade(bench.scene, bench.gbuffer, option);
+    if (option.shadows.mode == ShadowMode::geometry) result.geometry = shaded.shadows;
+    images.push_back(std::move(shaded.image));
+  }
+  for (std::size_t i = 0; i < bench.gbuffer.pixel_count(); ++i)
+    result.shaded += classify_pixel(bench.gbuffer, i) == PixelClass::shaded;
+  for (std::size_t v = 0; v < options.size(); ++v) compare_with_exact(images[v], images[0], images[1], bench.gbuffer, result.variants[v]);
+  std::vector<std::vector<double>> times(options.size());
+  for (int run = 0; run < runs; ++run)
+    for (std::size_t v = 0; v < options.size(); ++v)
+      times[v].push_back(shader.shade(bench.scene, bench.gbuffer, options[v]).timings.kernel_ms);
+  for (std::size_t v = 0; v < options.size(); ++v) result.variants[v].kernel_ms = median(times[v]);
+  return result;
+}
+
+}  // namespace
+
+std::vector<ShadowSceneResult> run_shadow_error_bench(const BenchArguments& args, const std::filesystem::path& scratch) {
+  ProgramCache cache(ProgramCache::default_directory());
+  PhongShader shader(make_compute_context(pick_device(args.device)), cache);
+  std::vector<BenchScene> scenes;
+  scenes.push_back(loaded(args.inputs));
+  scenes.push_back(bundled("spotlights"));
+  scenes.push_back(bundled("large", 16));
+  Scene knot = mesh_scene(scratch, args.mesh_triangles, 4, 960, 540);
+  GBuffer knot_gbuffer = generate_gbuffer(knot);
+  scenes.push_back({"knot mesh (" + std::to_string(knot.lights.size()) + " lights)", casting_every_light(std::move(knot)),
+                    std::move(knot_gbuffer)});
+  std::vector<ShadowSceneResult> results;
+  for (const BenchScene& scene : scenes) {
+    std::cout << "  scene      " << scene.name << ", " << scene.gbuffer.width << "x" << scene.gbuffer.height << "..."
+              << std::flush;
+    results.push_back(measure(shader, scene, args.runs));
+    std::cout << " " << results.back().geometry << "\n\n" << shadow_error_table(results.back()) << "\n";
+  }
+  return results;
+}
+
+}  // namespace phongcl::cli
