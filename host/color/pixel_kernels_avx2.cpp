@@ -8,6 +8,8 @@
 
 namespace phongcl {
 
+// Named so the install check can tell these runtime-dispatched functions from the baseline code.
+namespace avx2 {
 namespace {
 
 constexpr std::size_t kLanes = 8;
@@ -211,9 +213,10 @@ void to_bytes(const float* const planes[3], std::size_t n, std::uint8_t* rgba) {
 }
 
 }  // namespace
-
+}  // namespace avx2
 
 const PixelKernels* avx2_pixel_kernels() {
+  using namespace avx2;
   static const PixelKernels kernels{flatten, separable, lut3d, matrix, to_bytes};
   return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") ? &kernels : nullptr;
 }
