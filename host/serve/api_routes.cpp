@@ -323,6 +323,10 @@ void ApiRoutes::get_stats(const httplib::Request& request, httplib::Response& re
                       {"warnings", frame->frame.warnings},
                       {"error", frame->error}};
   }
+  {
+    std::lock_guard lock(waiting_mutex_);
+    stats["waiting_for_frames"] = waiting_;
+  }
   std::lock_guard lock(encode_mutex_);
   stats["encode_ms"] = last_encode_ms_;
   send_json(response, stats);
