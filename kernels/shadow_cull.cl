@@ -190,13 +190,15 @@ static uint pair_candidates(uint pair, uint tile_count, __global const TileBox* 
   if (box.shaded == 0) return 0;
   const ShadowLight light = lights[light_index];
   const ShadowHull hull = tile_hull(&box, light, offset_scale, eye_extent);
-  CandidateList list = {out, 0, limit};
   uint parent_count = PHONGCL_SHADOW_TRAVERSE, parent_pair = 0;
   if (level.ratio > 0) {
     const uint parent = (tile / level.tiles_x / level.ratio) * level.parent_tiles_x + tile % level.tiles_x / level.ratio;
     parent_pair = light_index * level.parent_tiles + parent;
     parent_count = parent_counts[parent_pair];
   }
+  /* The room the host gave a tile is its parent's count; a parent's run may split here (some of its
+   * primitives miss the tile), so a list that would outgrow the room traverses instead. */
+  CandidateList list = {out, 0, parent_count == PHONGCL_SHADOW_TRAVERSE ? limit : min(limit, parent_count)};
   const bool complete = parent_count == PHONGCL_SHADOW_TRAVERSE
                             ? walk_bvh(&list, &hull, light, nodes, node_count, bounds, planes, plane_count)
                             : filter_list(&list, &hull, light, &parent_candidates[parent_offsets[parent_pair]],

@@ -2,7 +2,8 @@
 // scenes/large with 16 lights, a knot mesh), every light casting shadows, the kernel with exact
 // geometry shadows, without shadows, and with screen-space shadows at 8 to 128 steps and three
 // thicknesses, timed round-robin (drifting load falls on every variant alike); each image compared
-// with the exact one.
+// with the exact one; then the same scene's shadow rays alone, traversing the BVH against tiled
+// shadow culling.
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -11,7 +12,11 @@
 #include "cl/compute_context.h"
 #include "cli/bench_arguments.h"
 #include "cli/shadow_bench_report.h"
+#include "geometry/device_geometry.h"
+#include "geometry/scene_bvh.h"
 #include "peers/light_sweep.h"
+#include "peers/opencl_shadow_rays.h"
+#include "peers/packed_frame.h"
 #include "raycast/raycast.h"
 #include "report/statistics.h"
 #include "shading/phong_shader.h"
@@ -120,6 +125,43 @@ ShadowSceneResult measure(PhongShader& shader, const BenchScene& bench, int runs
   return result;
 }
 
+// Every ray traversing, then tiled culling at 8, 16 and 32 pixels, timed round-robin; the counts
+// of blocked lights compared with the traversal's (culling only leaves out what cannot block).
+std::vector<ShadowCullingVariant> measure_culling(const ComputeContext& compute, ProgramCache& cache,
+                                                  const BenchScene& bench, int runs) {
+  using Method = OpenClShadowRays::Method;
+  const glm::dvec3 eye = bench.scene.camera.eye;
+  const SceneBvh bvh = build_scene_bvh(flatten_objects(bench.scene.objects), PHONGCL_BVH_MAX_DEPTH);
+  OpenClShadowRays tracer(compute, cache, pack_device_geometry(bvh, eye));
+  tracer.set_frame(pack_frame(bench.gbuffer, bench.scene), bench.gbuffer.width, bench.gbuffer.height, bench.scene, eye,
+                   PHONGCL_SHADOW_OFFSET_FLOAT);
+  std::vector<ShadowCullingVariant> variants;
+  for (int tile : {0, 8, 16, 32}) variants.push_back({.tile = tile});
+  auto count = [&](const ShadowCullingVariant& v) {
+    return tracer.count_blocked(v.tile == 0 ? Method::traverse : Method::culled, std::max(v.tile, 1));
+  };
+  std::vector<float> traversed;
+  for (ShadowCullingVariant& v : variants) {  // the warm-up builds the programs
+    const OpenClShadowRays::Counts counts = count(v);
+    if (v.tile == 0) traversed = counts.blocked_lights;
+    v.candidates_per_pair = counts.candidates_per_pair;
+    v.traversing_pairs = counts.traversing_pairs;
+    for (std::size_t i = 0; i < traversed.size(); ++i) v.differing += counts.blocked_lights[i] != traversed[i];
+  }
+  std::vector<std::vector<double>> totals(variants.size()), culling(variants.size());
+  for (int run = 0; run < runs; ++run)
+    for (std::size_t k = 0; k < variants.size(); ++k) {
+      const OpenClShadowRays::Counts counts = count(variants[k]);
+      totals[k].push_back(counts.culling_ms + counts.kernel_ms);
+      culling[k].push_back(counts.culling_ms);
+    }
+  for (std::size_t k = 0; k < variants.size(); ++k) {
+    variants[k].total_ms = median(totals[k]);
+    variants[k].culling_ms = median(culling[k]);
+  }
+  return variants;
+}
+
 }  // namespace
 
 std::vector<ShadowSceneResult> run_shadow_error_bench(const BenchArguments& args, const std::filesystem::path& scratch) {
@@ -138,7 +180,9 @@ std::vector<ShadowSceneResult> run_shadow_error_bench(const BenchArguments& args
     std::cout << "  scene      " << scene.name << ", " << scene.gbuffer.width << "x" << scene.gbuffer.height << "..."
               << std::flush;
     results.push_back(measure(shader, scene, args.runs));
-    std::cout << " " << results.back().geometry << "\n\n" << shadow_error_table(results.back()) << "\n";
+    std::cout << " " << results.back().geometry << "\n\n" << shadow_error_table(results.back()) << "\n" << std::flush;
+    results.back().culling = measure_culling(shader.compute(), cache, scene, args.runs);
+    std::cout << shadow_culling_table(results.back()) << "\n";
   }
   return results;
 }

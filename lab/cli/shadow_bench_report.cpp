@@ -1,5 +1,7 @@
 #include "cli/shadow_bench_report.h"
 
+#include <limits>
+
 #include <nlohmann/json.hpp>
 
 #include "report/markdown_table.h"
@@ -13,23 +15,36 @@ namespace {
 
 using nlohmann::json;
 
-std::vector<bool> front_of(const ShadowSceneResult& scene) {
+// The Pareto front of time and mismatch over every variant, or over the screen-space marches alone
+// (exact geometry shadows dominate every march where the scene has geometry; the front among the
+// marches is what a G-buffer without geometry chooses from).
+std::vector<bool> front_of(const ShadowSceneResult& scene, bool screen_only = false) {
   std::vector<CostPoint> points;
-  for (const ShadowVariant& v : scene.variants) points.push_back({v.kernel_ms, v.mismatch});
+  for (const ShadowVariant& v : scene.variants) {
+    const bool counted = !screen_only || v.mode == "screen";
+    points.push_back({counted ? v.kernel_ms : std::numeric_limits<double>::infinity(), v.mismatch});
+  }
   return pareto_front(points);
 }
 
 json scene_json(const ShadowSceneResult& scene) {
   json variants = json::array();
-  const std::vector<bool> front = front_of(scene);
+  const std::vector<bool> front = front_of(scene), screen_front = front_of(scene, true);
   for (std::size_t i = 0; i < scene.variants.size(); ++i) {
     const ShadowVariant& v = scene.variants[i];
     variants.push_back({{"label", v.label}, {"mode", v.mode}, {"steps", v.steps}, {"thickness", v.thickness},
                         {"kernel_median_ms", v.kernel_ms}, {"mismatch_fraction", v.mismatch},
-                        {"mean_abs_error", v.mean_abs_error}, {"pareto_front", static_cast<bool>(front[i])}});
+                        {"mean_abs_error", v.mean_abs_error}, {"pareto_front", static_cast<bool>(front[i])},
+                        {"screen_pareto_front", static_cast<bool>(screen_front[i])}});
   }
-  return {{"scene", scene.name}, {"width", scene.width}, {"height", scene.height}, {"lights", scene.lights},
-          {"shaded_pixels", scene.shaded}, {"geometry", scene.geometry}, {"variants", variants}};
+  json culling = json::array();
+  for (const ShadowCullingVariant& c : scene.culling)
+    culling.push_back({{"tile", c.tile}, {"total_median_ms", c.total_ms}, {"culling_median_ms", c.culling_ms},
+                       {"candidates_per_pair", c.candidates_per_pair}, {"traversing_pairs", c.traversing_pairs},
+                       {"pixels_differing", c.differing}});
+  return {{"scene", scene.name}, {"width", scene.width},     {"height", scene.height},
+          {"lights", scene.lights}, {"shaded_pixels", scene.shaded}, {"geometry", scene.geometry},
+          {"variants", variants}, {"shadow_culling", culling}};
 }
 
 json rays_json(const ShadowRaysResult& rays) {
@@ -86,11 +101,12 @@ std::string shadow_rays_table(const ShadowRaysResult& result) {
 }
 
 std::string shadow_error_table(const ShadowSceneResult& scene) {
-  MarkdownTable table{{"shadows", "median kernel ms", "x unshadowed", "pixels differing", "mean abs error", "front"},
+  MarkdownTable table{{"shadows", "median kernel ms", "x unshadowed", "pixels differing", "mean abs error", "front",
+                       "screen front"},
                       {},
                       {ColumnAlign::left, ColumnAlign::right, ColumnAlign::right, ColumnAlign::right,
-                       ColumnAlign::right, ColumnAlign::left}};
-  const std::vector<bool> front = front_of(scene);
+                       ColumnAlign::right, ColumnAlign::left, ColumnAlign::left}};
+  const std::vector<bool> front = front_of(scene), screen_front = front_of(scene, true);
   double unshadowed = 0.0;
   for (const ShadowVariant& v : scene.variants)
     if (v.mode == "off") unshadowed = v.kernel_ms;
@@ -98,25 +114,52 @@ std::string shadow_error_table(const ShadowSceneResult& scene) {
     const ShadowVariant& v = scene.variants[i];
     table.rows.push_back({v.label, format_cell("%.2f", v.kernel_ms), format_cell("%.2fx", v.kernel_ms / unshadowed),
                           format_cell("%.2f%%", 100.0 * v.mismatch), format_cell("%.2e", v.mean_abs_error),
-                          front[i] ? "yes" : ""});
+                          front[i] ? "yes" : "", screen_front[i] ? "yes" : ""});
   }
   return table.render();
 }
 
-std::string write_shadow_report(const std::filesystem::path& directory, const std::vector<ShadowSceneResult>& scenes,
-                                const ShadowRaysResult& rays) {
+std::string shadow_culling_table(const ShadowSceneResult& scene) {
+  MarkdownTable table{{"shadow rays", "median ms", "culling ms", "x traversal", "candidates per list",
+                       "(tile, light) traversing", "pixels differing"},
+                      {},
+                      {ColumnAlign::left, ColumnAlign::right, ColumnAlign::right, ColumnAlign::right,
+                       ColumnAlign::right, ColumnAlign::right, ColumnAlign::right}};
+  const double traversal = scene.culling.empty() ? 0.0 : scene.culling.front().total_ms;
+  for (const ShadowCullingVariant& c : scene.culling)
+    table.rows.push_back({c.tile == 0 ? "every ray traverses the BVH" : "tiled culling, " + std::to_string(c.tile) + "x" +
+                                                                          std::to_string(c.tile) + " tiles",
+                          format_cell("%.2f", c.total_ms), c.tile == 0 ? "" : format_cell("%.2f", c.culling_ms),
+                          format_cell("%.2fx", c.total_ms / traversal),
+                          c.tile == 0 ? "" : format_cell("%.1f", c.candidates_per_pair),
+                          c.tile == 0 ? "" : format_cell("%.1f%%", 100.0 * c.traversing_pairs),
+                          std::to_string(c.differing)});
+  return table.render();
+}
+
+std::string write_shadow_report(const std::filesystem::path& directory, const ShadowBenchMachine& machine,
+                                const std::vector<ShadowSceneResult>& scenes, const ShadowRaysResult& rays) {
   std::string markdown = "# Shadows: error against run time, and shadow rays against Embree\n\n"
-                         "Written by `phongcl bench --shadows --report DIR` (docs/shadows.md). Device: " +
-                         rays.device + ". Every light casts shadows; exact geometry shadows are the reference. "
-                         "A pixel's shadows differ when the images differ there by more than 1% of its "
-                         "unshadowed value.\n";
-  json document = {{"scenes", json::array()}, {"rays", rays_json(rays)}};
+                         "Written by `phongcl bench --shadows --report DIR` (docs/shadows.md).\n\n"
+                         "- CPU: " + machine.cpu + "; device: " + rays.device + "\n"
+                         "- Load average at the start: " + machine.load_start + "; at the end: " + machine.load_end +
+                         "\n\nEvery light casts shadows; exact geometry shadows are the reference. A pixel's shadows "
+                         "differ when the images differ there by more than 1% of its unshadowed value. \"front\": "
+                         "on the Pareto front of time and pixels differing among every variant; \"screen front\": "
+                         "among the screen-space marches alone (what a G-buffer without geometry chooses from).\n";
+  json document = {{"machine", {{"cpu", machine.cpu}, {"loadavg_start", machine.load_start},
+                                {"loadavg_end", machine.load_end}}},
+                   {"scenes", json::array()},
+                   {"rays", rays_json(rays)}};
   for (std::size_t k = 0; k < scenes.size(); ++k) {
     const std::string chart = "error_" + std::to_string(k) + ".svg";
     write_text_file(directory / chart, render_svg(scene_chart(scenes[k])));
     markdown += "\n## " + scenes[k].name + ", " + std::to_string(scenes[k].width) + " x " +
                 std::to_string(scenes[k].height) + "\n\nExact shadows: " + scenes[k].geometry + ".\n\n" +
-                shadow_error_table(scenes[k]) + "\n![" + scenes[k].name + "](" + chart + ")\n";
+                shadow_error_table(scenes[k]) + "\n![" + scenes[k].name + "](" + chart + ")\n\n"
+                "Tiled shadow culling against the traversal: every light's shadow rays per pixel without the "
+                "shading around them (the lab's `count_blocked_lights`), the culling passes included.\n\n" +
+                shadow_culling_table(scenes[k]);
     document["scenes"].push_back(scene_json(scenes[k]));
   }
   markdown += "\n## Shadow rays: OpenCL against Embree\n\n" + std::to_string(rays.rays) + " rays on " +

@@ -38,12 +38,24 @@ struct ShadowVariant {
   double mean_abs_error = 0.0;  // of the image against geometry's, over shaded pixels and R, G, B
 };
 
+// Every light's shadow rays per pixel without the shading around them (kernels/shadow_rays.cl's
+// count_blocked_lights): every ray traversing the BVH (tile 0), or tested against its tile's
+// candidates from tiled shadow culling (kernels/shadow_cull.cl).
+struct ShadowCullingVariant {
+  int tile = 0;                 // tile size in pixels; 0: every ray traverses
+  double total_ms = 0.0;        // median: the culling passes and the rays' kernel
+  double culling_ms = 0.0;      // median of the culling passes (and the host's prefix sums)
+  double candidates_per_pair = 0.0, traversing_pairs = 0.0;
+  std::size_t differing = 0;    // pixels whose count of blocked lights differs from the traversal's
+};
+
 struct ShadowSceneResult {
   std::string name;  // "default", "large (16 lights)", "knot mesh"
   int width = 0, height = 0, lights = 0;
   std::size_t shaded = 0;
   std::string geometry;  // how the exact shadows were made (ShadeReport::shadows)
   std::vector<ShadowVariant> variants;  // geometry, off, then screen by steps and thickness
+  std::vector<ShadowCullingVariant> culling;  // traversal first, then tiles of 8, 16 and 32
 };
 
 // Exact, unshadowed and screen-space shadows (every light casting them) on --scene's scene,
@@ -51,10 +63,16 @@ struct ShadowSceneResult {
 // files go to `scratch`.
 std::vector<ShadowSceneResult> run_shadow_error_bench(const BenchArguments& args, const std::filesystem::path& scratch);
 
-std::string shadow_error_table(const ShadowSceneResult& scene);  // Markdown, with the Pareto front
+// What else the machine was doing: /proc/loadavg before the first scene and after the rays.
+struct ShadowBenchMachine {
+  std::string cpu, load_start, load_end;
+};
+
+std::string shadow_error_table(const ShadowSceneResult& scene);  // Markdown, with the Pareto fronts
+std::string shadow_culling_table(const ShadowSceneResult& scene);  // Markdown
 // report.md, report.json and one chart per scene (error_<n>.svg) in `directory`; returns what it wrote.
-std::string write_shadow_report(const std::filesystem::path& directory, const std::vector<ShadowSceneResult>& scenes,
-                                const ShadowRaysResult& rays);
+std::string write_shadow_report(const std::filesystem::path& directory, const ShadowBenchMachine& machine,
+                                const std::vector<ShadowSceneResult>& scenes, const ShadowRaysResult& rays);
 
 // A knot of at least `triangles` triangles over a ground, `lights` point lights casting shadows.
 Scene mesh_scene(const std::filesystem::path& directory, int triangles, int lights, int width, int height);
