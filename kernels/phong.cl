@@ -1,7 +1,8 @@
 /* Deferred Phong shading. Each work-item shades PHONGCL_LANES consecutive pixels as OpenCL vectors
  * (phong_math.h):
  *   L_o = ka*La + sum_i Li F_i [ kd*max(0, n.l_i) + ks*max(0, v.r_i)^q ],  r = 2(n.l)n - l
- * (the Phong lobe; a material may choose another, specular.h). shade_pixel() is that formula. What one light adds is add_point_light() or add_directional_light(),
+ * with Phong's lobe, or the one the material's specular model chooses (specular.h). shade_pixel()
+ * is that formula. What one light adds is add_point_light() or add_directional_light(),
  * its F_i (falloff, range, cone, linking) light_shape.h's, the specular lobe specular.h's; the tuned
  * arithmetic (robust normalisation, the power, compensated sums, streaming stores) is phong_math.h's.
  * With SHADOWS a light that casts shadows is multiplied by its visibility (shadow.h: a ray traced
@@ -204,7 +205,8 @@ static inline void shade_pixel(Terms* terms, const PixelPlanes* pixels, const Ma
   if (SPECULAR) {
     const vec3 ks = PER_PIXEL_KS ? PIXEL_PLANE3(pixels, PLANE_KS) : MATERIAL_FIELD3(materials, MATERIAL_KS);
     /* The normalised lobes' factor, (q+2)/2 or (q+8)/8: constant over the lights, so applied once. */
-    if (NORMALIZED_LOBES) sums.specular = scale3(sums.specular, specular_normalization(surface.shininess, surface.specular_model));
+    if (NORMALIZED_LOBES)
+      sums.specular = scale3(sums.specular, specular_normalization(surface.shininess, surface.specular_model));
     terms->specular = make_vec3(NONNEGATIVE_TIMES(ks.x, sums.specular.x), NONNEGATIVE_TIMES(ks.y, sums.specular.y),
                                NONNEGATIVE_TIMES(ks.z, sums.specular.z));
   }
