@@ -25,11 +25,13 @@ unsigned mask_of(const std::vector<SpecularModel>& models) {
   return mask;
 }
 
-// A random scene (shininess up to 1000, normals of any length) whose materials take `models` in turn.
+// A random scene (shininess up to 1000, normals of any length) whose materials take `models` in
+// turn; per_pixel: kd, ks and q per pixel, ka from the table (which so gives the model).
 std::pair<Scene, GBuffer> scene_with_models(const std::vector<SpecularModel>& models, unsigned seed, bool per_pixel) {
   RandomSceneSpec spec;
   spec.per_pixel_materials = per_pixel;
   auto [scene, gbuffer] = random_scene(spec, seed);
+  for (Plane& plane : gbuffer.ka) plane.clear();
   for (std::size_t i = 0; i < scene.materials.size(); ++i) scene.materials[i].specular_model = models[i % models.size()];
   return {scene, gbuffer};
 }
@@ -99,6 +101,21 @@ TEST(Specular, EveryModelGivesItsOwnImage) {
   for (std::size_t a = 0; a < images.size(); ++a)
     for (std::size_t b = a + 1; b < images.size(); ++b)
       EXPECT_NE(images[a].rgba, images[b].rgba) << to_string(kSpecularModels[a]) << " vs " << to_string(kSpecularModels[b]);
+}
+
+// A G-buffer that carries every coefficient does not consult the table: phong, as the reference.
+TEST(Specular, AGbufferWithEveryCoefficientShadesPhong) {
+  PHONGCL_REQUIRE_DEVICE(shader);
+  RandomSceneSpec spec;
+  spec.per_pixel_materials = true;
+  auto [scene, gbuffer] = random_scene(spec, 12);
+  for (Material& m : scene.materials) m.specular_model = SpecularModel::blinn_phong_normalized;
+  const ShadeResult result = shader.shade(scene, gbuffer, {});
+  EXPECT_EQ(result.recipe.value("SPECULAR_MODELS"), "1") << result.build_options;
+  const ErrorStats stats = shading_error(result.image, reference_image(scene, gbuffer), testing::shaded_mask(gbuffer));
+  EXPECT_LE(stats.max_rel, kRelativeBound) << describe_worst(stats);
+  for (Material& m : scene.materials) m.specular_model = SpecularModel::phong;
+  EXPECT_EQ(shader.shade(scene, gbuffer, {}).image.rgba, result.image.rgba);
 }
 
 TEST(Specular, TheRecipeCompilesInOnlyTheModelsUsed) {

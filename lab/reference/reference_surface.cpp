@@ -35,11 +35,9 @@ SurfacePoint reference_surface(const Scene& scene, const GBuffer& gbuffer, std::
     point.kd = table.kd;
     point.ks = table.ks;
     point.shininess = table.shininess;
+    // The model is never per pixel: the table's, where the table is consulted; else phong.
+    point.specular_model = table.specular_model;
   }
-  // The model is never per pixel: the table's where the pixel's index is in it, else phong.
-  const int material = static_cast<int>(gbuffer.material[index]);
-  if (material >= 0 && static_cast<std::size_t>(material) < scene.materials.size())
-    point.specular_model = scene.materials[static_cast<std::size_t>(material)].specular_model;
 
   if (gbuffer.has_per_pixel_ka()) point.ka = pixel_vec3(gbuffer.ka, index);
   if (gbuffer.has_per_pixel_kd()) point.kd = pixel_vec3(gbuffer.kd, index);
