@@ -8,6 +8,8 @@
  *   POINT_LIGHTS, DIRECTIONAL_LIGHTS       light types present
  *   POINT_COUNT=n, DIRECTIONAL_COUNT=n     light counts in the code (loops unroll); 0: read at run time
  *   SPECULAR, AMBIENT                      terms present
+ *   SPECULAR_MODELS=m                      the specular models the materials use, a mask of bit 1 << model
+ *                                          (specular.h); 1: Phong's alone, the seed's lobe
  *   SINGLE_MATERIAL                        every shaded pixel uses materials[0]: no per-pixel fetch
  *   MATERIAL_COUNT=n                       a table of n <= PHONGCL_LANES materials: selects, no gather;
  *                                          0: gathered per lane
@@ -31,7 +33,7 @@
     !defined(MATERIAL_COUNT) || !defined(PER_PIXEL_KA) || !defined(PER_PIXEL_KD) || !defined(PER_PIXEL_KS) ||     \
     !defined(PER_PIXEL_Q) || !defined(FALLOFF) || !defined(FALLOFF_MIXED) || !defined(RANGE_WINDOW) ||            \
     !defined(SPOT_LIGHTS) || !defined(LIGHT_LINKING) || !defined(TILED_CULLING) || !defined(WRITE_TERMS) ||        \
-    !defined(SHADOWS) || !defined(SCREEN_SHADOWS) || !defined(POSITION_REST)
+    !defined(SHADOWS) || !defined(SCREEN_SHADOWS) || !defined(POSITION_REST) || !defined(SPECULAR_MODELS)
 #error "phong.cl is built with every flag of features.h defined (host/shading/recipe.cpp writes them)"
 #endif
 
@@ -41,5 +43,11 @@
 #define NEEDS_DISTANCE (WEIGHT_CAN_OVERFLOW || RANGE_WINDOW)
 /* Point lights read their LightShape. */
 #define POINT_SHAPES (NEEDS_DISTANCE || SPOT_LIGHTS)
+/* The specular models present (specular.h numbers them): lobes around the reflection vector (Phong)
+ * or the half vector (Blinn), normalised ones, and whether lanes may differ in their model. */
+#define REFLECTION_LOBES ((SPECULAR_MODELS & 3) != 0)
+#define HALF_VECTOR_LOBES ((SPECULAR_MODELS & 12) != 0)
+#define NORMALIZED_LOBES ((SPECULAR_MODELS & 10) != 0)
+#define MIXED_SPECULAR_MODELS ((SPECULAR_MODELS & (SPECULAR_MODELS - 1)) != 0)
 
 #endif

@@ -45,7 +45,8 @@ real material_scalar(UNIFORM_SPACE const MaterialRecord* record, int field) {
   return field < MATERIAL_KD ? record->ka[field - MATERIAL_KA]
          : field < MATERIAL_KS ? record->kd[field - MATERIAL_KD]
          : field < MATERIAL_SHININESS ? record->ks[field - MATERIAL_KS]
-                                      : record->shininess;
+         : field == MATERIAL_SHININESS ? record->shininess
+                                       : record->specular_model;
 }
 
 /* `value`, or entry m's field in the lanes whose index is m. */

@@ -1,7 +1,8 @@
 /* Deferred Phong shading. Each work-item shades PHONGCL_LANES consecutive pixels as OpenCL vectors
  * (phong_math.h):
  *   L_o = ka*La + sum_i Li F_i [ kd*max(0, n.l_i) + ks*max(0, v.r_i)^q ],  r = 2(n.l)n - l
- * shade_pixel() is that formula. What one light adds is add_point_light() or add_directional_light(),
+ * with Phong's lobe, or the one the material's specular model chooses (specular.h). shade_pixel()
+ * is that formula. What one light adds is add_point_light() or add_directional_light(),
  * its F_i (falloff, range, cone, linking) light_shape.h's, the specular lobe specular.h's; the tuned
  * arithmetic (robust normalisation, the power, compensated sums, streaming stores) is phong_math.h's.
  * With SHADOWS a light that casts shadows is multiplied by its visibility (shadow.h: a ray traced
@@ -26,6 +27,7 @@ typedef struct {
   vec3 p_rest;     /* with POSITION_REST, what p's float rounding lost (p + p_rest is the host's double) */
   vec3 n, v;       /* unit normal; unit vector to the eye, normalize(-p) (zero where degenerate) */
   realv shininess; /* q */
+  realv specular_model; /* the lane's model number (specular.h); read only where lanes may differ */
   intv material;   /* material index, PHONGCL_BACKGROUND in background lanes */
 } Surface;
 
@@ -82,7 +84,7 @@ static inline realv pixel_plane(const PixelPlanes* pixels, int plane) {
  * square root before it must: the loop is latency-bound, and waiting makes a point light's chain 50%
  * longer. n, v and q come by value, not as the Surface: with the struct's address passed this deep,
  * PoCL keeps a copy of it per work-item (4 KB each with double16, past the work-group's stack). */
-void add_lobes(LightSums* sums, vec3 n, vec3 v, realv shininess, vec3 toward, realv inverse,
+void add_lobes(LightSums* sums, vec3 n, vec3 v, realv shininess, realv model, vec3 toward, realv inverse,
                              UNIFORM_SPACE const float* color, realv weight) {
   const realv n_dot = dot3(n, toward);
   const realv ndl = n_dot * inverse;
@@ -91,8 +93,10 @@ void add_lobes(LightSums* sums, vec3 n, vec3 v, realv shininess, vec3 toward, re
   sums->diffuse.y += NONNEGATIVE_TIMES(color[1], lit_ndl);
   sums->diffuse.z += NONNEGATIVE_TIMES(color[2], lit_ndl);
   if (SPECULAR) {
-    const realv spec = phong_specular(n, v, toward, inverse, n_dot, shininess);
-    const realv lit_spec = SELECT(ndl > 0, NONNEGATIVE_TIMES(spec, weight), 0);
+    const realv spec = specular_lobe(n, v, toward, inverse, n_dot, shininess, model);
+    realv lit_spec = SELECT(ndl > 0, NONNEGATIVE_TIMES(spec, weight), 0);
+    /* A normalised lobe takes the cosine: lit_ndl is F n.l, and 0 where n.l <= 0. */
+    if (NORMALIZED_LOBES) lit_spec = SELECT(normalized_model(model) != 0, NONNEGATIVE_TIMES(spec, lit_ndl), lit_spec);
     sums->specular.x += NONNEGATIVE_TIMES(color[0], lit_spec);
     sums->specular.y += NONNEGATIVE_TIMES(color[1], lit_spec);
     sums->specular.z += NONNEGATIVE_TIMES(color[2], lit_spec);
@@ -140,7 +144,8 @@ static inline void add_point_light(LightSums* sums, const Surface* surface, cons
   const realv gate = link_gate(link_mask, surface->material);
   realv weight = POINT_SHAPES ? shape_weight(shape, toward, inverse, distance, inverse_distance, gate) : gate;
   if (SHADOWS) weight = shadowed_weight(weight, surface, lights, position, 0, lights->point_casters[i]);
-  add_lobes(sums, surface->n, surface->v, surface->shininess, toward, inverse, light->color, weight);
+  add_lobes(sums, surface->n, surface->v, surface->shininess, surface->specular_model, toward, inverse, light->color,
+            weight);
 }
 
 /* What a directional light adds; F is its linking, times its visibility with SHADOWS. */
@@ -150,7 +155,7 @@ static inline void add_directional_light(LightSums* sums, const Surface* surface
   const vec3 l = make_vec3(light->to_light[0], light->to_light[1], light->to_light[2]);
   realv weight = link_gate(link_mask, surface->material);
   if (SHADOWS) weight = shadowed_weight(weight, surface, lights, l, 1, lights->directional_casters[k]);
-  add_lobes(sums, surface->n, surface->v, surface->shininess, l, 1, light->color, weight);
+  add_lobes(sums, surface->n, surface->v, surface->shininess, surface->specular_model, l, 1, light->color, weight);
 }
 
 void add_block(LightSums* sums, LightSums* compensation, const LightSums* block) {
@@ -196,13 +201,14 @@ static inline void shade_pixel(Terms* terms, const PixelPlanes* pixels, const Ma
   Surface surface;
   surface.material = materials->index;
   surface.shininess = PER_PIXEL_Q ? pixel_plane(pixels, PLANE_Q) : material_field(materials, MATERIAL_SHININESS);
+  surface.specular_model = MIXED_SPECULAR_MODELS ? material_field(materials, MATERIAL_SPECULAR_MODEL) : 0;
   surface.p = PIXEL_PLANE3(pixels, PLANE_PX);
   const realv zero = 0;
   surface.p_rest = POSITION_REST ? PIXEL_PLANE3(pixels, PLANE_REST) : make_vec3(zero, zero, zero);
   surface.n = unit_or_zero(PIXEL_PLANE3(pixels, PLANE_NX));
   surface.v = unit_or_zero(make_vec3(-surface.p.x, -surface.p.y, -surface.p.z)); /* v = normalize(E - P), E = 0 */
 
-  /* D = sum_i Li F_i max(0, n.l_i), S = sum_i Li F_i max(0, v.r_i)^q */
+  /* D = sum_i Li F_i max(0, n.l_i), S = sum_i Li F_i max(0, v.r_i)^q (or the material's lobe) */
   LightSums sums;
   sum_lights(&sums, &surface, lights);
 
@@ -213,6 +219,9 @@ static inline void shade_pixel(Terms* terms, const PixelPlanes* pixels, const Ma
                             NONNEGATIVE_TIMES(kd.z, sums.diffuse.z));
   if (SPECULAR) {
     const vec3 ks = PER_PIXEL_KS ? PIXEL_PLANE3(pixels, PLANE_KS) : MATERIAL_FIELD3(materials, MATERIAL_KS);
+    /* The normalised lobes' factor, (q+2)/2 or (q+8)/8: constant over the lights, so applied once. */
+    if (NORMALIZED_LOBES)
+      sums.specular = scale3(sums.specular, specular_normalization(surface.shininess, surface.specular_model));
     terms->specular = make_vec3(NONNEGATIVE_TIMES(ks.x, sums.specular.x), NONNEGATIVE_TIMES(ks.y, sums.specular.y),
                                NONNEGATIVE_TIMES(ks.z, sums.specular.z));
   }

@@ -1,8 +1,16 @@
-/* The specular lobe: Phong's max(0, v.r)^q with r = 2(n.l)n - l, for l = toward * inverse (inverse
- * = 1 / |toward|) and n_dot = n.toward. */
+/* The specular lobes (docs/shading.md "Specular models"), numbered as the host's SpecularModel:
+ *   0 phong                   max(0, v.r)^q, r = 2(n.l)n - l        (the seed's, the default)
+ *   1 phong-normalized        (q+2)/2 max(0, v.r)^q n.l            (Lafortune and Willems 1994)
+ *   2 blinn-phong             max(0, n.h)^q, h = normalize(l + v)
+ *   3 blinn-phong-normalized  (q+8)/8 max(0, n.h)^q n.l            (Real-Time Rendering's approximation)
+ * A normalised lobe is a BRDF times pi (the Lambert 1/pi is folded into Li), so it takes the cosine
+ * n.l as the diffuse term does; the classic ones keep the highlight without it. Here the lobes
+ * for l = toward * inverse (inverse = 1 / |toward|) and n_dot = n.toward; phong.cl multiplies by
+ * n.l per light and by the factor (q+c)/c once per pixel, where the normalised ones need them. */
 #ifndef PHONGCL_SPECULAR_H
 #define PHONGCL_SPECULAR_H
 
+#include "features.h"
 #include "phong_math.h"
 
 static inline realv phong_specular(vec3 n, vec3 v, vec3 toward, realv inverse, realv n_dot, realv shininess) {
@@ -14,6 +22,42 @@ static inline realv phong_specular(vec3 n, vec3 v, vec3 toward, realv inverse, r
   const vec3 v_minus_r = make_vec3(fma(inverse, w.x, v.x), fma(inverse, w.y, v.y), fma(inverse, w.z, v.z));
   const realv cos_vr = -inverse * dot3(v, w);
   return specular_power(cos_vr, (real)0.5 * dot3(v_minus_r, v_minus_r), shininess);
+}
+
+/* max(0, n.h)^q. s = l + v = toward * inverse + v with one rounding per component (fma), h = s / |s|,
+ * and near the peak n - h = n - s / |s| with one more (fma): 1 - n.h = |n - h|^2 / 2 without
+ * cancellation. A length error d in n or h scales it by 1 + d (plus d^2 / 2), so rsqrt's rounding
+ * is a relative error, not one q multiplies; s's own rounding is all that q amplifies, as w's is in
+ * phong_specular. s = 0 (v = -l, the eye behind the surface) has no half vector: n.h is taken as 0. */
+static inline realv blinn_specular(vec3 n, vec3 v, vec3 toward, realv inverse, realv shininess) {
+  const vec3 s = make_vec3(fma(toward.x, inverse, v.x), fma(toward.y, inverse, v.y), fma(toward.z, inverse, v.z));
+  const realv s_length_sq = dot3(s, s);
+  const realv inverse_s = SELECT(s_length_sq > 0, rsqrt(s_length_sq), 0);
+  const vec3 n_minus_h = make_vec3(fma(-inverse_s, s.x, n.x), fma(-inverse_s, s.y, n.y), fma(-inverse_s, s.z, n.z));
+  const realv cos_nh = inverse_s * dot3(n, s);
+  return specular_power(cos_nh, (real)0.5 * dot3(n_minus_h, n_minus_h), shininess);
+}
+
+/* The lobe of each lane's model (`model`, its number, read only where lanes may differ), without
+ * the normalised models' n.l and factor. */
+static inline realv specular_lobe(vec3 n, vec3 v, vec3 toward, realv inverse, realv n_dot, realv shininess, realv model) {
+  if (!HALF_VECTOR_LOBES) return phong_specular(n, v, toward, inverse, n_dot, shininess);
+  if (!REFLECTION_LOBES) return blinn_specular(n, v, toward, inverse, shininess);
+  return SELECT(model >= 2, blinn_specular(n, v, toward, inverse, shininess),
+                phong_specular(n, v, toward, inverse, n_dot, shininess));
+}
+
+/* 1 where each lane's model is normalised and takes the cosine n.l, else 0. */
+static inline realv normalized_model(realv model) {
+  if (!MIXED_SPECULAR_MODELS) return NORMALIZED_LOBES ? 1 : 0;
+  return SELECT(model == 1 || model == 3, 1, 0);
+}
+
+/* The normalised models' factor (q+2)/2 or (q+8)/8, 1 for the others: 1 + q / c in one rounding. */
+static inline realv specular_normalization(realv shininess, realv model) {
+  const realv inverse_c = !MIXED_SPECULAR_MODELS ? ((SPECULAR_MODELS & 2) ? (real)0.5 : (real)0.125)
+                                                 : SELECT(model == 1, 0.5, SELECT(model == 3, 0.125, 0));
+  return fma(shininess, inverse_c, 1);
 }
 
 #endif

@@ -114,6 +114,10 @@ void bind_scene(py::module_& module) {
   vec3_property(material, "ka", &Material::ka, "Ambient reflectance.");
   vec3_property(material, "kd", &Material::kd, "Diffuse reflectance.");
   vec3_property(material, "ks", &Material::ks, "Specular reflectance.");
+  material.def_property(
+      "specular_model", [](const Material& m) { return std::string(to_string(m.specular_model)); },
+      [](Material& m, const std::string& name) { m.specular_model = parse_specular_model(name); },
+      "'phong' (default), 'phong-normalized', 'blinn-phong' or 'blinn-phong-normalized' (docs/shading.md).");
 
   py::class_<Scene> scene(module, "Scene",
                           "A scene: camera, ambient, background, lights, materials. Lists come out as copies: "

@@ -109,6 +109,7 @@ TEST(Scene, EntryDefaults) {
   EXPECT_EQ(scene.materials.at(0).name, "");
   EXPECT_EQ(scene.materials.at(0).ka, glm::dvec3(0.0));
   EXPECT_EQ(scene.materials.at(0).shininess, Material{}.shininess);
+  EXPECT_EQ(scene.materials.at(0).specular_model, SpecularModel::phong);
   EXPECT_EQ(scene.objects.at(0).radius, 1.0);
   EXPECT_EQ(scene.objects.at(0).material, 0);
   EXPECT_EQ(scene.objects.at(1).normal, glm::dvec3(0, 1, 0));
@@ -140,6 +141,15 @@ TEST(Scene, ReadsEveryField) {
   EXPECT_EQ(scene.objects.at(0).kind, Object::Kind::triangle);
   EXPECT_EQ(scene.objects.at(0).vertices[1], glm::dvec3(1, 0, 0));
   EXPECT_EQ(scene.objects.at(1).offset, -1.0);
+}
+
+TEST(Scene, ReadsEverySpecularModelByName) {
+  for (SpecularModel model : kSpecularModels) {
+    const std::string name = to_string(model);
+    const Scene scene = parse_scene(R"({"materials": [{"ks": [1, 1, 1], "specular_model": ")" + name + R"("}]})", kSource);
+    EXPECT_EQ(scene.materials.at(0).specular_model, model) << name;
+    EXPECT_EQ(parse_specular_model(name), model);
+  }
 }
 
 TEST(Scene, ReadsTheLightShapes) {
@@ -219,6 +229,11 @@ TEST(Scene, EachProblemIsAOneLineInputErrorNamingFileAndPlace) {
       {"number beyond double range", scene_json(R"("ambient": [1e999, 0, 0])"), {"invalid JSON", "1e999"}},
       {"unknown light type", scene_json(R"("lights": [{"type": "area", "position": [0, 0, 0]}])"),
        {"unknown light type 'area' in lights[0] (expected point, spot or directional)"}},
+      {"unknown specular model", scene_json("").replace(scene_json("").find("{\"kd\""), 1, "{\"specular_model\": \"blinn\", "),
+       {"materials[0].specular_model 'blinn' is not a specular model (expected phong, phong-normalized, blinn-phong or "
+        "blinn-phong-normalized)"}},
+      {"specular model not a string", scene_json("").replace(scene_json("").find("{\"kd\""), 1, "{\"specular_model\": 2, "),
+       {"materials[0].specular_model must be a string"}},
       {"unknown falloff", scene_json(R"("lights": [{"type": "point", "position": [0, 0, 0], "falloff": "inverse"}])"),
        {"lights[0].falloff 'inverse' is not a falloff (expected none, linear, quadratic or cubic)"}},
       {"zero range", scene_json(R"("lights": [{"type": "point", "position": [0, 0, 0], "range": 0}])"),

@@ -40,10 +40,20 @@ struct Light {
   bool reaches(int material) const;  // light linking
 };
 
+// The specular lobe (docs/shading.md "Specular models"): Phong's (v.r)^q, the seed's and the default;
+// Blinn's (n.h)^q; each as is (the classic highlight, no cosine) or normalised, a BRDF times pi
+// that takes the cosine n.l and reflects at most what it receives: (q+2)/2 (v.r)^q (Lafortune and
+// Willems 1994), (q+8)/8 (n.h)^q (Akenine-Moller et al., Real-Time Rendering). The enum value is
+// the kernel's model number (kernels/specular.h).
+enum class SpecularModel { phong = 0, phong_normalized = 1, blinn_phong = 2, blinn_phong_normalized = 3 };
+inline constexpr SpecularModel kSpecularModels[] = {SpecularModel::phong, SpecularModel::phong_normalized,
+                                                    SpecularModel::blinn_phong, SpecularModel::blinn_phong_normalized};
+
 struct Material {
   std::string name;
   glm::dvec3 ka{0.0}, kd{0.0}, ks{0.0};
   double shininess = 1.0;  // >= 0, validated
+  SpecularModel specular_model = SpecularModel::phong;
 };
 
 // Geometry for the G-buffer generator and for shadows. A tagged struct rather than a variant: transforms nest.
@@ -84,5 +94,8 @@ Scene load_scene(const std::filesystem::path& file);
 Scene parse_scene(std::string_view json_text, const std::filesystem::path& source);
 
 const char* to_string(Falloff falloff);  // "none", "linear", ...
+const char* to_string(SpecularModel model);  // "phong", "blinn-phong-normalized", ...
+// The model a name stands for; std::invalid_argument naming the allowed names otherwise.
+SpecularModel parse_specular_model(const std::string& name);
 
 }  // namespace phongcl

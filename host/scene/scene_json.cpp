@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <fstream>
 #include <sstream>
+#include <stdexcept>
 
 #include "common/error.h"
 #include "scene/json_reader.h"
@@ -132,7 +133,7 @@ Light read_light(const JsonValue& value, std::size_t material_count) {
 
 Material read_material(const JsonValue& value) {
   const JsonObject object = value.object();
-  object.expect_keys({"name", "ka", "kd", "ks", "shininess"});
+  object.expect_keys({"name", "ka", "kd", "ks", "shininess", "specular_model"});
   Material material;
   if (auto name = object.find("name")) material.name = name->string();
   if (auto ka = object.find("ka")) material.ka = read_non_negative_vec3(*ka);
@@ -142,6 +143,13 @@ Material read_material(const JsonValue& value) {
     material.shininess = shininess->number();
     if (material.shininess < 0.0)
       shininess->fail("must be >= 0 (got " + format_number(material.shininess) + ")");
+  }
+  if (auto model = object.find("specular_model")) {
+    try {
+      material.specular_model = parse_specular_model(model->string());
+    } catch (const std::invalid_argument& unknown) {
+      model->fail(unknown.what());
+    }
   }
   return material;
 }
@@ -189,6 +197,23 @@ const char* to_string(Falloff falloff) {
     case Falloff::cubic: return "cubic";
   }
   return "none";
+}
+
+const char* to_string(SpecularModel model) {
+  switch (model) {
+    case SpecularModel::phong: return "phong";
+    case SpecularModel::phong_normalized: return "phong-normalized";
+    case SpecularModel::blinn_phong: return "blinn-phong";
+    case SpecularModel::blinn_phong_normalized: return "blinn-phong-normalized";
+  }
+  return "phong";
+}
+
+SpecularModel parse_specular_model(const std::string& name) {
+  for (SpecularModel model : kSpecularModels)
+    if (name == to_string(model)) return model;
+  throw std::invalid_argument("'" + name + "' is not a specular model (expected phong, phong-normalized, blinn-phong or " +
+                              "blinn-phong-normalized)");
 }
 
 bool Light::reaches(int material) const {

@@ -96,6 +96,7 @@ UniformData pack_uniforms(const Scene& scene, const Recipe& recipe) {
     store3(record.kd, material.kd);
     store3(record.ks, material.ks);
     record.shininess = static_cast<float>(material.shininess);
+    record.specular_model = static_cast<float>(static_cast<int>(material.specular_model));
     data.materials.push_back(record);
   }
   for (int c = 0; c < 3; ++c) {

@@ -192,9 +192,34 @@ void decide_light_shapes(Recipe& recipe, const Scene& scene) {
                                 words > 0 ? "light linking" : "");
 }
 
+// The lobes the materials choose, decided by the scene in the general kernel too: Phong's alone is
+// the seed's kernel, bit for bit. A G-buffer has no model channel: a pixel takes its material's
+// model from the table, as the coefficients it does not carry. Where it carries every one the
+// table is not consulted (its indices need not be in it): phong, as with no table.
+void decide_specular_models(Recipe& recipe, const Scene& scene, const GBuffer& gbuffer, bool specular) {
+  const bool table_consulted = !(gbuffer.has_per_pixel_ka() && gbuffer.has_per_pixel_kd() && gbuffer.has_per_pixel_ks() &&
+                                 gbuffer.has_per_pixel_shininess());
+  unsigned mask = 0;
+  if (table_consulted)
+    for (const Material& material : scene.materials) mask |= 1u << static_cast<int>(material.specular_model);
+  if (!specular || mask == 0) mask = 1u << static_cast<int>(SpecularModel::phong);
+  std::string names;
+  for (SpecularModel model : kSpecularModels)
+    if (mask & (1u << static_cast<int>(model))) names += (names.empty() ? "" : ", ") + std::string(to_string(model));
+  const bool phong_only = mask == 1u << static_cast<int>(SpecularModel::phong);
+  const bool mixed = (mask & (mask - 1)) != 0;
+  add_count(recipe, "SPECULAR_MODELS", static_cast<int>(mask),
+            !specular          ? "specular models: none compiled in (no specular)"
+            : !table_consulted ? "specular model: phong (every coefficient is per pixel: the table is not consulted)"
+            : mixed            ? "specular models: " + names + " (the materials differ: each lane's model read from the table)"
+                               : "specular model: " + names + (phong_only ? " (every material's)" : ", compiled in (every material's)"),
+            phong_only ? "" : (mixed ? "specular models " : "specular model ") + names);
+}
+
 void decide_terms(Recipe& recipe, const Scene& scene, const GBuffer& gbuffer) {
   if (!recipe.specialised) {
     add_flag(recipe, "SPECULAR", true, "specular: compiled in (general kernel)", "specular");
+    decide_specular_models(recipe, scene, gbuffer, true);
     add_flag(recipe, "AMBIENT", true, "ambient: compiled in (general kernel)", "ambient");
     return;
   }
@@ -208,6 +233,8 @@ void decide_terms(Recipe& recipe, const Scene& scene, const GBuffer& gbuffer) {
            : any_lights ? "specular: compiled out (every ks is 0): no pow"
                         : "specular: compiled out (no lights)",
            specular ? "specular" : "no specular");
+
+  decide_specular_models(recipe, scene, gbuffer, specular);
 
   const bool table_ka_zero = std::all_of(materials.begin(), materials.end(), [](const Material& m) { return is_zero(m.ka); });
   const bool ka_zero = gbuffer.has_per_pixel_ka() ? all_zero(gbuffer.ka) : table_ka_zero;

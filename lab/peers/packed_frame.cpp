@@ -13,6 +13,10 @@ PackedFrame pack_frame(const GBuffer& gbuffer, const Scene& scene) {
     throw InputError(gbuffer.source, "the C++ peers shade from the material table; per-pixel material channels are not supported");
   }
   check_materials(gbuffer, scene.materials.size());
+  for (const Material& m : scene.materials)
+    if (m.specular_model != SpecularModel::phong)
+      throw InputError(scene.source, "the C++ peers shade Phong's lobe; material '" + m.name + "' asks for " +
+                                         to_string(m.specular_model));
   PackedFrame frame;
   frame.pixels = gbuffer.pixel_count();
   const std::size_t padded = (frame.pixels + kPeerPadding - 1) / kPeerPadding * kPeerPadding;

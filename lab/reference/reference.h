@@ -18,6 +18,7 @@ struct SurfacePoint {
   glm::dvec3 normal{0.0};  // any length; normalised here
   glm::dvec3 ka{0.0}, kd{0.0}, ks{0.0};
   double shininess = 1.0;
+  SpecularModel specular_model = SpecularModel::phong;  // the table's (a G-buffer has no model channel)
   int material = 0;  // the table index, for light linking
 };
 
@@ -30,6 +31,12 @@ struct ShadingTerms {
 // Whether a light that casts shadows reaches a point (lab/reference/reference_shadows.h decides it
 // by brute force, reference_screen_shadows.h by the march); empty: every light reaches everything.
 using LightReach = std::function<bool(const SurfacePoint& point, const Light& light)>;
+
+// What the specular term takes from a light of unit colour and F = 1 per unit ks, for unit n, v and
+// l with n.l > 0 (docs/shading.md "Specular models"): max(0, v.r)^q or max(0, n.h)^q, the
+// normalised models times their factor and n.l. pow(0, 0) = 1; l + v = 0 has no half vector: n.h = 0.
+double reference_specular_lobe(SpecularModel model, const glm::dvec3& n, const glm::dvec3& v, const glm::dvec3& l,
+                               double shininess);
 
 ShadingTerms reference_shade_point(const Scene& scene, const SurfacePoint& point, const LightReach& reaches = {});
 

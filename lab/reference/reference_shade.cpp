@@ -55,15 +55,36 @@ glm::dvec3 product(const glm::dvec3& x, const glm::dvec3& y) {
 
 }  // namespace
 
+double reference_specular_lobe(SpecularModel model, const glm::dvec3& n, const glm::dvec3& v, const glm::dvec3& l,
+                               double shininess) {
+  const double q = shininess;
+  switch (model) {
+    case SpecularModel::phong:
+    case SpecularModel::phong_normalized: {
+      const glm::dvec3 r = 2.0 * glm::dot(n, l) * n - l;
+      // std::pow(0, 0) == 1, so q = 0 gives a full highlight even where v.r <= 0.
+      const double highlight = std::pow(std::max(0.0, glm::dot(v, r)), q);
+      return model == SpecularModel::phong ? highlight : (q + 2.0) / 2.0 * highlight * glm::dot(n, l);
+    }
+    case SpecularModel::blinn_phong:
+    case SpecularModel::blinn_phong_normalized: {
+      const glm::dvec3 h = robust_normalize(l + v);
+      const double highlight = std::pow(std::max(0.0, glm::dot(n, h)), q);
+      return model == SpecularModel::blinn_phong ? highlight : (q + 8.0) / 8.0 * highlight * glm::dot(n, l);
+    }
+  }
+  return 0.0;
+}
+
 ShadingTerms reference_shade_point(const Scene& scene, const SurfacePoint& point, const LightReach& reaches) {
   ShadingTerms terms;
   terms.ambient = point.ka * scene.ambient;
 
   const glm::dvec3 n = robust_normalize(point.normal);
-  // An eye exactly at the point gives v = 0, so v.r = 0 and the specular factor is pow(0, q).
+  // An eye exactly at the point gives v = 0: v.r = 0 and Phong's factor is pow(0, q); Blinn's h is l.
   const glm::dvec3 v = robust_normalize(scene.camera.eye - point.position);
 
-  glm::dvec3 diffuse(0.0), specular(0.0);  // sums of Li * F * (n.l) and Li * F * (v.r)^q
+  glm::dvec3 diffuse(0.0), specular(0.0);  // sums of Li * F * (n.l) and Li * F * lobe
   for (const Light& light : scene.lights) {
     if (!light.reaches(point.material)) continue;
     if (reaches && light.shadows && !reaches(point, light)) continue;
@@ -77,9 +98,7 @@ ShadingTerms reference_shade_point(const Scene& scene, const SurfacePoint& point
     if (factor == 0.0) continue;
 
     diffuse += product(light.color, glm::dvec3(ndl * factor));
-    const glm::dvec3 r = 2.0 * ndl * n - l;
-    // std::pow(0, 0) == 1, so q = 0 gives a full highlight even where v.r <= 0.
-    const double highlight = std::pow(std::max(0.0, glm::dot(v, r)), point.shininess);
+    const double highlight = reference_specular_lobe(point.specular_model, n, v, l, point.shininess);
     if (highlight > 0.0) specular += product(light.color, glm::dvec3(highlight * factor));
   }
   terms.diffuse = product(point.kd, diffuse);

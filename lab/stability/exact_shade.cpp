@@ -25,15 +25,30 @@ Vec unit_or_zero(const Vec& x) {
   return scale(scaled, 1 / std::sqrt(dot(scaled, scaled)));
 }
 
-// max(0, v.r)^q with pow(0, 0) = 1. Near the peak the logarithm comes from 1 - v.r = |v - r|^2/2,
-// so even this oracle does not lose 1 - v.r to cancellation when q is 1e8.
-long double specular_factor(const Vec& v, const Vec& r, long double q) {
+// max(0, a.b)^q for unit a and b, with pow(0, 0) = 1. Near the peak the logarithm comes from
+// 1 - a.b = |a - b|^2/2, so even this oracle does not lose 1 - a.b to cancellation when q is 1e8.
+long double power_of_cosine(const Vec& a, const Vec& b, long double q) {
   if (q == 0) return 1;
-  const long double cos_vr = dot(v, r);
-  if (!(cos_vr > 0)) return 0;
-  const Vec v_minus_r = sub(v, r);
-  const long double one_minus_cos = dot(v_minus_r, v_minus_r) / 2;
-  return std::exp(q * (one_minus_cos < 0.5L ? std::log1p(-one_minus_cos) : std::log(cos_vr)));
+  const long double cosine = dot(a, b);
+  if (!(cosine > 0)) return 0;
+  const Vec a_minus_b = sub(a, b);
+  const long double one_minus_cos = dot(a_minus_b, a_minus_b) / 2;
+  return std::exp(q * (one_minus_cos < 0.5L ? std::log1p(-one_minus_cos) : std::log(cosine)));
+}
+
+// The material's lobe for a lit l (docs/shading.md "Specular models"): (v.r)^q with r = 2(n.l)n - l,
+// or (n.h)^q with h = normalize(l + v) (0 when l + v = 0, q > 0); the normalised models times
+// (q+2)/2 or (q+8)/8 and n.l.
+long double specular_factor(SpecularModel model, const Vec& n, const Vec& v, const Vec& l, long double ndl,
+                            long double q) {
+  const bool blinn = model == SpecularModel::blinn_phong || model == SpecularModel::blinn_phong_normalized;
+  const long double lobe = blinn ? power_of_cosine(n, unit_or_zero({l[0] + v[0], l[1] + v[1], l[2] + v[2]}), q)
+                                 : power_of_cosine(v, sub(scale(n, 2 * ndl), l), q);
+  switch (model) {
+    case SpecularModel::phong_normalized: return (q + 2) / 2 * lobe * ndl;
+    case SpecularModel::blinn_phong_normalized: return (q + 8) / 8 * lobe * ndl;
+    default: return lobe;
+  }
 }
 
 constexpr long double kPi = 3.141592653589793238462643383279502884L;
@@ -91,8 +106,7 @@ ExactColor exact_shade_pixel(const Scene& scene, const GBuffer& gbuffer, std::si
     const long double ndl = dot(n, l);
     if (!(ndl > 0)) continue;
     const long double factor = positional ? shape_factor(light, to_light, l) : 1;
-    const Vec r = sub(scale(n, 2 * ndl), l);
-    const long double spec = specular_factor(v, r, point.shininess);
+    const long double spec = specular_factor(point.specular_model, n, v, l, ndl, point.shininess);
     for (int c = 0; c < 3; ++c) {
       diffuse[c] += static_cast<long double>(light.color[c]) * ndl * factor;
       specular[c] += static_cast<long double>(light.color[c]) * spec * factor;

@@ -164,6 +164,17 @@ def test_scene_from_dict_reads_the_files_form():
     assert scene.materials[0].name == "red" and scene.materials[0].shininess == 32
 
 
+def test_a_material_names_its_specular_model():
+    material = phongcl.Material()
+    assert material.specular_model == "phong"
+    material.specular_model = "blinn-phong-normalized"
+    assert material.specular_model == "blinn-phong-normalized"
+    with pytest.raises(ValueError, match="not a specular model"):
+        material.specular_model = "blinn"
+    scene = phongcl.Scene.from_dict({"materials": [{"ks": [1, 1, 1], "specular_model": "phong-normalized"}]})
+    assert scene.materials[0].specular_model == "phong-normalized"
+
+
 @needs_device
 def test_shadows_are_a_relighter_option(scene, gbuffer):
     casting = phongcl.load_scene(str(DEFAULT))

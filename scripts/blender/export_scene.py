@@ -17,12 +17,16 @@ Conventions (docs/formats.md "Renderers' G-buffers", "From a Blender scene"):
   cos(spot_size/2) and smoothsteps over the spot_blend fraction of 1 - cos(spot_size/2) above it,
   in cosines, as phongcl's penumbra does, so cone_angle_deg is the angle whose cosine ends that
   blend and penumbra_angle_deg the rest of spot_size/2. Area lights are skipped with a note.
-- Materials by pass index (Material.pass_index): Principled BSDF kd = base colour * (1 - metallic),
-  ks = mix(0.08 * specular, base colour, metallic) (the BSDF's normal-incidence reflectance),
-  shininess = (2 / alpha^2 - 2) / 4 with alpha = roughness^2 (Walter et al. 2007's Beckmann to
-  Blinn-Phong exponent, /4 for Phong's reflection-vector lobe), ka = kd; the ambient is the world
-  colour times its strength (a uniform environment lights an unoccluded Lambertian surface with
-  rho * L). Indices no material uses get a grey material.
+- Materials by pass index (Material.pass_index): a Principled BSDF becomes "blinn-phong-normalized"
+  (phongcl's ks (q+8)/8 (n.h)^q n.l, a BRDF) with kd = base colour * (1 - metallic),
+  ks = mix(0.08 * specular, base colour, metallic) (the BSDF's normal-incidence reflectance) and
+  q = 2 / alpha^2 - 2 with alpha = roughness^2 (Disney's and Cycles' remapping, Burley 2012 and
+  Karis 2013, "Specular BRDF Reference"; 2 / alpha^2 - 2 is the Blinn-Phong exponent matching a
+  Beckmann lobe of roughness alpha, Walter et al. 2007, eq. 30), capped at 1e6. A Diffuse BSDF
+  gives kd = its colour and a material without nodes its viewport colour, both with ks = 0: no
+  specular lobe. ka = kd; the ambient is the world colour times its strength (a uniform environment
+  lights an unoccluded Lambertian surface with rho * L). Indices no material uses get a grey
+  material.
 - Shadows: a light that casts shadows in Cycles (its cast_shadow setting) gets "shadows": true.
 - --geometry DIR writes every visible mesh that casts shadows (Object.visible_shadow) as a
   world-space binary little-endian PLY in DIR, modifiers applied and triangulated, one file per
@@ -42,7 +46,7 @@ import sys
 import bpy
 from mathutils import Vector
 
-FALLBACK_MATERIAL = {"name": "unused pass index", "ka": [0.5] * 3, "kd": [0.5] * 3, "ks": [0.04] * 3, "shininess": 10.0}
+FALLBACK_MATERIAL = {"name": "unused pass index", "ka": [0.5] * 3, "kd": [0.5] * 3, "ks": [0.0] * 3, "shininess": 10.0}
 
 
 def note(text):
@@ -143,27 +147,29 @@ def lights_json(scene, falloff):
     return lights
 
 
-def principled(material):
+def shader_node(material, node_type):
     if material.use_nodes and material.node_tree is not None:
         for node in material.node_tree.nodes:
-            if node.type == "BSDF_PRINCIPLED":
+            if node.type == node_type:
                 return node
     return None
 
 
 def material_json(material):
-    node = principled(material)
+    node = shader_node(material, "BSDF_PRINCIPLED")
     if node is None:
-        base, metallic, specular, roughness = Vector(material.diffuse_color[:3]), material.metallic, 0.5, material.roughness
-    else:
-        inputs = node.inputs
-        base = Vector(inputs["Base Color"].default_value[:3])
-        metallic, specular, roughness = (inputs[n].default_value for n in ("Metallic", "Specular", "Roughness"))
+        diffuse = shader_node(material, "BSDF_DIFFUSE")
+        base = Vector((diffuse.inputs["Color"].default_value if diffuse else material.diffuse_color)[:3])
+        return {"name": material.name, "ka": rounded(base), "kd": rounded(base), "ks": [0.0] * 3, "shininess": 1.0}
+    inputs = node.inputs
+    base = Vector(inputs["Base Color"].default_value[:3])
+    metallic, specular, roughness = (inputs[n].default_value for n in ("Metallic", "Specular", "Roughness"))
     kd = base * (1.0 - metallic)
     ks = Vector((0.08 * specular,) * 3).lerp(base, metallic)
     alpha = max(roughness, 1e-3) ** 2
-    shininess = min(max((2.0 / alpha ** 2 - 2.0) / 4.0, 0.0), 1e6)
-    return {"name": material.name, "ka": rounded(kd), "kd": rounded(kd), "ks": rounded(ks), "shininess": round(shininess, 4)}
+    shininess = min(max(2.0 / alpha ** 2 - 2.0, 0.0), 1e6)
+    return {"name": material.name, "ka": rounded(kd), "kd": rounded(kd), "ks": rounded(ks), "shininess": round(shininess, 4),
+            "specular_model": "blinn-phong-normalized"}
 
 
 def materials_json(scene):
