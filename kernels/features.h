@@ -14,6 +14,7 @@
  *   PER_PIXEL_KA, _KD, _KS, _Q             the G-buffer has per-pixel material planes (material.h)
  *   FALLOFF=k, FALLOFF_MIXED               every light falls off as 1/d^k; powers differ (light_shape.h)
  *   RANGE_WINDOW, SPOT_LIGHTS              some light has a range; some light is a spot
+ *   SPOT_COSINE_POWER                      some spot has a cosine power p > 0: F gains max(0, c)^p
  *   LIGHT_LINKING=w                        w mask words per light; 0: every light lights every material
  *   TILED_CULLING                          point and spot lights from the work-item's tile list (cull.cl)
  *   WRITE_TERMS                            also write ambient, diffuse, specular apart (AOVs)
@@ -28,7 +29,7 @@
     !defined(DIRECTIONAL_COUNT) || !defined(SPECULAR) || !defined(AMBIENT) || !defined(SINGLE_MATERIAL) ||         \
     !defined(MATERIAL_COUNT) || !defined(PER_PIXEL_KA) || !defined(PER_PIXEL_KD) || !defined(PER_PIXEL_KS) ||     \
     !defined(PER_PIXEL_Q) || !defined(FALLOFF) || !defined(FALLOFF_MIXED) || !defined(RANGE_WINDOW) ||            \
-    !defined(SPOT_LIGHTS) || !defined(LIGHT_LINKING) || !defined(TILED_CULLING) || !defined(WRITE_TERMS) ||        \
+    !defined(SPOT_LIGHTS) || !defined(SPOT_COSINE_POWER) || !defined(LIGHT_LINKING) || !defined(TILED_CULLING) || !defined(WRITE_TERMS) ||        \
     !defined(SHADOWS) || !defined(SCREEN_SHADOWS)
 #error "phong.cl is built with every flag of features.h defined (host/shading/recipe.cpp writes them)"
 #endif

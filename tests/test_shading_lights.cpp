@@ -43,6 +43,10 @@ std::vector<Case> feature_cases() {
   add("linking", [](ShapedLightSpec& s) { s.linking = true; });
   add("everything", [](ShapedLightSpec& s) { s.falloff = s.mixed_falloff = s.range = s.spots = s.linking = true; });
   add("quadratic, range, spots", [](ShapedLightSpec& s) { s.falloff = s.range = s.spots = true; });
+  add("spots with cosine powers", [](ShapedLightSpec& s) {
+    s.spots = true;
+    s.max_cosine_power = 40.0;
+  });
   return cases;
 }
 
@@ -128,7 +132,8 @@ TEST(Lights, UnshapedLightsBuildNoShapeOptions) {
   PHONGCL_REQUIRE_DEVICE(shader);
   const auto [scene, gbuffer] = random_scene({}, 3);
   const Recipe recipe = make_recipe(scene, gbuffer, shader.compute().device.info, {});
-  for (const char* shape : {"FALLOFF", "FALLOFF_MIXED", "RANGE_WINDOW", "SPOT_LIGHTS", "LIGHT_LINKING", "TILED_CULLING"})
+  for (const char* shape : {"FALLOFF", "FALLOFF_MIXED", "RANGE_WINDOW", "SPOT_LIGHTS", "SPOT_COSINE_POWER", "LIGHT_LINKING",
+                           "TILED_CULLING"})
     EXPECT_EQ(recipe.value(shape), "0") << shape << ": " << recipe.build_options();
 }
 

@@ -33,6 +33,7 @@ struct Light {
   Falloff falloff = Falloff::none;                     // point and spot
   double range = 0.0;                                  // > 0: windowed to 0 at this distance; 0: no range
   double cone_angle_deg = 0.0, penumbra_angle_deg = 0.0;  // spot: full angle of the lit cone, soft edge
+  double cosine_power = 0.0;                           // spot: F gains max(0, dot(-l, axis))^p; 0: none
   std::optional<std::vector<int>> materials{};         // light linking: lights only these; absent: every material
   bool shadows = false;                                // casts shadows (when the shade's shadow mode is not off)
 

@@ -34,6 +34,7 @@ void check_lights(const std::vector<Light>& lights, std::size_t material_count) 
       require(light.cone_angle_deg > 0.0 && light.cone_angle_deg < 180.0, entry + ".cone_angle_deg", "must be in (0, 180)");
       require(light.penumbra_angle_deg >= 0.0 && light.cone_angle_deg / 2.0 + light.penumbra_angle_deg <= 90.0,
               entry + ".penumbra_angle_deg", "must be >= 0 with cone_angle_deg/2 + penumbra_angle_deg <= 90");
+      require(std::isfinite(light.cosine_power) && light.cosine_power >= 0.0, entry + ".cosine_power", "must be finite and >= 0");
     }
     if (light.materials)
       for (int material : *light.materials)

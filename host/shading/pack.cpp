@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <thread>
 #include <vector>
@@ -118,6 +119,8 @@ LightShape light_shape(const Light& light) {
     shape.versine_inner = static_cast<float>(inner);
     shape.versine_outer = light.penumbra_angle_deg > 0.0 ? static_cast<float>(outer) : shape.versine_inner;
     shape.inverse_cone_width = light.penumbra_angle_deg > 0.0 ? static_cast<float>(1.0 / (outer - inner)) : 0.0f;
+    // Beyond float's largest the power is that: c^p is then 1 on the axis and 0 off it all the same.
+    shape.cosine_power = static_cast<float>(std::min<double>(light.cosine_power, std::numeric_limits<float>::max()));
   }
   return shape;
 }

@@ -165,6 +165,7 @@ void decide_light_shapes(Recipe& recipe, const Scene& scene) {
     add_flag(recipe, "FALLOFF_MIXED", true, "falloff: compiled in" + general, "mixed falloff");
     add_flag(recipe, "RANGE_WINDOW", true, "range window: compiled in" + general, "ranges");
     add_flag(recipe, "SPOT_LIGHTS", true, "spot cones: compiled in" + general);
+    add_flag(recipe, "SPOT_COSINE_POWER", true, "spot cosine power: compiled in" + general);
     recipe.link_words = add_count(recipe, "LIGHT_LINKING", link_words_for(scene),
                                   "light linking: compiled in" + general, "light linking");
     return;
@@ -185,6 +186,13 @@ void decide_light_shapes(Recipe& recipe, const Scene& scene) {
   add_flag(recipe, "SPOT_LIGHTS", recipe.spot_lights > 0,
            recipe.spot_lights > 0 ? "spot cones: compiled in (" + plural(recipe.spot_lights, "spot") + ")"
                                   : "spot cones: compiled out (no spots)");
+  const auto powered = std::count_if(scene.lights.begin(), scene.lights.end(), [](const Light& light) {
+    return light.type == LightType::spot && light.cosine_power != 0.0;
+  });
+  add_flag(recipe, "SPOT_COSINE_POWER", powered > 0,
+           powered > 0 ? "spot cosine power: compiled in (" + plural(static_cast<int>(powered), "spot") + " with p > 0)"
+                       : "spot cosine power: compiled out (no spot has one)",
+           powered > 0 ? "spot cosine power" : "");
   const int words = any_link ? link_words_for(scene) : 0;
   recipe.link_words = add_count(recipe, "LIGHT_LINKING", words,
                                 words > 0 ? "light linking: compiled in (" + plural(words, "mask word") + " per light)"

@@ -16,7 +16,8 @@ Conventions (docs/formats.md "Renderers' G-buffers", "From a Blender scene"):
   centre of the visible meshes). A spot's cone: Cycles lights where cos(angle to the axis) exceeds
   cos(spot_size/2) and smoothsteps over the spot_blend fraction of 1 - cos(spot_size/2) above it,
   in cosines, as phongcl's penumbra does, so cone_angle_deg is the angle whose cosine ends that
-  blend and penumbra_angle_deg the rest of spot_size/2. Area lights are skipped with a note.
+  blend and penumbra_angle_deg the rest of spot_size/2; inside the cone Cycles 3.x also multiplies by
+  that cosine, so Blender 3.x spots get "cosine_power": 1. Area lights are skipped with a note.
 - Materials by pass index (Material.pass_index): Principled BSDF kd = base colour * (1 - metallic),
   ks = mix(0.08 * specular, base colour, metallic) (the BSDF's normal-incidence reflectance),
   shininess = (2 / alpha^2 - 2) / 4 with alpha = roughness^2 (Walter et al. 2007's Beckmann to
@@ -102,9 +103,14 @@ def spot_cone(light):
     cos_inner = cos_outer + (1.0 - cos_outer) * light.data.spot_blend
     inner_half = max(math.acos(min(cos_inner, 1.0)), math.radians(MIN_CONE_DEG / 2.0))
     axis = light.matrix_world.to_3x3() @ Vector((0.0, 0.0, -1.0))
-    return {"type": "spot", "direction": rounded(axis.normalized()),
+    cone = {"type": "spot", "direction": rounded(axis.normalized()),
             "cone_angle_deg": round(math.degrees(2.0 * inner_half), 6),
             "penumbra_angle_deg": round(max(math.degrees(outer_half - inner_half), 0.0), 6)}
+    # Cycles 3.x multiplies a spot's light by cos(angle to its axis) (spot_light_attenuation() in
+    # intern/cycles/kernel/light/common.h returns dot(dir, N)); Blender 4.0 dropped the factor.
+    if bpy.app.version < (4, 0, 0):
+        cone["cosine_power"] = 1
+    return cone
 
 
 def with_shadows(light, entry):
