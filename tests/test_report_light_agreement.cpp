@@ -52,8 +52,8 @@ TEST(LightAgreement, WithinTheToleranceOfTheUnshadowedValueEveryLight) {
   EXPECT_NEAR(agreement.worst_miss, 10.0, 1e-6);  // a miss of 1 against an allowance of 0.1
 }
 
-// 30 pixels: 20 lit at 1 with errors 0, 1e-4 ... 1.9e-3 (one channel each), 9 dim ones below the floor
-// that are far off, and one NaN: the median and 99th percentile are of the 21 lit pixels, the NaN
+// 30 pixels: 20 lit at 1 with errors 0, 1e-4 ... 1.9e-3 (one channel each), 8 dim ones below the floor
+// that are far off, and two NaNs: the median and 99th percentile are of the 22 lit pixels, a NaN
 // counted as infinitely far.
 TEST(LightAgreement, RelativeErrorsOverTheLitPixels) {
   const std::vector<bool> mask(kWidth * kHeight, true);
@@ -63,18 +63,20 @@ TEST(LightAgreement, RelativeErrorsOverTheLitPixels) {
     light.shaded[c].assign(mask.size(), 1.0f);
   }
   for (int i = 0; i < 20; ++i) light.shaded[i % 3][i] = 1.0f + 1e-4f * static_cast<float>(i);
-  for (int i = 20; i < 29; ++i)
+  for (int i = 20; i < 28; ++i)
     for (int c = 0; c < 3; ++c) {
       light.expected[c][i] = 1e-4f;
       light.shaded[c][i] = 1.0f;
     }
-  light.shaded[1][29] = NAN;
+  light.shaded[0][28] = light.shaded[1][29] = NAN;
   const RelativeErrors errors = relative_errors(light, mask, 1e-3);
-  EXPECT_EQ(errors.pixels, 21u);
-  EXPECT_NEAR(errors.median, 1e-3, 1e-7);  // the 11th of 21
-  EXPECT_TRUE(std::isinf(errors.p99)) << errors.p99;
-  light.shaded[1][29] = 1.0f;
-  EXPECT_NEAR(relative_errors(light, mask, 1e-3).p99, 1.9e-3, 1e-7);  // the largest: index 0.99 * 20 rounds down to 19
+  EXPECT_EQ(errors.pixels, 22u);
+  EXPECT_NEAR(errors.median, 1e-3, 1e-7);  // index 0.5 * 21, rounded down: the 11th smallest
+  EXPECT_TRUE(std::isinf(errors.p99)) << errors.p99;  // index 20 of 0 to 21: a NaN
+  light.shaded[0][28] = light.shaded[1][29] = 1.0f;
+  const RelativeErrors fixed = relative_errors(light, mask, 1e-3);
+  EXPECT_NEAR(fixed.median, 8e-4, 1e-7);
+  EXPECT_NEAR(fixed.p99, 1.8e-3, 1e-7);
 }
 
 }  // namespace

@@ -36,6 +36,7 @@ struct Light {
   double cosine_power = 0.0;                           // spot: F gains max(0, dot(-l, axis))^p; 0: none
   std::optional<std::vector<int>> materials{};         // light linking: lights only these; absent: every material
   bool shadows = false;                                // casts shadows (when the shade's shadow mode is not off)
+  std::string group;                                   // light group: its light also goes to that layer; empty: none
 
   bool has_range() const { return range > 0.0; }
   bool reaches(int material) const;  // light linking
@@ -85,5 +86,8 @@ Scene load_scene(const std::filesystem::path& file);
 Scene parse_scene(std::string_view json_text, const std::filesystem::path& source);
 
 const char* to_string(Falloff falloff);  // "none", "linear", ...
+
+// The scene's light groups, each name once, in the order of the lights that first name them.
+std::vector<std::string> light_groups(const std::vector<Light>& lights);
 
 }  // namespace phongcl

@@ -100,7 +100,7 @@ std::vector<int> read_linked_materials(const JsonValue& value, std::size_t mater
 Light read_light(const JsonValue& value, std::size_t material_count) {
   const JsonObject object = value.object();
   object.expect_keys({"type", "position", "direction", "color", "falloff", "range", "cone_angle_deg",
-                      "penumbra_angle_deg", "cosine_power", "materials", "shadows"});
+                      "penumbra_angle_deg", "cosine_power", "materials", "shadows", "group"});
   const std::string type = object.at("type").string();
   Light light;
   if (type == "point" || type == "spot") {
@@ -134,6 +134,10 @@ Light read_light(const JsonValue& value, std::size_t material_count) {
   if (auto color = object.find("color")) light.color = read_non_negative_vec3(*color);
   if (auto materials = object.find("materials")) light.materials = read_linked_materials(*materials, material_count);
   if (auto shadows = object.find("shadows")) light.shadows = shadows->boolean();
+  if (auto group = object.find("group")) {
+    light.group = group->string();
+    if (!valid_light_group_name(light.group)) group->fail(kLightGroupNameRule);
+  }
   return light;
 }
 
@@ -196,6 +200,14 @@ const char* to_string(Falloff falloff) {
     case Falloff::cubic: return "cubic";
   }
   return "none";
+}
+
+std::vector<std::string> light_groups(const std::vector<Light>& lights) {
+  std::vector<std::string> names;
+  for (const Light& light : lights)
+    if (!light.group.empty() && std::find(names.begin(), names.end(), light.group) == names.end())
+      names.push_back(light.group);
+  return names;
 }
 
 bool Light::reaches(int material) const {

@@ -289,6 +289,20 @@ void decide_shadows(Recipe& recipe, const Scene& scene, const ShadeOptions& opti
            mode == ShadowMode::screen ? "screen-space shadows: " + march : "screen-space shadows: none");
 }
 
+// Light groups are AOVs: their layers are written with the terms; without terms the kernel is the
+// one without groups. The count is compiled in (the group loop unrolls), in the general kernel too.
+void decide_groups(Recipe& recipe, const Scene& scene, const ShadeOptions& options) {
+  const std::vector<std::string> groups = light_groups(scene.lights);
+  if (options.write_terms) recipe.light_groups = groups;
+  const int count = static_cast<int>(recipe.light_groups.size());
+  add_count(recipe, "LIGHT_GROUPS", count,
+            count > 0       ? "light groups: " + plural(count, "group") + ", each one's diffuse + specular written apart"
+            : groups.empty() ? "light groups: none"
+                             : "light groups: not written (" + plural(static_cast<int>(groups.size()), "group") +
+                                   ", but no terms asked for)",
+            count > 0 ? plural(count, "light group") : "");
+}
+
 void decide_memory(Recipe& recipe, const Scene& scene, const DeviceInfo& device) {
   const bool shapes = recipe.value("FALLOFF") != "0" || recipe.value("FALLOFF_MIXED") == "1" ||
                       recipe.value("RANGE_WINDOW") == "1" || recipe.value("SPOT_LIGHTS") == "1";
@@ -367,6 +381,7 @@ Recipe make_recipe(const Scene& scene, const GBuffer& gbuffer, const DeviceInfo&
   recipe.write_terms = add_flag(recipe, "WRITE_TERMS", options.write_terms,
                                 options.write_terms ? "terms: ambient, diffuse and specular also written apart (AOVs)"
                                                     : "terms: not written apart");
+  decide_groups(recipe, scene, options);
   return recipe;
 }
 

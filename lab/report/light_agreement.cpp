@@ -40,7 +40,7 @@ RelativeErrors relative_errors(const LightImages& light, const std::vector<bool>
     double miss = 0.0;
     for (int c = 0; c < 3; ++c) {
       const double difference = std::abs(static_cast<double>(light.shaded[c][i]) - light.expected[c][i]);
-      if (!(difference <= miss)) miss = difference;  // NaN stays
+      if (std::isnan(difference) || difference > miss) miss = difference;  // a NaN stays
     }
     errors.push_back(std::isfinite(miss) ? miss / expected : INFINITY);
   }

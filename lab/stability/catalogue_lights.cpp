@@ -153,7 +153,7 @@ long double angle_of(const glm::vec3& p) { return std::atan2(static_cast<long do
 double degrees(long double radians) { return static_cast<double>(radians * 180 / kPi); }
 
 StabilityCase spot_case(std::string name, std::string what, double cone_deg, double penumbra_deg,
-                        const std::vector<glm::vec3>& pixels) {
+                        const std::vector<glm::vec3>& pixels, double cosine_power = 0.0) {
   StabilityCase c;
   c.name = std::move(name);
   c.group = "spot cones";
@@ -162,6 +162,7 @@ StabilityCase spot_case(std::string name, std::string what, double cone_deg, dou
   Light spot = light_at_eye(LightType::spot, 1.0);
   spot.cone_angle_deg = cone_deg;
   spot.penumbra_angle_deg = penumbra_deg;
+  spot.cosine_power = cosine_power;
   spot.range = kSpotRange;
   c.scene.lights.push_back(spot);
   c.gbuffer = blank_gbuffer(static_cast<int>(pixels.size()), 1, c.name);
@@ -261,9 +262,7 @@ StabilityCase spot_power(double power, double cone_deg, const std::vector<long d
   StabilityCase c = spot_case("power p=" + number(power) + " A=" + number(cone_deg),
                               "spot of A = " + number(cone_deg) + " degrees with cosine power " + number(power) +
                                   ": c^p from the axis to theta = " + number(static_cast<double>(thetas.back())) + " rad",
-                              cone_deg, 0.0, pixels);
-  c.scene.lights[0].cosine_power = power;
-  c = complete(std::move(c));
+                              cone_deg, 0.0, pixels, power);
   // Positions are packed exactly (the eye at the origin); the double reference takes pow(c, p) with
   // c rounded to 2^-53 absolutely, an amplification of p / c.
   c.expect = {double_expectation(amplification), precise_expectation(amplification), fast_expectation(amplification),

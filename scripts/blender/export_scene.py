@@ -25,6 +25,7 @@ Conventions (docs/formats.md "Renderers' G-buffers", "From a Blender scene"):
   colour times its strength (a uniform environment lights an unoccluded Lambertian surface with
   rho * L). Indices no material uses get a grey material.
 - Shadows: a light that casts shadows in Cycles (its cast_shadow setting) gets "shadows": true.
+- Light groups: a light's Object.lightgroup (Blender 3.2+) becomes its "group".
 - --geometry DIR writes every visible mesh that casts shadows (Object.visible_shadow) as a
   world-space binary little-endian PLY in DIR, modifiers applied and triangulated, one file per
   object and material slot (DIR/<object>.<slot>.ply), and lists each as a {"type": "mesh"} object
@@ -113,9 +114,14 @@ def spot_cone(light):
     return cone
 
 
-def with_shadows(light, entry):
+def with_shadow_and_group(light, entry):
     if light.data.cycles.cast_shadow:
         entry["shadows"] = True
+    # Blender 3.2+ light groups (Object.lightgroup): Cycles writes a Combined pass per group, phongcl
+    # --aov a group.<name> layer. Blender allows letters, digits and '_' in the name, as phongcl does.
+    group = getattr(light, "lightgroup", "")
+    if group:
+        entry["group"] = group
     return entry
 
 
@@ -127,8 +133,9 @@ def lights_json(scene, falloff):
         colour = Vector(data.color)
         if data.type == "SUN":
             direction = light.matrix_world.to_3x3() @ Vector((0.0, 0.0, -1.0))
-            lights.append(with_shadows(light, {"type": "directional", "direction": rounded(direction.normalized()),
-                                               "color": rounded(colour * data.energy / math.pi)}))
+            entry = {"type": "directional", "direction": rounded(direction.normalized()),
+                     "color": rounded(colour * data.energy / math.pi)}
+            lights.append(with_shadow_and_group(light, entry))
             continue
         if data.type not in ("POINT", "SPOT"):
             note("light '%s' is an %s light, which phongcl has not: skipped" % (light.name, data.type.lower()))
@@ -145,7 +152,7 @@ def lights_json(scene, falloff):
             intensity = intensity / distance ** 2
             note("point light '%s' at %.3g from the meshes' centre, taken at that distance (no falloff)" % (light.name, distance))
         entry["color"] = rounded(intensity)
-        lights.append(with_shadows(light, entry))
+        lights.append(with_shadow_and_group(light, entry))
     return lights
 
 
