@@ -2,11 +2,12 @@
 // its camera) under 16 point lights, shaded with the terms (--aov) three ways: the 16 lights in 4
 // groups of 4, the same 16 without groups, and without groups or terms; kernel and download times
 // apart (profiling events and the download's wall clock, as ShadeTimings has them), medians of
-// --runs after one untimed warm-up.
+// --runs after one untimed warm-up each, the variants taking turns.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -39,32 +40,32 @@ std::vector<Light> ring_of_lights(const Scene& scene, bool grouped) {
   return lights;
 }
 
-struct GroupTimes {
-  double kernel_ms, download_ms;
+// One variant's shader, recipe and images: each keeps its kernel, tables and packed G-buffer.
+struct Variant {
+  const char* name;
+  Scene scene;
+  Recipe recipe;
+  Image image;
+  TermImages terms;
+  FrameTargets targets;
+  std::unique_ptr<PhongShader> shader;
+  std::vector<double> kernel_ms, download_ms;
 };
 
-GroupTimes time_variant(PhongShader& shader, const Scene& scene, const GBuffer& gbuffer, bool terms, int runs) {
+void prepare(Variant& v, const GBuffer& gbuffer, bool terms, const ComputeContext& compute, ProgramCache& cache) {
   ShadeOptions options;
   options.write_terms = terms;
-  const Recipe recipe = make_recipe(scene, gbuffer, shader.compute().device.info, options);
-  Image image = image_like(gbuffer);
-  TermImages images{image_like(gbuffer), image_like(gbuffer), image_like(gbuffer), recipe.light_groups,
-                    std::vector<Image>(recipe.light_groups.size(), image_like(gbuffer))};
-  FrameTargets targets{image.pixel(0)};
+  v.recipe = make_recipe(v.scene, gbuffer, compute.device.info, options);
+  v.image = image_like(gbuffer);
+  v.terms = {image_like(gbuffer), image_like(gbuffer), image_like(gbuffer), v.recipe.light_groups,
+             std::vector<Image>(v.recipe.light_groups.size(), image_like(gbuffer))};
+  v.targets = {v.image.pixel(0)};
   if (terms) {
-    targets = {image.pixel(0), images.ambient.pixel(0), images.diffuse.pixel(0), images.specular.pixel(0)};
-    for (Image& group : images.groups) targets.groups.push_back(group.pixel(0));
+    v.targets = {v.image.pixel(0), v.terms.ambient.pixel(0), v.terms.diffuse.pixel(0), v.terms.specular.pixel(0)};
+    for (Image& group : v.terms.groups) v.targets.groups.push_back(group.pixel(0));
   }
-  shader.forget_gbuffer();
-  shader.forget_uniforms();
-  shader.shade_into(scene, gbuffer, recipe, targets);  // warm-up: build, pack, upload
-  std::vector<double> kernel, download;
-  for (int r = 0; r < runs; ++r) {
-    const ShadeReport report = shader.shade_into(scene, gbuffer, recipe, targets);
-    kernel.push_back(report.timings.kernel_ms);
-    download.push_back(report.timings.download_ms);
-  }
-  return {median(kernel), median(download)};
+  v.shader = std::make_unique<PhongShader>(compute, cache);
+  v.shader->shade_into(v.scene, gbuffer, v.recipe, v.targets);  // warm-up: build, pack, upload
 }
 
 }  // namespace
@@ -75,29 +76,33 @@ void run_groups_bench(const BenchArguments& args) {
   scene.camera.height = 1080;
   const GBuffer gbuffer = generate_gbuffer(scene);
   ProgramCache cache(ProgramCache::default_directory());
-  PhongShader shader(make_compute_context(pick_device(args.device)), cache);
+  const ComputeContext compute = make_compute_context(pick_device(args.device));
   std::ifstream loadavg("/proc/loadavg");
   std::string load;
   std::getline(loadavg, load);
   std::printf("phongcl bench --groups: %dx%d, %d point lights, %s; medians of %d runs after a warm-up; load %s\n",
-              gbuffer.width, gbuffer.height, kGroups * kLightsPerGroup, describe(shader.compute().device.info).c_str(),
+              gbuffer.width, gbuffer.height, kGroups * kLightsPerGroup, describe(compute.device.info).c_str(),
               args.runs, load.c_str());
-  struct Variant {
-    const char* name;
-    bool grouped, terms;
-  };
-  const Variant variants[] = {{"4 groups of 4, terms", true, true},
-                              {"no groups, terms", false, true},
-                              {"no groups, no terms", false, false}};
-  std::printf("  %-22s %10s %12s\n", "variant", "kernel ms", "download ms");
-  std::vector<GroupTimes> times;
-  for (const Variant& variant : variants) {
-    scene.lights = ring_of_lights(scene, variant.grouped);
-    times.push_back(time_variant(shader, scene, gbuffer, variant.terms, args.runs));
-    std::printf("  %-22s %10.2f %12.2f\n", variant.name, times.back().kernel_ms, times.back().download_ms);
+  // The variants take turns run by run, so that a change of the machine's load falls on all three.
+  Variant variants[] = {{"4 groups of 4, terms"}, {"no groups, terms"}, {"no groups, no terms"}};
+  const bool grouped[] = {true, false, false}, terms[] = {true, true, false};
+  for (int v = 0; v < 3; ++v) {
+    variants[v].scene = scene;
+    variants[v].scene.lights = ring_of_lights(scene, grouped[v]);
+    prepare(variants[v], gbuffer, terms[v], compute, cache);
   }
+  for (int r = 0; r < args.runs; ++r)
+    for (Variant& v : variants) {
+      const ShadeReport report = v.shader->shade_into(v.scene, gbuffer, v.recipe, v.targets);
+      v.kernel_ms.push_back(report.timings.kernel_ms);
+      v.download_ms.push_back(report.timings.download_ms);
+    }
+  std::printf("  %-22s %10s %12s\n", "variant", "kernel ms", "download ms");
+  for (const Variant& v : variants)
+    std::printf("  %-22s %10.2f %12.2f\n", v.name, median(v.kernel_ms), median(v.download_ms));
   std::printf("  groups against none (both with terms): kernel x%.2f, download x%.2f\n",
-              times[0].kernel_ms / times[1].kernel_ms, times[0].download_ms / times[1].download_ms);
+              median(variants[0].kernel_ms) / median(variants[1].kernel_ms),
+              median(variants[0].download_ms) / median(variants[1].download_ms));
 }
 
 }  // namespace phongcl::cli
