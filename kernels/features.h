@@ -12,6 +12,8 @@
  *   MATERIAL_COUNT=n                       a table of n <= PHONGCL_LANES materials: selects, no gather;
  *                                          0: gathered per lane
  *   PER_PIXEL_KA, _KD, _KS, _Q             the G-buffer has per-pixel material planes (material.h)
+ *   POSITION_REST                          positions and point lights come as float pairs, value + rest:
+ *                                          L - P to float precision however near the light (phong.cl)
  *   FALLOFF=k, FALLOFF_MIXED               every light falls off as 1/d^k; powers differ (light_shape.h)
  *   RANGE_WINDOW, SPOT_LIGHTS              some light has a range; some light is a spot
  *   SPOT_COSINE_POWER                      some spot has a cosine power p > 0: F gains max(0, c)^p
@@ -31,8 +33,9 @@
     !defined(DIRECTIONAL_COUNT) || !defined(SPECULAR) || !defined(AMBIENT) || !defined(SINGLE_MATERIAL) ||         \
     !defined(MATERIAL_COUNT) || !defined(PER_PIXEL_KA) || !defined(PER_PIXEL_KD) || !defined(PER_PIXEL_KS) ||     \
     !defined(PER_PIXEL_Q) || !defined(FALLOFF) || !defined(FALLOFF_MIXED) || !defined(RANGE_WINDOW) ||            \
-    !defined(SPOT_LIGHTS) || !defined(SPOT_COSINE_POWER) || !defined(LIGHT_LINKING) || !defined(TILED_CULLING) || !defined(WRITE_TERMS) ||        \
-    !defined(SHADOWS) || !defined(SCREEN_SHADOWS) || !defined(LIGHT_GROUPS)
+    !defined(SPOT_LIGHTS) || !defined(SPOT_COSINE_POWER) || !defined(LIGHT_LINKING) || !defined(TILED_CULLING) ||   \
+    !defined(WRITE_TERMS) || !defined(SHADOWS) || !defined(SCREEN_SHADOWS) || !defined(POSITION_REST) ||          \
+    !defined(LIGHT_GROUPS)
 #error "phong.cl is built with every flag of features.h defined (host/shading/recipe.cpp writes them)"
 #endif
 
