@@ -18,9 +18,12 @@
  *                                          L - P to float precision however near the light (phong.cl)
  *   FALLOFF=k, FALLOFF_MIXED               every light falls off as 1/d^k; powers differ (light_shape.h)
  *   RANGE_WINDOW, SPOT_LIGHTS              some light has a range; some light is a spot
+ *   SPOT_COSINE_POWER                      some spot has a cosine power p > 0: F gains max(0, c)^p
  *   LIGHT_LINKING=w                        w mask words per light; 0: every light lights every material
  *   TILED_CULLING                          point and spot lights from the work-item's tile list (cull.cl)
  *   WRITE_TERMS                            also write ambient, diffuse, specular apart (AOVs)
+ *   LIGHT_GROUPS=g                         with WRITE_TERMS: g light groups, each one's diffuse + specular
+ *                                          also written apart after the terms; 0: no groups
  *   SHADOWS, SCREEN_SHADOWS                some light casts shadows: traced against the scene's geometry,
  *                                          or marched across the frame's depth plane (shadow.h)
  */
@@ -32,8 +35,9 @@
     !defined(DIRECTIONAL_COUNT) || !defined(SPECULAR) || !defined(AMBIENT) || !defined(SINGLE_MATERIAL) ||         \
     !defined(MATERIAL_COUNT) || !defined(PER_PIXEL_KA) || !defined(PER_PIXEL_KD) || !defined(PER_PIXEL_KS) ||     \
     !defined(PER_PIXEL_Q) || !defined(FALLOFF) || !defined(FALLOFF_MIXED) || !defined(RANGE_WINDOW) ||            \
-    !defined(SPOT_LIGHTS) || !defined(LIGHT_LINKING) || !defined(TILED_CULLING) || !defined(WRITE_TERMS) ||        \
-    !defined(SHADOWS) || !defined(SCREEN_SHADOWS) || !defined(POSITION_REST) || !defined(SPECULAR_MODELS)
+    !defined(SPOT_LIGHTS) || !defined(SPOT_COSINE_POWER) || !defined(LIGHT_LINKING) || !defined(TILED_CULLING) ||   \
+    !defined(WRITE_TERMS) || !defined(SHADOWS) || !defined(SCREEN_SHADOWS) || !defined(POSITION_REST) ||          \
+    !defined(LIGHT_GROUPS) || !defined(SPECULAR_MODELS)
 #error "phong.cl is built with every flag of features.h defined (host/shading/recipe.cpp writes them)"
 #endif
 

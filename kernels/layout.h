@@ -55,7 +55,8 @@ typedef struct {
   layout_float versine_outer;       /* 1 - cos(A/2 + P) */
   layout_float inverse_cone_width;  /* 1 / (versine_outer - versine_inner), 0 for a hard edge */
   int falloff;                      /* the power k of 1/d^k: 0 to 3 */
-  int padding[3];
+  layout_float cosine_power;        /* spot: p of max(0, dot(-l, axis))^p; 0 for none and point lights */
+  int padding[2];
 } LightShape;
 
 /* Light linking: bit m of word m / 32 of a light's mask is set when it lights material m. Each light

@@ -1,7 +1,8 @@
 /* F = falloff(d) * window(d) * cone(l), and light linking, for the lights that have them (the
  * formula: docs "The shading, exactly"). Each part is compiled in only when the scene uses it
  * (features.h): FALLOFF=k or FALLOFF_MIXED (1/d^k), RANGE_WINDOW (window(d) = clamp(1 - (d/R)^4, 0, 1)^2),
- * SPOT_LIGHTS (cone(l), the smoothstep of the penumbra), LIGHT_LINKING=w (w mask words per light).
+ * SPOT_LIGHTS (cone(l), the smoothstep of the penumbra), SPOT_COSINE_POWER (cone(l) times
+ * max(0, c)^p), LIGHT_LINKING=w (w mask words per light).
  * Written for the formula's reader: the factors that are at most 1 multiply first, then 1/d once
  * per power, so the product overflows to +Inf only where 1/d^k itself outgrows them, and a zero
  * factor gives 0, never 0 * Inf = NaN. */
@@ -60,6 +61,9 @@ realv shape_weight(UNIFORM_SPACE const LightShape* shape, vec3 toward, realv inv
     const realv s = SELECT(versine <= shape->versine_inner, 1,
                            clamp((shape->versine_outer - versine) * shape->inverse_cone_width, (real)0, (real)1));
     bounded *= s * s * (3 - 2 * s);
+    /* max(0, c)^p, c = 1 - versine: the power takes its logarithm from the versine near the axis,
+     * as the specular lobe's from 1 - v.r, so a large p keeps its precision; p = 0 gives 1. */
+    if (SPOT_COSINE_POWER) bounded *= specular_power(1 - versine, versine, (realv)(real)shape->cosine_power);
   }
   realv weight = bounded;
   const int powers = FALLOFF_MIXED ? shape->falloff : FALLOFF;

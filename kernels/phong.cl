@@ -7,6 +7,7 @@
  * arithmetic (robust normalisation, the power, compensated sums, streaming stores) is phong_math.h's.
  * With SHADOWS a light that casts shadows is multiplied by its visibility (shadow.h: a ray traced
  * against the scene's geometry, or with SCREEN_SHADOWS marched across the frame's depth plane).
+ * With LIGHT_GROUPS the lights are summed group by group, and each group's terms also written apart.
  * Only what the scene needs is compiled in: the host's recipe defines every flag of features.h.
  * Every buffer is planar with frame.plane_stride values per plane, a multiple of PHONGCL_LANES (the
  * host pads each tile with background pixels).
@@ -53,6 +54,8 @@ typedef struct {
   __global const uint* point_casters;                /* SHADOWS: 1 where point light i casts shadows */
   __global const uint* directional_casters;          /* SHADOWS: the same per directional light */
   const ShadowInputs* shadows;                       /* SHADOWS: what the shadow rays test (shadow.h) */
+  __global const uint* point_groups;                 /* LIGHT_GROUPS: point light i's group, LIGHT_GROUPS for none */
+  __global const uint* directional_groups;           /* LIGHT_GROUPS: the same per directional light */
 } Lights;
 
 /* A work-item's slots of the G-buffer planes. */
@@ -167,12 +170,13 @@ void add_block(LightSums* sums, LightSums* compensation, const LightSums* block)
   kahan_add(&sums->specular.z, &compensation->specular.z, block->specular.z, WEIGHT_CAN_OVERFLOW);
 }
 
-/* The lights' sums for one vector of pixels. Lights are summed in blocks of PHONGCL_LIGHT_BLOCK in
- * plain float, and the block sums compensated (Kahan): the error stays a few ulp plus one block's
- * however many lights there are (10,000 lights, one of 1 then 9,999 of 3e-8: plain float 3.0e-4
- * relative, blocked Kahan 4.5e-7). Counts in the code (up to 16) are one block.
+/* The lights' sums for one vector of pixels, with LIGHT_GROUPS those of `group`'s lights only (the
+ * test is uniform: every lane skips the same lights). Lights are summed in blocks of
+ * PHONGCL_LIGHT_BLOCK in plain float, and the block sums compensated (Kahan): the error stays a few
+ * ulp plus one block's however many lights there are (10,000 lights, one of 1 then 9,999 of 3e-8:
+ * plain float 3.0e-4 relative, blocked Kahan 4.5e-7). Counts in the code (up to 16) are one block.
  * -cl-fast-relaxed-math may fold the compensation away (fast). */
-static inline void sum_lights(LightSums* out, const Surface* surface, const Lights* lights) {
+static inline void sum_lights(LightSums* out, const Surface* surface, const Lights* lights, uint group) {
   const realv zero = 0;
   const LightSums no_light = {{zero, zero, zero}, {zero, zero, zero}};
   LightSums sums = no_light, compensation = no_light;
@@ -181,6 +185,7 @@ static inline void sum_lights(LightSums* out, const Surface* surface, const Ligh
       LightSums block = no_light;
       for (int k = first; k < min(first + PHONGCL_LIGHT_BLOCK, lights->point_count); ++k) {
         const int i = TILED_CULLING ? (int)lights->point_list[k] : k;
+        if (LIGHT_GROUPS && lights->point_groups[i] != group) continue;
         add_point_light(&block, surface, lights, i);
       }
       add_block(&sums, &compensation, &block);
@@ -189,15 +194,60 @@ static inline void sum_lights(LightSums* out, const Surface* surface, const Ligh
     for (int first = 0; first < lights->directional_count; first += PHONGCL_LIGHT_BLOCK) {
       LightSums block = no_light;
       for (int k = first; k < min(first + PHONGCL_LIGHT_BLOCK, lights->directional_count); ++k)
-        add_directional_light(&block, surface, lights, k);
+        if (!LIGHT_GROUPS || lights->directional_groups[k] == group) add_directional_light(&block, surface, lights, k);
       add_block(&sums, &compensation, &block);
     }
   *out = sums;
 }
 
+/* Three planes of a term, unscaled. */
+void store_term(__global float* out, uint stride, size_t group, vec3 term, float a, float b) {
+  store_plane(unscale(term.x, a, b), group, out);
+  store_plane(unscale(term.y, a, b), group, out + stride);
+  store_plane(unscale(term.z, a, b), group, out + 2 * (size_t)stride);
+}
+
+/* A work-item's slots of the output planes. */
+typedef struct {
+  __global float* rgba;   /* R G B A */
+  __global float* terms;  /* with WRITE_TERMS: ambient, diffuse, specular RGB, then the light groups' */
+  uint stride;
+  size_t group;
+} PixelOutputs;
+
+/* k*sum per channel, for the material's kd or ks and the lights' sums. */
+static inline vec3 reflected(vec3 k, vec3 sum) {
+  return make_vec3(NONNEGATIVE_TIMES(k.x, sum.x), NONNEGATIVE_TIMES(k.y, sum.y), NONNEGATIVE_TIMES(k.z, sum.z));
+}
+
+/* With LIGHT_GROUPS: the lights' sums group by group, the ungrouped lights last (as group
+ * LIGHT_GROUPS), each group's kd*D_g + ks*S_g stored in its three planes after the terms, and the
+ * groups' sums compensated into the total: ambient + the groups + the ungrouped lights = L_o. */
+static inline void sum_groups(LightSums* out, const Surface* surface, const Lights* lights, vec3 kd, vec3 ks,
+                              const PixelOutputs* outputs, float a, float b) {
+  const realv zero = 0;
+  const LightSums no_light = {{zero, zero, zero}, {zero, zero, zero}};
+  LightSums sums = no_light, compensation = no_light;
+  for (int g = 0; g <= LIGHT_GROUPS; ++g) {
+    LightSums group;
+    sum_lights(&group, surface, lights, (uint)g);
+    if (g < LIGHT_GROUPS) {
+      vec3 light = reflected(kd, group.diffuse);
+      if (SPECULAR) {
+        const vec3 specular = reflected(ks, group.specular);
+        light = make_vec3(light.x + specular.x, light.y + specular.y, light.z + specular.z);
+      }
+      store_term(outputs->terms + (PHONGCL_TERM_PLANES + 3 * (size_t)g) * outputs->stride, outputs->stride,
+                 outputs->group, light, a, b);
+    }
+    add_block(&sums, &compensation, &group);
+  }
+  *out = sums;
+}
+
 /* L_o's terms for one vector of pixels: ambient ka*La, diffuse kd*D, specular ks*S. */
 static inline void shade_pixel(Terms* terms, const PixelPlanes* pixels, const MaterialLookup* materials,
-                               const Lights* lights, const FrameScalars* frame) {
+                               const Lights* lights, const FrameScalars* frame, const PixelOutputs* outputs) {
   Surface surface;
   surface.material = materials->index;
   surface.shininess = PER_PIXEL_Q ? pixel_plane(pixels, PLANE_Q) : material_field(materials, MATERIAL_SHININESS);
@@ -210,7 +260,13 @@ static inline void shade_pixel(Terms* terms, const PixelPlanes* pixels, const Ma
 
   /* D = sum_i Li F_i max(0, n.l_i), S = sum_i Li F_i max(0, v.r_i)^q (or the material's lobe) */
   LightSums sums;
-  sum_lights(&sums, &surface, lights);
+  if (LIGHT_GROUPS) {
+    const vec3 kd = PER_PIXEL_KD ? PIXEL_PLANE3(pixels, PLANE_KD) : MATERIAL_FIELD3(materials, MATERIAL_KD);
+    const vec3 ks = PER_PIXEL_KS ? PIXEL_PLANE3(pixels, PLANE_KS) : MATERIAL_FIELD3(materials, MATERIAL_KS);
+    sum_groups(&sums, &surface, lights, kd, ks, outputs, frame->radiance_scale_a, frame->radiance_scale_b);
+  } else {
+    sum_lights(&sums, &surface, lights, 0);
+  }
 
   const Terms no_terms = {{zero, zero, zero}, {zero, zero, zero}, {zero, zero, zero}};
   *terms = no_terms;
@@ -230,21 +286,6 @@ static inline void shade_pixel(Terms* terms, const PixelPlanes* pixels, const Ma
     terms->ambient = make_vec3(ka.x * frame->ambient[0], ka.y * frame->ambient[1], ka.z * frame->ambient[2]);
   }
 }
-
-/* Three planes of a term, unscaled. */
-void store_term(__global float* out, uint stride, size_t group, vec3 term, float a, float b) {
-  store_plane(unscale(term.x, a, b), group, out);
-  store_plane(unscale(term.y, a, b), group, out + stride);
-  store_plane(unscale(term.z, a, b), group, out + 2 * (size_t)stride);
-}
-
-/* A work-item's slots of the output planes. */
-typedef struct {
-  __global float* rgba;   /* R G B A */
-  __global float* terms;  /* with WRITE_TERMS: ambient, diffuse, specular RGB */
-  uint stride;
-  size_t group;
-} PixelOutputs;
 
 /* R G B A = ambient + diffuse + specular, alpha 1, with the radiance scale a * b undone; background
  * lanes get the background colour and alpha 0. With WRITE_TERMS the terms too (in background lanes
@@ -293,7 +334,10 @@ __kernel void phong_shade(
      * the frame's shadow scalars */
     __global const uint* restrict shadow_casters, __global const BvhNode* restrict shadow_nodes,
     __global const ShadowPrimitive* restrict shadow_primitives, __global const ShadowPlane* restrict shadow_planes,
-    __global const float* restrict shadow_depth, const ShadowFrame shadow_frame) {
+    __global const float* restrict shadow_depth, const ShadowFrame shadow_frame,
+    /* light groups, read only with LIGHT_GROUPS: each light's group (point lights', then directional
+     * lights'), LIGHT_GROUPS for none; their planes follow the terms in out_terms */
+    __global const uint* restrict light_groups) {
   const size_t group = get_global_id(0);
   const PixelOutputs outputs = {out_rgba, out_terms, frame.plane_stride, group};
   const float radiance_scale_a = frame.radiance_scale_a, radiance_scale_b = frame.radiance_scale_b;
@@ -311,6 +355,8 @@ __kernel void phong_shade(
       .point_casters = shadow_casters,
       .directional_casters = shadow_casters + frame.point_count,
       .shadows = &shadows,
+      .point_groups = light_groups,
+      .directional_groups = light_groups + frame.point_count,
   };
   MaterialLookup material;
   look_up_materials(&material, materials, material_index, group);
@@ -318,6 +364,6 @@ __kernel void phong_shade(
   const PixelPlanes pixels = {planes, frame.plane_stride, group};
 
   Terms terms;
-  shade_pixel(&terms, &pixels, &material, &lights, &frame);
+  shade_pixel(&terms, &pixels, &material, &lights, &frame, &outputs);
   store_pixels(&outputs, &terms, background, &frame, radiance_scale_a, radiance_scale_b);
 }

@@ -2,6 +2,8 @@
 // NumPy array it returns (or the caller's).
 #include <phongcl/relighter.hpp>
 
+#include <algorithm>
+
 #include <pybind11/stl.h>
 
 #include "bindings.h"
@@ -40,6 +42,31 @@ py::array_t<float> shade(Relighter& relighter, const std::optional<py::array>& o
     relighter.shade_into(pixels, floats);
   }
   return image;
+}
+
+py::array_t<float> array_of(const Image& image) {
+  py::array_t<float> out({py::ssize_t{image.height}, py::ssize_t{image.width}, py::ssize_t{4}});
+  std::copy(image.rgba.begin(), image.rgba.end(), out.mutable_data());
+  return out;
+}
+
+// The image and its terms as arrays; groups maps each light group's name to its image.
+py::dict shade_terms(Relighter& relighter) {
+  TermImages terms;
+  Image image;
+  {
+    py::gil_scoped_release release;
+    image = relighter.shade(terms);
+  }
+  py::dict groups;
+  for (std::size_t g = 0; g < terms.groups.size(); ++g) groups[py::str(terms.group_names[g])] = array_of(terms.groups[g]);
+  py::dict out;
+  out["image"] = array_of(image);
+  out["ambient"] = array_of(terms.ambient);
+  out["diffuse"] = array_of(terms.diffuse);
+  out["specular"] = array_of(terms.specular);
+  out["groups"] = groups;
+  return out;
 }
 
 py::dict timings(const Relighter& relighter) {
@@ -93,8 +120,9 @@ void bind_relighter(py::module_& module) {
                         "rebuilt only when the recipe changes (e.g. the number of lights).")
       .def(py::init([](const Scene& scene, const GBuffer& gbuffer, const py::object& device,
                        const std::string& precision, bool specialise, int lanes, const std::string& shadows,
-                       int shadow_steps, const std::string& shadow_thickness) {
+                       int shadow_steps, const std::string& shadow_thickness, bool terms) {
              RelighterOptions options{device_selector(device), parse_precision(precision), specialise, lanes};
+             options.terms = terms;
              options.shadows = {parse_shadow_mode(shadows), shadow_steps, parse_shadow_thickness(shadow_thickness)};
              check_options(options);  // before the device starts
              py::gil_scoped_release release;  // the kernel build and the packing take a while
@@ -103,16 +131,20 @@ void bind_relighter(py::module_& module) {
            py::arg("scene"), py::arg("gbuffer"), py::arg("device") = py::none(), py::arg("precision") = "precise",
            py::arg("specialise") = true, py::arg("lanes") = 0, py::arg("shadows") = "auto",
            py::arg("shadow_steps") = ShadowSettings{}.steps,
-           py::arg("shadow_thickness") = format_shadow_thickness(ShadowSettings{}.thickness),
+           py::arg("shadow_thickness") = format_shadow_thickness(ShadowSettings{}.thickness), py::arg("terms") = false,
            "device: None (the default device, as phongcl shade picks it), an index or a name; precision: "
            "'precise', 'fast', 'double' or 'half-storage'; specialise=False for the general kernel; lanes: "
            "pixels per work-item (0: the device's choice); shadows: how lights with shadows=True cast them, "
            "'auto' (geometry when the scene has objects, else screen), 'screen', 'geometry' or 'off'; "
            "shadow_steps and shadow_thickness ('0.25' world units or '6%' of the depth): the screen-space "
-           "march's (docs/shadows.md).")
+           "march's (docs/shadows.md); terms=True for shade_terms().")
       .def("shade", &shade, py::arg("out") = py::none(),
            "Shades the frame: float32 (H, W, 4), RGBA, background alpha 0. With out=, writes into that "
            "array (C-contiguous float32 (H, W, 4)) and returns it. Releases the GIL while shading.")
+      .def("shade_terms", &shade_terms,
+           "Shades the frame with its terms (needs terms=True): a dict of float32 (H, W, 4) arrays, 'image', "
+           "'ambient', 'diffuse', 'specular', and 'groups', each light group's name to its diffuse + specular "
+           "(ambient + the groups + the ungrouped lights' light = image). Releases the GIL while shading.")
       .def(
           "set_lights", [](Relighter& r, const py::object& lights) { r.set_lights(lights_from_python(lights)); },
           py::arg("lights"),

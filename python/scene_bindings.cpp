@@ -108,6 +108,8 @@ void bind_scene(py::module_& module) {
   vec3_property(light, "color", &Light::color, "Radiance, RGB, >= 0.");
   light.def_readwrite("shadows", &Light::shadows,
                       "Casts shadows (as the Relighter's shadows= mode makes them; docs/shadows.md).");
+  light.def_readwrite("group", &Light::group,
+                      "Light group ('' for none): Relighter.shade_terms() returns each group's light apart.");
 
   py::class_<Material> material(module, "Material", "A Phong material: ka, kd, ks (RGB) and shininess.");
   material.def(py::init<>()).def_readwrite("name", &Material::name).def_readwrite("shininess", &Material::shininess);

@@ -10,6 +10,7 @@ namespace phongcl::testing {
 struct ShapedLightSpec {
   int lights = 6;
   bool falloff = true, mixed_falloff = false, range = true, spots = true, hard_spots = false, linking = false;
+  double max_cosine_power = 0.0;  // spots get a cosine power p in [0, max): every other one 0
   double min_range = 2.0, max_range = 8.0;
 };
 
@@ -31,6 +32,7 @@ inline void add_shaped_lights(Scene& scene, const ShapedLightSpec& spec, unsigne
       light.direction = glm::normalize(-light.position + 0.5 * direction());
       light.cone_angle_deg = 20.0 + 80.0 * zero_one(rng);
       light.penumbra_angle_deg = spec.hard_spots ? 0.0 : 5.0 + 15.0 * zero_one(rng);
+      if (spec.max_cosine_power > 0.0 && i % 4 == 0) light.cosine_power = spec.max_cosine_power * zero_one(rng);
     }
     if (spec.linking && materials > 0) {
       std::vector<int> linked;

@@ -1,5 +1,8 @@
 // report/light_agreement.h: which pixels count (away from silhouettes and the sky) and when a light
-// agrees (within the tolerance times its unshadowed value).
+// agrees (within the tolerance times its unshadowed value), and the relative errors' median and 99th
+// percentile over the lit pixels.
+#include <cmath>
+
 #include <gtest/gtest.h>
 
 #include "report/light_agreement.h"
@@ -47,6 +50,33 @@ TEST(LightAgreement, WithinTheToleranceOfTheUnshadowedValueEveryLight) {
   EXPECT_EQ(agreement.worst_x, 4);
   EXPECT_EQ(agreement.worst_y, 0);
   EXPECT_NEAR(agreement.worst_miss, 10.0, 1e-6);  // a miss of 1 against an allowance of 0.1
+}
+
+// 30 pixels: 20 lit at 1 with errors 0, 1e-4 ... 1.9e-3 (one channel each), 8 dim ones below the floor
+// that are far off, and two NaNs: the median and 99th percentile are of the 22 lit pixels, a NaN
+// counted as infinitely far.
+TEST(LightAgreement, RelativeErrorsOverTheLitPixels) {
+  const std::vector<bool> mask(kWidth * kHeight, true);
+  LightImages light;
+  for (int c = 0; c < 3; ++c) {
+    light.expected[c].assign(mask.size(), 1.0f);
+    light.shaded[c].assign(mask.size(), 1.0f);
+  }
+  for (int i = 0; i < 20; ++i) light.shaded[i % 3][i] = 1.0f + 1e-4f * static_cast<float>(i);
+  for (int i = 20; i < 28; ++i)
+    for (int c = 0; c < 3; ++c) {
+      light.expected[c][i] = 1e-4f;
+      light.shaded[c][i] = 1.0f;
+    }
+  light.shaded[0][28] = light.shaded[1][29] = NAN;
+  const RelativeErrors errors = relative_errors(light, mask, 1e-3);
+  EXPECT_EQ(errors.pixels, 22u);
+  EXPECT_NEAR(errors.median, 1e-3, 1e-7);  // index 0.5 * 21, rounded down: the 11th smallest
+  EXPECT_TRUE(std::isinf(errors.p99)) << errors.p99;  // index 20 of 0 to 21: a NaN
+  light.shaded[0][28] = light.shaded[1][29] = 1.0f;
+  const RelativeErrors fixed = relative_errors(light, mask, 1e-3);
+  EXPECT_NEAR(fixed.median, 8e-4, 1e-7);
+  EXPECT_NEAR(fixed.p99, 1.8e-3, 1e-7);
 }
 
 }  // namespace

@@ -157,6 +157,7 @@ TEST(Scene, ReadsTheLightShapes) {
       "lights": [{"type": "spot", "position": [1, 2, 3], "direction": [0, -1, 0], "cone_angle_deg": 40,
                   "penumbra_angle_deg": 10, "falloff": "quadratic", "range": 7.5, "materials": [0]},
                  {"type": "point", "position": [0, 0, 0], "falloff": "cubic"},
+                 {"type": "spot", "position": [0, 0, 0], "direction": [0, 0, 1], "cone_angle_deg": 30, "cosine_power": 1.5},
                  {"type": "directional", "direction": [0, 0, -1], "materials": []}])"),
                                   kSource);
   const Light& spot = scene.lights.at(0);
@@ -166,12 +167,14 @@ TEST(Scene, ReadsTheLightShapes) {
   EXPECT_EQ(spot.penumbra_angle_deg, 10.0);
   EXPECT_EQ(spot.falloff, Falloff::quadratic);
   EXPECT_EQ(spot.range, 7.5);
+  EXPECT_EQ(spot.cosine_power, 0.0) << "no 'cosine_power': today's cone";
   EXPECT_TRUE(spot.reaches(0));
   const Light& point = scene.lights.at(1);
   EXPECT_EQ(point.falloff, Falloff::cubic);
   EXPECT_FALSE(point.has_range());
   EXPECT_TRUE(point.reaches(0)) << "no 'materials': every material";
-  EXPECT_FALSE(scene.lights.at(2).reaches(0)) << "'materials': [] lights none";
+  EXPECT_EQ(scene.lights.at(2).cosine_power, 1.5);
+  EXPECT_FALSE(scene.lights.at(3).reaches(0)) << "'materials': [] lights none";
 }
 
 TEST(Scene, HdrValuesUpToFloatRangeParse) {
@@ -254,6 +257,12 @@ TEST(Scene, EachProblemIsAOneLineInputErrorNamingFileAndPlace) {
        {"lights[0].penumbra_angle_deg must be >= 0 degrees (got -1)"}},
       {"penumbra past 90", scene_json(R"("lights": [{"type": "spot", "position": [0, 0, 0], "direction": [0, 0, 1], "cone_angle_deg": 120, "penumbra_angle_deg": 31}])"),
        {"lights[0].penumbra_angle_deg must keep cone_angle_deg/2 + penumbra_angle_deg <= 90 (got 91)"}},
+      {"negative cosine power", scene_json(R"("lights": [{"type": "spot", "position": [0, 0, 0], "direction": [0, 0, 1], "cone_angle_deg": 30, "cosine_power": -1}])"),
+       {"lights[0].cosine_power must be >= 0 (got -1)"}},
+      {"NaN cosine power", scene_json(R"("lights": [{"type": "spot", "position": [0, 0, 0], "direction": [0, 0, 1], "cone_angle_deg": 30, "cosine_power": NaN}])"),
+       {"invalid JSON"}},
+      {"cosine power on a point light", scene_json(R"("lights": [{"type": "point", "position": [0, 0, 0], "cosine_power": 1}])"),
+       {"lights[0].cosine_power is used only by spot lights"}},
       {"cone on a point light", scene_json(R"("lights": [{"type": "point", "position": [0, 0, 0], "cone_angle_deg": 30}])"),
        {"lights[0].cone_angle_deg is used only by spot lights"}},
       {"linked material out of range", scene_json(R"("lights": [{"type": "point", "position": [0, 0, 0], "materials": [0, 1]}])"),

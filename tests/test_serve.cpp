@@ -257,7 +257,8 @@ TEST_F(Serve, BadImageParametersAre400) {
       {"view=aces&tonemap=aces", "give one"},
       {"display=XYZ", "no display 'XYZ' (displays: sRGB)"},
       {"look=Punchy", "no look 'Punchy' (looks: none)"},
-      {"aov=normal", "combined, ambient, diffuse or specular"},
+      {"aov=normal", "combined, ambient, diffuse, specular or group.<name>"},
+      {"aov=group.a.b", "combined, ambient, diffuse, specular or group.<name>"},
       {"colour=red", "unknown parameter 'colour'"},
       {"width=100&width=200", "more than once"},
   };
@@ -415,6 +416,45 @@ TEST_F(Serve, StatsDescribeTheKernelAndTheFrameTimes) {
   EXPECT_GE(timings["shade_ms"].get<double>(), timings["kernel_ms"].get<double>()) << "the kernel is part of the frame";
   EXPECT_GT(stats["encode_ms"]["jpeg"].get<double>(), 0.0);
   expect_error(client.Get("/api/stats?verbose=1"), 400, "unknown parameter 'verbose'");
+}
+
+// Light groups: listed in the stats, shown with aov=group.<name>, soloed and muted on the host (the
+// other lights, or the muted group's, at colour 0): soloed, the image is the ambient plus the group's
+// layer; muted, it is the reference of the scene without that group's light.
+TEST_F(Serve, LightGroupsAreListedShownSoloedAndMuted) {
+  auto client = server_->client();
+  json scene = default_scene();
+  scene["lights"][0]["group"] = "key";
+  scene["lights"][2]["group"] = "fill";
+  ASSERT_EQ(client.Put("/api/scene", scene.dump(), "application/json")->status, 200);
+  EXPECT_EQ(body_json(client.Get("/api/stats"))["light_groups"], json({"key", "fill"}));
+  const auto image_of = [&](const std::string& query) {
+    const auto result = client.Get("/api/image?format=exr" + query);
+    EXPECT_EQ(result->status, 200) << query << ": " << result->body;
+    return decode_exr(result->body);
+  };
+  const Image key = image_of("&aov=group.key"), ambient = image_of("&aov=ambient");
+  expect_error(client.Get("/api/image?format=exr&aov=group.rim"), 400, "no light group 'rim'");
+
+  ASSERT_EQ(client.Put("/api/settings", R"({"solo": "key"})", "application/json")->status, 200);
+  const Image soloed = image_of("");
+  Image expected = ambient;
+  for (std::size_t i = 0; i < expected.pixel_count(); ++i)
+    for (int c = 0; c < 3; ++c) expected.pixel(i)[c] += key.pixel(i)[c];
+  std::vector<bool> covered(expected.pixel_count());
+  for (std::size_t i = 0; i < covered.size(); ++i) covered[i] = soloed.pixel(i)[3] > 0.0f;
+  const ErrorStats solo_error = testing::shading_error(soloed, expected, covered);
+  EXPECT_LE(solo_error.max_rel, 1e-5) << "worst pixel (" << solo_error.worst_x << ", " << solo_error.worst_y << ")";
+
+  ASSERT_EQ(client.Put("/api/settings", R"({"solo": "", "mute": ["key"]})", "application/json")->status, 200);
+  json without_key = scene;
+  without_key["lights"][0]["color"] = {0, 0, 0};
+  expect_matches_reference(image_of(""), parse_scene(without_key.dump(), kSceneFile), server_->session().gbuffer());
+  const json settings = body_json(client.Get("/api/settings"));
+  EXPECT_EQ(settings["solo"], "");
+  EXPECT_EQ(settings["mute"], json({"key"}));
+  expect_error(client.Put("/api/settings", R"({"solo": "a b"})", "application/json"), 400, "letters, digits");
+  expect_error(client.Put("/api/settings", R"({"mute": "key"})", "application/json"), 400, "array");
 }
 
 TEST_F(Serve, PickReadsTheGBufferUnderTheCursor) {

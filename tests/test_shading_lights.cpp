@@ -1,6 +1,8 @@
-// Falloff, range windows, spot cones and light linking: the kernel against the double reference in
-// every precision variant but half-storage, each specialised combination against the general
-// kernel, and what reaches the kernel's build options.
+// Falloff, range windows, spot cones (with cosine powers) and light linking: the kernel against the
+// double reference in every precision variant but half-storage, each specialised combination against
+// the general kernel, and what reaches the kernel's build options; light groups' layers.
+#include <functional>
+
 #include "peers/many_lights.h"
 #include "shading_support.h"
 #include "shaped_lights.h"
@@ -43,6 +45,10 @@ std::vector<Case> feature_cases() {
   add("linking", [](ShapedLightSpec& s) { s.linking = true; });
   add("everything", [](ShapedLightSpec& s) { s.falloff = s.mixed_falloff = s.range = s.spots = s.linking = true; });
   add("quadratic, range, spots", [](ShapedLightSpec& s) { s.falloff = s.range = s.spots = true; });
+  add("spots with cosine powers", [](ShapedLightSpec& s) {
+    s.spots = true;
+    s.max_cosine_power = 40.0;
+  });
   return cases;
 }
 
@@ -128,7 +134,8 @@ TEST(Lights, UnshapedLightsBuildNoShapeOptions) {
   PHONGCL_REQUIRE_DEVICE(shader);
   const auto [scene, gbuffer] = random_scene({}, 3);
   const Recipe recipe = make_recipe(scene, gbuffer, shader.compute().device.info, {});
-  for (const char* shape : {"FALLOFF", "FALLOFF_MIXED", "RANGE_WINDOW", "SPOT_LIGHTS", "LIGHT_LINKING", "TILED_CULLING"})
+  for (const char* shape : {"FALLOFF", "FALLOFF_MIXED", "RANGE_WINDOW", "SPOT_LIGHTS", "SPOT_COSINE_POWER", "LIGHT_LINKING",
+                           "TILED_CULLING"})
     EXPECT_EQ(recipe.value(shape), "0") << shape << ": " << recipe.build_options();
 }
 
@@ -235,6 +242,104 @@ TEST(Lights, TiledCullingKeepsUnrangedLightsEverywhere) {
   EXPECT_LE(same.max_rel, 1e-5) << describe_worst(same);
   const ErrorStats exact = shading_error(culled.image, reference_image(scene, gbuffer), testing::shaded_mask(gbuffer));
   EXPECT_LE(exact.max_rel, kRelativeBound) << describe_worst(exact);
+}
+
+// --- Light groups.
+
+// The diffuse + specular of `scene` lit by the lights `keep` selects, shaded with terms.
+Image lights_alone(PhongShader& shader, Scene scene, const GBuffer& gbuffer, const ShadeOptions& options,
+                   const std::function<bool(const Light&)>& keep) {
+  std::erase_if(scene.lights, [&](const Light& light) { return !keep(light); });
+  const ShadeResult result = shader.shade(scene, gbuffer, options);
+  Image light = result.terms.diffuse;
+  for (std::size_t i = 0; i < light.pixel_count(); ++i)
+    for (int c = 0; c < 3; ++c) light.pixel(i)[c] += result.terms.specular.pixel(i)[c];
+  return light;
+}
+
+// Each group's layer is the light of its lights alone (the sums differ in their order only), and
+// ambient + the groups + the ungrouped lights add up to the combined image: each layer is rounded
+// to float once (g + 3 roundings of non-negative values), 8 ulp of the sum leaves room.
+void expect_groups_add_up(PhongShader& shader, const Scene& scene, const GBuffer& gbuffer, const ShadeOptions& options,
+                          const std::string& where) {
+  const ShadeResult result = shader.shade(scene, gbuffer, options);
+  const std::vector<std::string> names = light_groups(scene.lights);
+  ASSERT_EQ(result.terms.group_names, names) << where;
+  ASSERT_EQ(result.terms.groups.size(), names.size()) << where;
+  EXPECT_EQ(result.recipe.value("LIGHT_GROUPS"), std::to_string(names.size())) << where;
+  const std::vector<bool> mask = testing::shaded_mask(gbuffer);
+  for (std::size_t g = 0; g < names.size(); ++g) {
+    const Image alone = lights_alone(shader, scene, gbuffer, options, [&](const Light& l) { return l.group == names[g]; });
+    const ErrorStats same = shading_error(result.terms.groups[g], alone, mask);
+    EXPECT_LE(same.max_rel, 1e-5) << where << ", group " << names[g] << ": " << describe_worst(same);
+  }
+  const Image ungrouped = lights_alone(shader, scene, gbuffer, options, [](const Light& l) { return l.group.empty(); });
+  constexpr double kEightUlp = 8 * 0x1p-24;
+  bool any_group = false;
+  for (std::size_t i = 0; i < gbuffer.pixel_count(); ++i) {
+    if (!mask[i]) continue;
+    for (int c = 0; c < 3; ++c) {
+      double sum = double(result.terms.ambient.pixel(i)[c]) + ungrouped.pixel(i)[c];
+      for (const Image& group : result.terms.groups) {
+        sum += group.pixel(i)[c];
+        any_group |= group.pixel(i)[c] > 0.0f;
+      }
+      ASSERT_NEAR(sum, result.image.pixel(i)[c], kEightUlp * sum) << where << ": pixel " << i << ", channel " << c;
+    }
+    for (const Image& group : result.terms.groups) ASSERT_EQ(group.pixel(i)[3], result.image.pixel(i)[3]) << where;
+  }
+  EXPECT_TRUE(any_group) << where << ": no group lights a pixel, the sum checks too little";
+}
+
+TEST(Lights, GroupsAddUpToTheImageInEveryVariant) {
+  PHONGCL_REQUIRE_DEVICE(shader);
+  ShapedLightSpec shapes;
+  shapes.max_cosine_power = 10.0;
+  auto [scene, gbuffer] = shaped_scene({"groups", shapes}, 4242);
+  const char* groups[] = {"key", "fill", "", "key", "rim-2"};  // light 2 and those past 4 in none
+  for (std::size_t i = 0; i < scene.lights.size() && i < 5; ++i) scene.lights[i].group = groups[i];
+  for (Precision precision : {Precision::precise, Precision::fast, Precision::double_precision}) {
+    if (precision == Precision::double_precision && !shader.compute().device.info.has_fp64) continue;
+    for (int lanes : {1, 16}) {
+      for (bool specialise : {true, false}) {
+        ShadeOptions options;
+        options.precision = precision;
+        options.lanes = lanes;
+        options.specialise = specialise;
+        options.write_terms = true;
+        expect_groups_add_up(shader, scene, gbuffer, options,
+                             to_string(precision) + ", " + std::to_string(lanes) + " lanes" +
+                                 (specialise ? "" : ", general kernel"));
+      }
+    }
+  }
+}
+
+// With tiled culling a tile's list holds lights of every group in index order.
+TEST(Lights, GroupsUnderTiledCulling) {
+  PHONGCL_REQUIRE_DEVICE(shader);
+  auto [scene, gbuffer] = default_scene_with_many_lights(64, 48, 80, 10.0);
+  for (std::size_t i = 0; i < scene.lights.size(); ++i) scene.lights[i].group = i % 3 == 2 ? "" : "g" + std::to_string(i % 3);
+  ShadeOptions options;
+  options.culling = Culling::tiled;
+  options.write_terms = true;
+  ASSERT_EQ(shader.shade(scene, gbuffer, options).recipe.value("TILED_CULLING"), "1");
+  expect_groups_add_up(shader, scene, gbuffer, options, "tiled");
+}
+
+// Groups are layers of the AOVs: without terms the kernel is the one of the scene without groups,
+// and so is its image.
+TEST(Lights, GroupsWithoutTermsLeaveTheKernelAsItWas) {
+  PHONGCL_REQUIRE_DEVICE(shader);
+  auto [scene, gbuffer] = random_scene({}, 31);
+  Scene grouped = scene;
+  grouped.lights[0].group = grouped.lights[3].group = "a";
+  const ShadeResult plain = shader.shade(scene, gbuffer, {});
+  const ShadeResult without_terms = shader.shade(grouped, gbuffer, {});
+  EXPECT_EQ(without_terms.recipe.value("LIGHT_GROUPS"), "0");
+  EXPECT_EQ(without_terms.build_options, plain.build_options);
+  EXPECT_EQ(without_terms.image.rgba, plain.image.rgba);
+  EXPECT_EQ(without_terms.kernel_summary, plain.kernel_summary);
 }
 
 }  // namespace

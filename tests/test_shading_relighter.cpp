@@ -124,6 +124,40 @@ TEST(Relighter, TermsSumToTheImage) {
   testing::expect_terms_sum_to_image(terms, image, testing::shaded_mask(gbuffer));
 }
 
+// The groups come back with the terms, named; a light that changes group is a new recipe (the count
+// is compiled in), and a group whose lights all go leaves the layers.
+TEST(Relighter, LightGroupsComeBackWithTheTerms) {
+  PHONGCL_REQUIRE_ANY_DEVICE();
+  auto [scene, gbuffer] = random_scene({}, 1208);
+  scene.lights[0].group = "key";
+  scene.lights[1].group = "rim";
+  RelighterOptions options;
+  options.terms = true;
+  Relighter relighter(scene, gbuffer, options);
+  TermImages terms;
+  const Image image = relighter.shade(terms);
+  expect_matches_reference(image, scene, gbuffer, "grouped");
+  EXPECT_EQ(terms.group_names, (std::vector<std::string>{"key", "rim"}));
+  ASSERT_EQ(terms.groups.size(), 2u);
+  EXPECT_NE(relighter.kernel_summary().find("2 light groups"), std::string::npos) << relighter.kernel_summary();
+  // The key light alone: its diffuse + specular is the key group's layer.
+  Scene key = scene;
+  key.lights.resize(1);
+  TermImages alone;
+  Relighter key_only(key, gbuffer, options);
+  key_only.shade(alone);
+  Image key_light = alone.diffuse;
+  for (std::size_t i = 0; i < key_light.pixel_count(); ++i)
+    for (int c = 0; c < 3; ++c) key_light.pixel(i)[c] += alone.specular.pixel(i)[c];
+  const ErrorStats same = testing::shading_error(terms.groups[0], key_light, testing::shaded_mask(gbuffer));
+  EXPECT_LE(same.max_rel, 1e-5) << testing::describe_worst(same);
+  scene.lights[1].group = "";
+  relighter.set_lights(scene.lights);
+  relighter.shade(terms);
+  EXPECT_EQ(terms.group_names, (std::vector<std::string>{"key"}));
+  EXPECT_EQ(terms.groups.size(), 1u);
+}
+
 TEST(Relighter, ReportCountsPixelsAndSaysWhatWasCompiled) {
   PHONGCL_REQUIRE_ANY_DEVICE();
   auto [scene, gbuffer] = random_scene({}, 1207);

@@ -9,6 +9,7 @@ const state = {
   disabled: new Set(),  // lights switched off: kept in the page, left out of what is sent
   sceneVersion: 0,      // the server's version of the scene we hold
   frameVersion: 0,      // the newest frame shown
+  lightGroups: '',      // the scene's light groups the controls show, one name a line
   receivedVersion: 0,   // the newest frame received (the next poll asks for a newer one)
   receivedCount: 0, shownSequence: 0,  // frames in order of arrival: a slow decode never overwrites a newer one
   shown: null,          // the ImageBitmap on screen
@@ -227,8 +228,36 @@ async function refreshKernel() {
   }
   $('precision').value = stats.settings.precision;
   $('shadows').value = stats.settings.shadows;
+  showLightGroups(stats);
   $('save-server').disabled = !stats.save_path;
   $('save-server').title = stats.save_path ? `writes ${stats.save_path}` : 'start phongcl serve with --save FILE';
+}
+
+// Light groups: each one a term of its own, soloed or muted by the server (the other lights, or the
+// muted group's, shaded at colour 0). The controls are rebuilt only when the groups change.
+function showLightGroups(stats) {
+  const groups = stats.light_groups || [];
+  if (groups.join('\n') !== state.lightGroups) {
+    state.lightGroups = groups.join('\n');
+    const aov = $('aov');
+    for (const option of [...aov.options]) if (option.value.startsWith('group.')) option.remove();
+    for (const name of groups) aov.append(el('option', { value: `group.${name}`, textContent: `group ${name}` }));
+    $('solo').replaceChildren(el('option', { value: '', textContent: 'none' }),
+      ...groups.map((name) => el('option', { value: name, textContent: name })));
+    $('mute-groups').replaceChildren(...groups.map((name) => el('label', {}, [
+      el('input', { type: 'checkbox', value: name, onchange: putLightGroupSettings }), ` mute ${name}`])));
+    $('groups-row').hidden = groups.length === 0;
+  }
+  $('solo').value = stats.settings.solo || '';
+  for (const box of $('mute-groups').querySelectorAll('input')) box.checked = (stats.settings.mute || []).includes(box.value);
+}
+
+async function putLightGroupSettings() {
+  const mute = [...$('mute-groups').querySelectorAll('input:checked')].map((box) => box.value);
+  const response = await fetch('api/settings', {
+    method: 'PUT', headers: { 'Content-Type': 'application/json' }, body: JSON.stringify({ solo: $('solo').value, mute }),
+  });
+  if (!response.ok) setStatus(await errorOf(response), true);
 }
 
 // ---- Widgets ----
@@ -577,6 +606,7 @@ async function start() {
       if (!response.ok) setStatus(await errorOf(response), true);
     });
   }
+  $('solo').addEventListener('change', putLightGroupSettings);
   $('download-scene').addEventListener('click', downloadScene);
   $('save-server').addEventListener('click', saveOnServer);
   setUpImageInput();

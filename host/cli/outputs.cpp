@@ -124,16 +124,18 @@ std::string ImageOutputs::write(const Image& image, const glm::dvec3& background
   return written;
 }
 
-std::string ImageOutputs::write(const Image& image, const glm::dvec3& background, const TermLayers& terms) const {
+std::string ImageOutputs::write(const Image& image, const glm::dvec3& background, const TermImages& terms) const {
   if (aov_file.empty()) return write(image, background);
   AtomicBatch batch;
-  write_layered_exr({{"", &image, true},
-                     {"ambient", &terms.ambient, false},
-                     {"diffuse", &terms.diffuse, false},
-                     {"specular", &terms.specular, false}},
-                    aov_file, exr_options());
+  std::vector<ExrLayer> layers = {{"", &image, true},
+                                  {"ambient", &terms.ambient, false},
+                                  {"diffuse", &terms.diffuse, false},
+                                  {"specular", &terms.specular, false}};
+  for (std::size_t g = 0; g < terms.groups.size(); ++g) layers.push_back({"group." + terms.group_names[g], &terms.groups[g], false});
+  write_layered_exr(layers, aov_file, exr_options());
+  const std::string groups = terms.groups.empty() ? "" : ", " + std::to_string(terms.groups.size()) + " light groups";
   const std::string aov_written =
-      aov_file + " (ambient, diffuse, specular + combined, " + (half ? "half" : "float32") + ")";
+      aov_file + " (ambient, diffuse, specular" + groups + " + combined, " + (half ? "half" : "float32") + ")";
   const std::string written =
       exr_file.empty() && png_file.empty() ? aov_written : write_images(image, background) + ", " + aov_written;
   batch.commit();

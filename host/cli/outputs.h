@@ -14,6 +14,7 @@
 #include "color/display.h"
 #include "common/same_file.h"
 #include "image/image.h"
+#include "shading/shade_stats.h"
 
 namespace phongcl {
 struct Scene;
@@ -31,13 +32,6 @@ struct SceneInputs;
 // Fails before any work is done when `file` could not be written: a missing or read-only
 // directory, a directory where the file should be, a name longer than its file system allows.
 void check_destination(const std::filesystem::path& file);
-
-// The terms of the combined image, for --aov.
-struct TermLayers {
-  const Image& ambient;
-  const Image& diffuse;
-  const Image& specular;
-};
 
 struct ImageOutputs {
   std::string exr_file, png_file, aov_file;
@@ -59,8 +53,9 @@ struct ImageOutputs {
   // The files are replaced together (all new or all old, even if killed); returns
   // "lit.exr (float32), lit.png (sRGB, Filmic)". `background`: the scene's, under the PNG.
   std::string write(const Image& image, const glm::dvec3& background) const;
-  // The same, plus --aov: layers ambient.*, diffuse.*, specular.* (R G B) and the combined R G B A.
-  std::string write(const Image& image, const glm::dvec3& background, const TermLayers& terms) const;
+  // The same, plus --aov: layers ambient.*, diffuse.*, specular.*, group.<name>.* (R G B) and the
+  // combined R G B A.
+  std::string write(const Image& image, const glm::dvec3& background, const TermImages& terms) const;
 
  private:
   DisplayTransform display_transform(const glm::dvec3& background) const;

@@ -95,7 +95,7 @@ void run_shade(const ShadeArguments& args) {
   const ShadeReport result = relighter.last_report();
   const auto write_start = Clock::now();
   outputs.compression = args.sequence.output_compression(gbuffer.compression);
-  const std::string written = outputs.write(image, scene.background, {terms.ambient, terms.diffuse, terms.specular});
+  const std::string written = outputs.write(image, scene.background, terms);
   const double write_ms = milliseconds_since(write_start);
 
   const ShadeTimings& t = result.timings;

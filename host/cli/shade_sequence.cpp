@@ -203,7 +203,7 @@ void run_shade_sequence(const SceneInputs& inputs, const ImageOutputs& given_out
   stages.write = [&](FrameWork& work) {
     ImageOutputs framed = files.outputs_of(outputs, work.frame);
     framed.compression = sequence.output_compression(work.compression);
-    work.written = framed.write(work.image, work.scene.background, {work.terms.ambient, work.terms.diffuse, work.terms.specular});
+    work.written = framed.write(work.image, work.scene.background, work.terms);
   };
 
   SequenceProgress progress(to_shade.size(), ::isatty(STDOUT_FILENO) == 1);

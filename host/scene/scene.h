@@ -33,8 +33,10 @@ struct Light {
   Falloff falloff = Falloff::none;                     // point and spot
   double range = 0.0;                                  // > 0: windowed to 0 at this distance; 0: no range
   double cone_angle_deg = 0.0, penumbra_angle_deg = 0.0;  // spot: full angle of the lit cone, soft edge
+  double cosine_power = 0.0;                           // spot: F gains max(0, dot(-l, axis))^p; 0: none
   std::optional<std::vector<int>> materials{};         // light linking: lights only these; absent: every material
   bool shadows = false;                                // casts shadows (when the shade's shadow mode is not off)
+  std::string group;                                   // light group: its light also goes to that layer; empty: none
 
   bool has_range() const { return range > 0.0; }
   bool reaches(int material) const;  // light linking
@@ -97,5 +99,8 @@ const char* to_string(Falloff falloff);  // "none", "linear", ...
 const char* to_string(SpecularModel model);  // "phong", "blinn-phong-normalized", ...
 // The model a name stands for; std::invalid_argument naming the allowed names otherwise.
 SpecularModel parse_specular_model(const std::string& name);
+
+// The scene's light groups, each name once, in the order of the lights that first name them.
+std::vector<std::string> light_groups(const std::vector<Light>& lights);
 
 }  // namespace phongcl

@@ -1,5 +1,6 @@
 #include "scene/scene_check.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -34,13 +35,21 @@ void check_lights(const std::vector<Light>& lights, std::size_t material_count) 
       require(light.cone_angle_deg > 0.0 && light.cone_angle_deg < 180.0, entry + ".cone_angle_deg", "must be in (0, 180)");
       require(light.penumbra_angle_deg >= 0.0 && light.cone_angle_deg / 2.0 + light.penumbra_angle_deg <= 90.0,
               entry + ".penumbra_angle_deg", "must be >= 0 with cone_angle_deg/2 + penumbra_angle_deg <= 90");
+      require(std::isfinite(light.cosine_power) && light.cosine_power >= 0.0, entry + ".cosine_power", "must be finite and >= 0");
     }
+    if (!light.group.empty()) require(valid_light_group_name(light.group), entry + ".group", kLightGroupNameRule);
     if (light.materials)
       for (int material : *light.materials)
         if (material < 0 || static_cast<std::size_t>(material) >= material_count)
           throw std::invalid_argument(entry + ".materials: material index " + std::to_string(material) +
                                       " is out of range (the scene has " + std::to_string(material_count) + " materials)");
   }
+}
+
+bool valid_light_group_name(const std::string& name) {
+  return !name.empty() && std::all_of(name.begin(), name.end(), [](char c) {
+    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' || c == '-';
+  });
 }
 
 void check_material_table(const std::vector<Material>& materials) {

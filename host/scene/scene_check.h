@@ -18,6 +18,10 @@ namespace phongcl {
 void check_lights(const std::vector<Light>& lights, std::size_t material_count);
 void check_material_table(const std::vector<Material>& materials);
 
+// A light group names EXR layers (group.<name>.R): letters, digits, '_' and '-', no separators.
+inline constexpr const char* kLightGroupNameRule = "must be a name of letters, digits, '_' and '-'";
+bool valid_light_group_name(const std::string& name);
+
 // `json_text` is an array like the scene file's "lights" or "materials"; InputError names `source`.
 // Linked material indices must be below `material_count` (unlimited: any index >= 0).
 std::vector<Light> parse_lights(std::string_view json_text, const std::filesystem::path& source,

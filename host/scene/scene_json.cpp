@@ -64,6 +64,12 @@ double read_positive(const JsonValue& value) {
   return number;
 }
 
+double read_non_negative(const JsonValue& value) {
+  const double number = value.number();
+  if (number < 0.0) value.fail("must be >= 0 (got " + format_number(number) + ")");
+  return number;
+}
+
 // The cone's full angle A and its soft edge P: 0 < A < 180, P >= 0, A/2 + P <= 90.
 void read_cone(const JsonObject& object, Light& light) {
   const JsonValue cone = object.at("cone_angle_deg");
@@ -95,7 +101,7 @@ std::vector<int> read_linked_materials(const JsonValue& value, std::size_t mater
 Light read_light(const JsonValue& value, std::size_t material_count) {
   const JsonObject object = value.object();
   object.expect_keys({"type", "position", "direction", "color", "falloff", "range", "cone_angle_deg",
-                      "penumbra_angle_deg", "materials", "shadows"});
+                      "penumbra_angle_deg", "cosine_power", "materials", "shadows", "group"});
   const std::string type = object.at("type").string();
   Light light;
   if (type == "point" || type == "spot") {
@@ -121,13 +127,18 @@ Light read_light(const JsonValue& value, std::size_t material_count) {
   }
   if (light.type == LightType::spot) {
     read_cone(object, light);
+    if (auto power = object.find("cosine_power")) light.cosine_power = read_non_negative(*power);
   } else {
-    for (const char* key : {"cone_angle_deg", "penumbra_angle_deg"})
+    for (const char* key : {"cone_angle_deg", "penumbra_angle_deg", "cosine_power"})
       if (object.has(key)) object.at(key).fail("is used only by spot lights");
   }
   if (auto color = object.find("color")) light.color = read_non_negative_vec3(*color);
   if (auto materials = object.find("materials")) light.materials = read_linked_materials(*materials, material_count);
   if (auto shadows = object.find("shadows")) light.shadows = shadows->boolean();
+  if (auto group = object.find("group")) {
+    light.group = group->string();
+    if (!valid_light_group_name(light.group)) group->fail(kLightGroupNameRule);
+  }
   return light;
 }
 
@@ -214,6 +225,14 @@ SpecularModel parse_specular_model(const std::string& name) {
     if (name == to_string(model)) return model;
   throw std::invalid_argument("'" + name + "' is not a specular model (expected phong, phong-normalized, blinn-phong or " +
                               "blinn-phong-normalized)");
+}
+
+std::vector<std::string> light_groups(const std::vector<Light>& lights) {
+  std::vector<std::string> names;
+  for (const Light& light : lights)
+    if (!light.group.empty() && std::find(names.begin(), names.end(), light.group) == names.end())
+      names.push_back(light.group);
+  return names;
 }
 
 bool Light::reaches(int material) const {

@@ -1,5 +1,6 @@
 #include "serve/api_routes.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <cmath>
@@ -14,6 +15,7 @@
 #include "common/atomic_file.h"
 #include "common/error.h"
 #include "scene/json_reader.h"
+#include "scene/scene_check.h"
 #include "serve/image_encoding.h"
 #include "serve/query.h"
 
@@ -37,22 +39,35 @@ void send_json(httplib::Response& response, const json& body, int status = 200) 
   response.set_content(json_text(body), "application/json");
 }
 
-// Which image of a frame a request shows.
-enum class Term { combined, ambient, diffuse, specular };
+// Which image of a frame a request shows: the combined image, a term, or a light group's layer.
+struct Term {
+  enum class Kind { combined, ambient, diffuse, specular, group } kind = Kind::combined;
+  std::string group;  // Kind::group: its name
+  bool needs_terms() const { return kind != Kind::combined; }
+};
 Term parse_term(const std::string& name) {
-  if (name == "combined") return Term::combined;
-  if (name == "ambient") return Term::ambient;
-  if (name == "diffuse") return Term::diffuse;
-  if (name == "specular") return Term::specular;
-  throw BadRequest("parameter 'aov' must be combined, ambient, diffuse or specular (got '" + name + "')");
+  if (name == "combined") return {Term::Kind::combined};
+  if (name == "ambient") return {Term::Kind::ambient};
+  if (name == "diffuse") return {Term::Kind::diffuse};
+  if (name == "specular") return {Term::Kind::specular};
+  const std::string prefix = "group.";
+  if (name.starts_with(prefix) && valid_light_group_name(name.substr(prefix.size())))
+    return {Term::Kind::group, name.substr(prefix.size())};
+  throw BadRequest("parameter 'aov' must be combined, ambient, diffuse, specular or group.<name> (got '" + name + "')");
 }
 
-const Image& term_image(const Frame& frame, Term term) {
-  switch (term) {
-    case Term::ambient: return frame.terms.ambient;
-    case Term::diffuse: return frame.terms.diffuse;
-    case Term::specular: return frame.terms.specular;
-    case Term::combined: break;
+const Image& term_image(const Frame& frame, const Term& term) {
+  switch (term.kind) {
+    case Term::Kind::ambient: return frame.terms.ambient;
+    case Term::Kind::diffuse: return frame.terms.diffuse;
+    case Term::Kind::specular: return frame.terms.specular;
+    case Term::Kind::group: {
+      const std::vector<std::string>& names = frame.terms.group_names;
+      const auto found = std::find(names.begin(), names.end(), term.group);
+      if (found == names.end()) throw BadRequest("parameter 'aov': the scene has no light group '" + term.group + "'");
+      return frame.terms.groups[static_cast<std::size_t>(found - names.begin())];
+    }
+    case Term::Kind::combined: break;
   }
   return frame.image;
 }
@@ -127,7 +142,7 @@ RenderSettings parse_settings(const std::string& body, RenderSettings settings) 
   const std::filesystem::path source = "settings";
   const json document = parse_json(body, source);
   const JsonObject object = JsonValue(document, "", source).object();
-  object.expect_keys({"precision", "specialise", "shadows", "shadow_steps", "shadow_thickness"});
+  object.expect_keys({"precision", "specialise", "shadows", "shadow_steps", "shadow_thickness", "solo", "mute"});
   if (auto value = object.find("precision")) {
     try {
       settings.precision = parse_precision(value->string());
@@ -138,6 +153,17 @@ RenderSettings parse_settings(const std::string& body, RenderSettings settings) 
   if (auto value = object.find("specialise")) {
     if (!value->json().is_boolean()) value->fail("must be true or false");
     settings.specialise = value->json().get<bool>();
+  }
+  if (auto value = object.find("solo")) {
+    settings.solo = value->string();
+    if (!settings.solo.empty() && !valid_light_group_name(settings.solo)) value->fail(kLightGroupNameRule);
+  }
+  if (auto value = object.find("mute")) {
+    settings.muted.clear();
+    for (const JsonValue& group : value->elements()) {
+      settings.muted.push_back(group.string());
+      if (!valid_light_group_name(settings.muted.back())) group.fail(kLightGroupNameRule);
+    }
   }
   try {
     if (auto value = object.find("shadows")) settings.shadows.mode = parse_shadow_mode(value->string());
@@ -156,7 +182,9 @@ json settings_json(const RenderSettings& settings) {
           {"specialise", settings.specialise},
           {"shadows", to_string(settings.shadows.mode)},
           {"shadow_steps", settings.shadows.steps},
-          {"shadow_thickness", format_shadow_thickness(settings.shadows.thickness)}};
+          {"shadow_thickness", format_shadow_thickness(settings.shadows.thickness)},
+          {"solo", settings.solo},
+          {"mute", settings.muted}};
 }
 
 }  // namespace
@@ -240,7 +268,7 @@ ApiRoutes::WaitingPlace::~WaitingPlace() {
 void ApiRoutes::get_image(const httplib::Request& request, httplib::Response& response) {
   const ImageRequest wanted = image_request(Query(request, kImageParameters), live_.session().width(), live_.color_config());
   const WaitingPlace place(*this);
-  const auto frame = live_.current_frame(wanted.term != Term::combined, options_.frame_timeout);
+  const auto frame = live_.current_frame(wanted.term.needs_terms(), options_.frame_timeout);
   if (!frame) return send_json(response, {{"error", "no frame within the time limit (server busy or stopping)"}}, 503);
   send_frame(wanted, *frame, response);
 }
@@ -252,7 +280,7 @@ void ApiRoutes::get_frame(const httplib::Request& request, httplib::Response& re
   const auto timeout = std::chrono::milliseconds(
       query.integer("timeout_ms", 0, options_.max_poll.count(), std::min<long long>(20'000, options_.max_poll.count())));
   const WaitingPlace place(*this);
-  const auto frame = live_.wait_for_frame(after, wanted.term != Term::combined, timeout);
+  const auto frame = live_.wait_for_frame(after, wanted.term.needs_terms(), timeout);
   if (!frame) {
     response.status = 204;  // nothing newer yet: poll again
     return;
@@ -309,6 +337,7 @@ void ApiRoutes::get_stats(const httplib::Request& request, httplib::Response& re
              {"device", options_.device},
              {"settings", settings_json(live_.settings())},
              {"scene_version", live_.scene().scene_version},
+             {"light_groups", live_.scene().light_groups},
              {"frames", counters.frames},
              {"shade_fps", counters.frames_per_second},
              {"save_path", options_.save_path.string()},

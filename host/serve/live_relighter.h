@@ -35,6 +35,7 @@ struct RenderedFrame {
 struct SceneSnapshot {
   std::uint64_t scene_version = 0;
   std::string json;  // the document as held, pretty-printed
+  std::vector<std::string> light_groups;  // its lights' groups (light_groups())
 };
 
 struct RenderCounters {

@@ -1,5 +1,6 @@
 #include "serve/relight_session.h"
 
+#include <algorithm>
 #include <chrono>
 #include <stdexcept>
 
@@ -55,9 +56,25 @@ Relighter& RelightSession::relighter_for(const Scene& scene, const RenderSetting
   return *relighter_;
 }
 
+namespace {
+
+// The scene with the lights that solo and mute leave out at colour 0.
+Scene soloed_and_muted(const Scene& scene, const RenderSettings& settings) {
+  Scene lit = scene;
+  for (Light& light : lit.lights) {
+    const bool muted = std::find(settings.muted.begin(), settings.muted.end(), light.group) != settings.muted.end() &&
+                       !light.group.empty();
+    if (muted || (!settings.solo.empty() && light.group != settings.solo)) light.color = glm::dvec3(0.0);
+  }
+  return lit;
+}
+
+}  // namespace
+
 Frame RelightSession::shade(const Scene& scene, const RenderSettings& settings) {
   const auto start = std::chrono::steady_clock::now();
-  Relighter& relighter = relighter_for(scene, settings);
+  const bool solo_or_mute = !settings.solo.empty() || !settings.muted.empty();
+  Relighter& relighter = relighter_for(solo_or_mute ? soloed_and_muted(scene, settings) : scene, settings);
   Frame frame;
   frame.image = settings.terms ? relighter.shade(frame.terms) : relighter.shade();
   const ShadeReport report = relighter.last_report();

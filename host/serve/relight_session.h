@@ -4,6 +4,7 @@
 // page shows one), and read back under the cursor.
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -20,6 +21,10 @@ struct RenderSettings {
   bool specialise = true;
   bool terms = false;  // also shade the ambient, diffuse and specular terms separately
   ShadowSettings shadows;  // how lights with "shadows": true cast them
+  // Light groups shown alone or left out: the other groups' lights (ungrouped ones too), or the
+  // muted groups', are shaded with colour 0 (on the host: the same kernel, no rebuild).
+  std::string solo;                // empty: none
+  std::vector<std::string> muted;
 };
 
 // Milliseconds. transfer: packing and moving data between host and device (the G-buffer only

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <thread>
 #include <vector>
@@ -90,6 +91,17 @@ UniformData pack_uniforms(const Scene& scene, const Recipe& recipe) {
     for (const Light& light : scene.lights)
       if (light.type == LightType::directional) append_link_mask(light, recipe.link_words, data.links);
   }
+  // Light groups in the same order; a light in none gets the group count.
+  if (!recipe.light_groups.empty()) {
+    const auto& groups = recipe.light_groups;
+    auto index = [&](const Light& light) {
+      return static_cast<layout_uint>(std::find(groups.begin(), groups.end(), light.group) - groups.begin());
+    };
+    for (const Light& light : scene.lights)
+      if (light.type != LightType::directional) data.light_groups.push_back(index(light));
+    for (const Light& light : scene.lights)
+      if (light.type == LightType::directional) data.light_groups.push_back(index(light));
+  }
   for (const Material& material : scene.materials) {
     MaterialRecord record{};
     store3(record.ka, material.ka);
@@ -124,6 +136,8 @@ LightShape light_shape(const Light& light) {
     shape.versine_inner = static_cast<float>(inner);
     shape.versine_outer = light.penumbra_angle_deg > 0.0 ? static_cast<float>(outer) : shape.versine_inner;
     shape.inverse_cone_width = light.penumbra_angle_deg > 0.0 ? static_cast<float>(1.0 / (outer - inner)) : 0.0f;
+    // Beyond float's largest the power is that: c^p is then 1 on the axis and 0 off it all the same.
+    shape.cosine_power = static_cast<float>(std::min<double>(light.cosine_power, std::numeric_limits<float>::max()));
   }
   return shape;
 }

@@ -21,6 +21,9 @@ struct UniformData {
   std::vector<LinkWord> links;              // recipe.link_words per light: point lights, then directional
   std::vector<DirectionalLight> directional_lights;
   std::vector<MaterialRecord> materials;
+  // With LIGHT_GROUPS: each light's group (point lights, then directional), its index in
+  // recipe.light_groups or their count for none.
+  std::vector<layout_uint> light_groups;
   // Ambient, background, radiance scales and light counts; the shader sets plane_stride. Light and
   // ambient colours are divided by 2^e (exact), which the kernel undoes at the end.
   FrameScalars scalars{};

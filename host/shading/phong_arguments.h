@@ -34,6 +34,9 @@ struct PhongArguments {
   // lights' then directional lights'; the geometry; the screen march's depth plane; the scalars
   cl::Buffer shadow_casters, shadow_nodes, shadow_primitives, shadow_planes, shadow_depth;
   ShadowFrame shadow_frame{};
+  // light groups, read only with LIGHT_GROUPS: each light's group (point lights', then directional
+  // lights'); their layers follow the terms in out_terms
+  cl::Buffer light_groups;
 };
 
 // visit(name, field) for every argument, in phong_shade's parameter order.
@@ -59,6 +62,7 @@ void for_each_argument(Arguments& a, Visit&& visit) {
   visit("shadow_planes", a.shadow_planes);
   visit("shadow_depth", a.shadow_depth);
   visit("shadow_frame", a.shadow_frame);
+  visit("light_groups", a.light_groups);
 }
 
 // The kernel's parameter names as the host sets them, in order.

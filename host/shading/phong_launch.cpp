@@ -75,6 +75,7 @@ DeviceUniforms upload_uniforms(const cl::Context& context, const UniformData& un
                         .links = uniform_buffer(context, uniforms.links),
                         .point_bounds = uniform_buffer(context, uniforms.point_bounds),
                         .no_tiles = uniform_buffer(context, std::vector<cl_uint>{}),
+                        .light_groups = uniform_buffer(context, uniforms.light_groups),
                         .scalars = uniforms.scalars};
   device.scalars.plane_stride = static_cast<layout_uint>(plane_stride);
   return device;

@@ -44,6 +44,7 @@ struct DeviceUniforms {
   cl::Buffer materials, point_lights, directional_lights;
   cl::Buffer point_shapes, links, point_bounds;  // light shapes and linking (kernels/light_shape.h), culling spheres
   cl::Buffer no_tiles;                          // stands in for the tile lists when not culling
+  cl::Buffer light_groups;                      // each light's group (LIGHT_GROUPS)
   FrameScalars scalars{};
 };
 // `plane_stride`: values per plane of the tile the kernel will shade.

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <vector>
 
 #include "cl/kernel_source.h"
 #include "shading/shadow_buffers.h"
@@ -16,15 +17,19 @@ double milliseconds(Clock::time_point start, Clock::time_point end) {
   return std::chrono::duration<double, std::milli>(end - start).count();
 }
 
-// Copies the kernel's term planes into the three term images, alpha from the combined image
-// (premultiplied like it, so the terms still sum to it).
+// Planes of the kernel's terms buffer: ambient, diffuse, specular RGB, then each light group's RGB.
+std::size_t term_planes(const Recipe& recipe) { return PHONGCL_TERM_PLANES + 3 * recipe.light_groups.size(); }
+
+// Copies the kernel's term planes into the three term images and the light groups' images, alpha
+// from the combined image (premultiplied like it, so the terms still sum to it).
 void copy_terms(cl::CommandQueue& queue, const cl::Buffer& terms, std::size_t stride, std::size_t first,
                 std::size_t count, const Plane& coverage, const FrameTargets& targets) {
+  std::vector<float*> images = {targets.ambient, targets.diffuse, targets.specular};
+  images.insert(images.end(), targets.groups.begin(), targets.groups.end());
   const auto* planes = static_cast<const float*>(
-      queue.enqueueMapBuffer(terms, CL_TRUE, CL_MAP_READ, 0, PHONGCL_TERM_PLANES * stride * sizeof(cl_float)));
-  float* images[] = {targets.ambient, targets.diffuse, targets.specular};
+      queue.enqueueMapBuffer(terms, CL_TRUE, CL_MAP_READ, 0, 3 * images.size() * stride * sizeof(cl_float)));
   const float* combined = targets.rgba + 4 * first;
-  for (int term = 0; term < 3; ++term) {
+  for (std::size_t term = 0; term < images.size(); ++term) {
     float* out = images[term] + 4 * first;
     interleave(planes + 3 * term * stride, stride, count, 3, out);
     for (std::size_t t = 0; t < count; ++t) {
@@ -55,9 +60,11 @@ ShadeResult PhongShader::shade(const Scene& scene, const GBuffer& gbuffer, const
   result.image = image_like(gbuffer);
   FrameTargets targets{result.image.pixel(0)};
   if (result.recipe.write_terms) {
-    result.terms = {image_like(gbuffer), image_like(gbuffer), image_like(gbuffer)};
+    result.terms = {image_like(gbuffer), image_like(gbuffer), image_like(gbuffer), result.recipe.light_groups,
+                    std::vector<Image>(result.recipe.light_groups.size(), image_like(gbuffer))};
     targets = {result.image.pixel(0), result.terms.ambient.pixel(0), result.terms.diffuse.pixel(0),
                result.terms.specular.pixel(0)};
+    for (Image& group : result.terms.groups) targets.groups.push_back(group.pixel(0));
   }
   forget_gbuffer();
   forget_uniforms();
@@ -122,7 +129,7 @@ PhongShader::FrameSetup PhongShader::prepare(const Scene& scene, const GBuffer& 
       .pack_target = {planes_.at_least(context, plane_bytes), material_index_.at_least(context, stride * sizeof(cl_int)),
                       stride},
       .output = output_.at_least(context, PHONGCL_OUTPUT_PLANES * stride * sizeof(cl_float)),
-      .terms = terms_.at_least(context, (recipe.write_terms ? PHONGCL_TERM_PLANES * stride : 1) * sizeof(cl_float)),
+      .terms = terms_.at_least(context, (recipe.write_terms ? term_planes(recipe) * stride : 1) * sizeof(cl_float)),
       .tiles = tile_layout(gbuffer.width, gbuffer.height, recipe.tile_size),
       .culler = recipe.tiled ? &culler_for(report.build_options) : nullptr,
       .packed_for = wanted,
@@ -178,7 +185,8 @@ cl::Event PhongShader::cull_and_launch(cl::Kernel& kernel, FrameSetup& frame, co
                                  .shadow_primitives = shadows ? shadows->device.primitives : uniforms.no_tiles,
                                  .shadow_planes = shadows ? shadows->device.planes : uniforms.no_tiles,
                                  .shadow_depth = shadows ? shadows->device.depth : uniforms.no_tiles,
-                                 .shadow_frame = shadows ? shadows->device.frame : ShadowFrame{}};
+                                 .shadow_frame = shadows ? shadows->device.frame : ShadowFrame{},
+                                 .light_groups = uniforms.light_groups};
   return launch_phong(kernel, compute_.queue, arguments, padded, recipe.lanes);
 }
 
@@ -193,10 +201,13 @@ void PhongShader::download(const FrameSetup& frame, const GBuffer& gbuffer, cons
   premultiply_by_coverage(gbuffer.coverage, first, count, targets.rgba + 4 * first);
   const double copy_ms = milliseconds(copy_start, Clock::now());
   queue.enqueueUnmapMemObject(frame.output, const_cast<float*>(shaded));
+  // The terms' and light groups' planes are mapped (blocking) and copied: wall clock.
+  const auto terms_start = Clock::now();
   if (recipe.write_terms && targets.ambient)
     copy_terms(queue, frame.terms, frame.stride, first, count, gbuffer.coverage, targets);
+  const double terms_ms = milliseconds(terms_start, Clock::now());
   queue.finish();
-  report.timings.download_ms += event_milliseconds(map_output) + copy_ms;
+  report.timings.download_ms += event_milliseconds(map_output) + copy_ms + terms_ms;
 }
 
 ShadeReport PhongShader::shade_into(const Scene& scene, const GBuffer& gbuffer, const Recipe& recipe,

@@ -165,6 +165,7 @@ void decide_light_shapes(Recipe& recipe, const Scene& scene) {
     add_flag(recipe, "FALLOFF_MIXED", true, "falloff: compiled in" + general, "mixed falloff");
     add_flag(recipe, "RANGE_WINDOW", true, "range window: compiled in" + general, "ranges");
     add_flag(recipe, "SPOT_LIGHTS", true, "spot cones: compiled in" + general);
+    add_flag(recipe, "SPOT_COSINE_POWER", true, "spot cosine power: compiled in" + general);
     recipe.link_words = add_count(recipe, "LIGHT_LINKING", link_words_for(scene),
                                   "light linking: compiled in" + general, "light linking");
     return;
@@ -185,6 +186,13 @@ void decide_light_shapes(Recipe& recipe, const Scene& scene) {
   add_flag(recipe, "SPOT_LIGHTS", recipe.spot_lights > 0,
            recipe.spot_lights > 0 ? "spot cones: compiled in (" + plural(recipe.spot_lights, "spot") + ")"
                                   : "spot cones: compiled out (no spots)");
+  const auto powered = std::count_if(scene.lights.begin(), scene.lights.end(), [](const Light& light) {
+    return light.type == LightType::spot && light.cosine_power != 0.0;
+  });
+  add_flag(recipe, "SPOT_COSINE_POWER", powered > 0,
+           powered > 0 ? "spot cosine power: compiled in (" + plural(static_cast<int>(powered), "spot") + " with p > 0)"
+                       : "spot cosine power: compiled out (no spot has one)",
+           powered > 0 ? "spot cosine power" : "");
   const int words = any_link ? link_words_for(scene) : 0;
   recipe.link_words = add_count(recipe, "LIGHT_LINKING", words,
                                 words > 0 ? "light linking: compiled in (" + plural(words, "mask word") + " per light)"
@@ -308,6 +316,20 @@ void decide_shadows(Recipe& recipe, const Scene& scene, const ShadeOptions& opti
            mode == ShadowMode::screen ? "screen-space shadows: " + march : "screen-space shadows: none");
 }
 
+// Light groups are AOVs: their layers are written with the terms; without terms the kernel is the
+// one without groups. The count is compiled in (the group loop unrolls), in the general kernel too.
+void decide_groups(Recipe& recipe, const Scene& scene, const ShadeOptions& options) {
+  const std::vector<std::string> groups = light_groups(scene.lights);
+  if (options.write_terms) recipe.light_groups = groups;
+  const int count = static_cast<int>(recipe.light_groups.size());
+  add_count(recipe, "LIGHT_GROUPS", count,
+            count > 0       ? "light groups: " + plural(count, "group") + ", each one's diffuse + specular written apart"
+            : groups.empty() ? "light groups: none"
+                             : "light groups: not written (" + plural(static_cast<int>(groups.size()), "group") +
+                                   ", but no terms asked for)",
+            count > 0 ? plural(count, "light group") : "");
+}
+
 // Needs recipe.precision. Positions relative to the eye rounded to float lose a light near a
 // surface far away (1e-4 from a surface 1e4 from the eye is 1e-8 of the position): with point or
 // spot lights, positions and lights come as float pairs, value + rest. Decided by the scene in the
@@ -401,6 +423,7 @@ Recipe make_recipe(const Scene& scene, const GBuffer& gbuffer, const DeviceInfo&
   recipe.write_terms = add_flag(recipe, "WRITE_TERMS", options.write_terms,
                                 options.write_terms ? "terms: ambient, diffuse and specular also written apart (AOVs)"
                                                     : "terms: not written apart");
+  decide_groups(recipe, scene, options);
   return recipe;
 }
 

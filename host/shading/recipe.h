@@ -49,6 +49,7 @@ struct Recipe {
   ShadowMode shadows = ShadowMode::off;  // geometry, screen or off (no light casts shadows, or off as asked)
   ShadowSettings shadow_settings;        // the screen-space march's steps and thickness
   int shadow_casters = 0;                // lights that cast shadows
+  std::vector<std::string> light_groups; // the groups whose layers the kernel writes (with write_terms)
   std::vector<RecipeFlag> flags;
 
   int plane_count() const;  // G-buffer planes the device buffer holds

@@ -153,10 +153,15 @@ Image Relighter::shade(TermImages& terms) {
   const std::lock_guard lock(state_->mutex);
   if (!state_->options.write_terms)
     throw std::logic_error("phongcl::Relighter: shade(TermImages&) needs RelighterOptions::terms");
-  const GBuffer& gbuffer = state_->frame().gbuffer;
+  const State::Frame& frame = state_->frame();
+  const GBuffer& gbuffer = frame.gbuffer;
   Image image = image_like(gbuffer);
-  terms = {image_like(gbuffer), image_like(gbuffer), image_like(gbuffer)};
-  state_->shade_into({image.rgba.data(), terms.ambient.rgba.data(), terms.diffuse.rgba.data(), terms.specular.rgba.data()});
+  const std::vector<std::string>& groups = frame.recipe.light_groups;
+  terms = {image_like(gbuffer), image_like(gbuffer), image_like(gbuffer), groups,
+           std::vector<Image>(groups.size(), image_like(gbuffer))};
+  FrameTargets targets{image.rgba.data(), terms.ambient.rgba.data(), terms.diffuse.rgba.data(), terms.specular.rgba.data()};
+  for (Image& group : terms.groups) targets.groups.push_back(group.rgba.data());
+  state_->shade_into(targets);
   return image;
 }
 

@@ -45,6 +45,10 @@ struct CullingStats {
 // their sum is the combined image up to float rounding.
 struct TermImages {
   Image ambient, diffuse, specular;
+  // With light groups: each group's diffuse + specular, premultiplied like the combined image, in
+  // light_groups() order; ambient + every group + the ungrouped lights' light = the combined image.
+  std::vector<std::string> group_names;
+  std::vector<Image> groups;
 };
 
 struct ShadeReport {

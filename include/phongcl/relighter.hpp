@@ -69,8 +69,9 @@ class Relighter {
   // than the device's largest allocation are shaded in tiles (and re-packed for every shade).
   // std::logic_error without a frame.
   Image shade();
-  // The same, and the three terms of the shading (AOVs) into `terms`; needs RelighterOptions::terms
-  // (std::logic_error otherwise).
+  // The same, and the three terms of the shading (AOVs) into `terms`, with the scene's light groups'
+  // images (each group's diffuse + specular; terms.group_names says which); needs
+  // RelighterOptions::terms (std::logic_error otherwise).
   Image shade(TermImages& terms);
   // The same into a caller's buffer of 4 * width() * height() floats, interleaved RGBA, row-major
   // (std::invalid_argument if `floats` differs). Safe to call from several threads: calls take turns.

@@ -1,5 +1,6 @@
 // phongcl agreement: how often shaded light agrees with a renderer's, light by light (for shadows:
-// Cycles' direct diffuse light of each light rendered alone; scripts/blender/shadow_scene.py).
+// Cycles' direct diffuse light of each light rendered alone; scripts/blender/shadow_scene.py), and
+// with --median-at-most / --p99-at-most how closely (light types and groups: light_scene.py).
 #include <cstdio>
 #include <memory>
 #include <stdexcept>
@@ -16,8 +17,11 @@ namespace {
 struct AgreementArguments {
   std::vector<std::string> cycles, shaded, unshadowed;
   std::string view_layer = "ViewLayer";
+  std::string layer = "diffuse";  // phongcl's AOV layer: diffuse, or group.<name>
+  std::string cycles_pass;        // empty: DiffDir x DiffCol; else a Cycles pass (Combined_<light group>)
   double tolerance = 0.05;
   double at_least = -1.0;  // percent; negative: report only
+  double median_at_most = -1.0, p99_at_most = -1.0;  // relative errors; negative: report only
 };
 
 struct Planes {
@@ -40,31 +44,65 @@ std::array<std::vector<float>, 3> rgb(Planes&& planes, std::size_t first) {
   return {std::move(planes.values[first]), std::move(planes.values[first + 1]), std::move(planes.values[first + 2])};
 }
 
+// The renderer's light: DiffDir x DiffCol, or the named pass; then the object index and depth.
+Planes read_cycles(const std::string& file, const std::string& layer, const std::string& pass) {
+  const std::vector<std::string> masks = {layer + "IndexOB.X", layer + "Depth.Z"};
+  if (pass.empty()) {
+    Planes cycles = read_planes(file, {layer + "DiffDir.R", layer + "DiffDir.G", layer + "DiffDir.B", layer + "DiffCol.R",
+                                       layer + "DiffCol.G", layer + "DiffCol.B", masks[0], masks[1]});
+    for (std::size_t i = 0; i < cycles.values[0].size(); ++i)
+      for (int c = 0; c < 3; ++c) cycles.values[c][i] *= cycles.values[3 + c][i];
+    cycles.values.erase(cycles.values.begin() + 3, cycles.values.begin() + 6);
+    return cycles;
+  }
+  return read_planes(file, {layer + pass + ".R", layer + pass + ".G", layer + pass + ".B", masks[0], masks[1]});
+}
+
+void check_relative_errors(const AgreementArguments& args, const std::vector<LightImages>& lights,
+                           const std::vector<bool>& mask) {
+  bool within = true;
+  for (std::size_t k = 0; k < lights.size(); ++k) {
+    const RelativeErrors errors = relative_errors(lights[k], mask);
+    std::printf("  light %zu    relative error median %.3g, 99th percentile %.3g over %zu lit pixels (%s)\n", k,
+                errors.median, errors.p99, errors.pixels, args.shaded[k].c_str());
+    within = within && errors.pixels > 0 && (args.median_at_most < 0.0 || errors.median <= args.median_at_most) &&
+             (args.p99_at_most < 0.0 || errors.p99 <= args.p99_at_most);
+  }
+  if (!within)
+    throw std::runtime_error("agreement: a light's relative error is beyond --median-at-most " +
+                             std::to_string(args.median_at_most) + " or --p99-at-most " + std::to_string(args.p99_at_most) +
+                             " (or it lights no pixel)");
+}
+
 void run_agreement(const AgreementArguments& args) {
-  if (args.cycles.size() != args.shaded.size() || args.cycles.size() != args.unshadowed.size())
-    throw std::invalid_argument("agreement: give --cycles, --shaded and --unshadowed once per light, in the same order");
+  const bool relative = args.median_at_most >= 0.0 || args.p99_at_most >= 0.0;
+  if (args.cycles.size() != args.shaded.size() || (!relative && args.cycles.size() != args.unshadowed.size()))
+    throw std::invalid_argument("agreement: give --cycles, --shaded and --unshadowed once per light, in the same order"
+                                " (--unshadowed not with --median-at-most or --p99-at-most)");
   const std::string layer = args.view_layer.empty() ? "" : args.view_layer + ".";
+  const std::vector<std::string> shaded_channels = {args.layer + ".R", args.layer + ".G", args.layer + ".B"};
   std::vector<LightImages> lights;
   std::vector<bool> mask;
   int width = 0, height = 0;
   for (std::size_t k = 0; k < args.cycles.size(); ++k) {
-    Planes cycles = read_planes(args.cycles[k], {layer + "DiffDir.R", layer + "DiffDir.G", layer + "DiffDir.B",
-                                                 layer + "DiffCol.R", layer + "DiffCol.G", layer + "DiffCol.B",
-                                                 layer + "IndexOB.X", layer + "Depth.Z"});
+    Planes cycles = read_cycles(args.cycles[k], layer, args.cycles_pass);
     if (k == 0) {
       width = cycles.width, height = cycles.height;
-      mask = away_from_silhouettes(cycles.values[6], cycles.values[7], width, height);
+      mask = away_from_silhouettes(cycles.values[3], cycles.values[4], width, height);
     }
-    for (std::size_t i = 0; i < mask.size(); ++i)
-      for (int c = 0; c < 3; ++c) cycles.values[c][i] *= cycles.values[3 + c][i];  // DiffDir x DiffCol
     LightImages light;
     light.expected = rgb(std::move(cycles), 0);
-    light.shaded = rgb(read_planes(args.shaded[k], {"diffuse.R", "diffuse.G", "diffuse.B"}), 0);
-    light.unshadowed = rgb(read_planes(args.unshadowed[k], {"diffuse.R", "diffuse.G", "diffuse.B"}), 0);
-    for (const auto* planes : {&light.shaded, &light.unshadowed})
-      if ((*planes)[0].size() != mask.size())
-        throw InputError(k < args.shaded.size() ? args.shaded[k] : "", "not the size of " + args.cycles[0]);
+    light.shaded = rgb(read_planes(args.shaded[k], shaded_channels), 0);
+    light.unshadowed = relative ? light.shaded : rgb(read_planes(args.unshadowed[k], shaded_channels), 0);
+    for (const auto* planes : {&light.expected, &light.shaded, &light.unshadowed})
+      if ((*planes)[0].size() != mask.size()) throw InputError(args.shaded[k], "not the size of " + args.cycles[0]);
     lights.push_back(std::move(light));
+  }
+  if (relative) {
+    std::printf("phongcl agreement: %zu lights, %dx%d, %s against %s\n", lights.size(), width, height, args.layer.c_str(),
+                args.cycles_pass.empty() ? "DiffDir x DiffCol" : args.cycles_pass.c_str());
+    check_relative_errors(args, lights, mask);
+    return;
   }
   const LightAgreement agreement = light_agreement(lights, mask, width, args.tolerance);
   std::printf("phongcl agreement: %zu lights, %dx%d, tolerance %.3g of each light's unshadowed value\n", lights.size(),
@@ -86,11 +124,18 @@ void add_agreement_command(CLI::App& app) {
   auto args = std::make_shared<AgreementArguments>();
   CLI::App* command = app.add_subcommand(
       "agreement", "How often shaded diffuse light agrees with Cycles' direct diffuse light, light by light");
-  command->add_option("--cycles", args->cycles, "Cycles render of one light alone: DiffDir, DiffCol, IndexOB, Depth (per light)")
+  command->add_option("--cycles", args->cycles,
+                      "Cycles render of one light alone: DiffDir, DiffCol (or --cycles-pass), IndexOB, Depth (per light)")
       ->required();
   command->add_option("--shaded", args->shaded, "phongcl --aov file of the same light (per light)")->required();
-  command->add_option("--unshadowed", args->unshadowed, "phongcl --aov file of the same light, shadows off (per light)")
-      ->required();
+  command->add_option("--unshadowed", args->unshadowed,
+                      "phongcl --aov file of the same light, shadows off (per light; not with --median-at-most)");
+  command->add_option("--layer", args->layer, "The --aov files' layer to compare: diffuse (default) or group.<name>");
+  command->add_option("--cycles-pass", args->cycles_pass,
+                      "The Cycles pass to compare with (Combined_<light group>; default DiffDir x DiffCol)");
+  command->add_option("--median-at-most", args->median_at_most,
+                      "Report each light's median and 99th percentile relative error; exit non-zero beyond this median");
+  command->add_option("--p99-at-most", args->p99_at_most, "... or beyond this 99th percentile");
   command->add_option("--view-layer", args->view_layer, "The Cycles files' view layer (default ViewLayer)");
   command->add_option("--tolerance", args->tolerance, "Allowed miss, as a fraction of the light's unshadowed value (default 0.05)")
       ->check(CLI::Range(0.0, 1.0));

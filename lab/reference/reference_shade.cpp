@@ -40,6 +40,8 @@ double light_factor(const Light& light, const glm::dvec3& position, const glm::d
       const double s = std::clamp((c - co) / (ci - co), 0.0, 1.0);
       cone = s * s * (3.0 - 2.0 * s);
     }
+    // The cosine power (Arnold's cosine_power; p = 1 is Blender 3.x Cycles' spot): std::pow(x, 0) = 1.
+    cone *= std::pow(std::max(0.0, c), light.cosine_power);
   }
   // 1/d^k may be +Inf where the window or cone is 0: the light contributes nothing there.
   return window * cone == 0.0 ? 0.0 : falloff * window * cone;

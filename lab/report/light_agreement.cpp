@@ -23,6 +23,37 @@ std::vector<bool> away_from_silhouettes(const std::vector<float>& object, const 
   return mask;
 }
 
+RelativeErrors relative_errors(const LightImages& light, const std::vector<bool>& mask, double floor) {
+  for (int c = 0; c < 3; ++c)
+    if (light.expected[c].size() != mask.size() || light.shaded[c].size() != mask.size())
+      throw std::invalid_argument("relative errors: every plane must have the mask's size");
+  auto largest = [&](const std::array<std::vector<float>, 3>& planes, std::size_t i) {
+    return std::max({static_cast<double>(planes[0][i]), static_cast<double>(planes[1][i]), static_cast<double>(planes[2][i])});
+  };
+  double brightest = 0.0;
+  for (std::size_t i = 0; i < mask.size(); ++i)
+    if (mask[i]) brightest = std::max(brightest, largest(light.expected, i));
+  std::vector<double> errors;
+  for (std::size_t i = 0; i < mask.size(); ++i) {
+    const double expected = largest(light.expected, i);
+    if (!mask[i] || !(expected > floor * brightest)) continue;
+    double miss = 0.0;
+    for (int c = 0; c < 3; ++c) {
+      const double difference = std::abs(static_cast<double>(light.shaded[c][i]) - light.expected[c][i]);
+      if (std::isnan(difference) || difference > miss) miss = difference;  // a NaN stays
+    }
+    errors.push_back(std::isfinite(miss) ? miss / expected : INFINITY);
+  }
+  RelativeErrors result;
+  result.pixels = errors.size();
+  if (errors.empty()) return result;
+  std::sort(errors.begin(), errors.end());
+  auto at = [&](double fraction) { return errors[static_cast<std::size_t>(fraction * static_cast<double>(errors.size() - 1))]; };
+  result.median = at(0.5);
+  result.p99 = at(0.99);
+  return result;
+}
+
 LightAgreement light_agreement(const std::vector<LightImages>& lights, const std::vector<bool>& mask, int width,
                                double tolerance) {
   for (const LightImages& light : lights)

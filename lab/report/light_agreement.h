@@ -29,6 +29,16 @@ struct LightAgreement {
 std::vector<bool> away_from_silhouettes(const std::vector<float>& object, const std::vector<float>& depth, int width,
                                         int height);
 
+// How closely one light's shaded values follow the renderer's where the renderer lights the pixel:
+// per pixel, the largest channel's |shaded - expected| over the largest expected channel, over the
+// pixels of `mask` whose largest expected channel exceeds `floor` times the brightest one's (the
+// rest, outside a spot's cone or at grazing light, have no meaningful relative error).
+struct RelativeErrors {
+  std::size_t pixels = 0;
+  double median = 0.0, p99 = 0.0;
+};
+RelativeErrors relative_errors(const LightImages& light, const std::vector<bool>& mask, double floor = 1e-3);
+
 // Throws std::invalid_argument when the planes' sizes differ from the mask's.
 LightAgreement light_agreement(const std::vector<LightImages>& lights, const std::vector<bool>& mask, int width,
                                double tolerance);

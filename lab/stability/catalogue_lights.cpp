@@ -153,7 +153,7 @@ long double angle_of(const glm::vec3& p) { return std::atan2(static_cast<long do
 double degrees(long double radians) { return static_cast<double>(radians * 180 / kPi); }
 
 StabilityCase spot_case(std::string name, std::string what, double cone_deg, double penumbra_deg,
-                        const std::vector<glm::vec3>& pixels) {
+                        const std::vector<glm::vec3>& pixels, double cosine_power = 0.0) {
   StabilityCase c;
   c.name = std::move(name);
   c.group = "spot cones";
@@ -162,6 +162,7 @@ StabilityCase spot_case(std::string name, std::string what, double cone_deg, dou
   Light spot = light_at_eye(LightType::spot, 1.0);
   spot.cone_angle_deg = cone_deg;
   spot.penumbra_angle_deg = penumbra_deg;
+  spot.cosine_power = cosine_power;
   spot.range = kSpotRange;
   c.scene.lights.push_back(spot);
   c.gbuffer = blank_gbuffer(static_cast<int>(pixels.size()), 1, c.name);
@@ -246,11 +247,39 @@ StabilityCase soft_spot(double cone_deg, double penumbra_deg) {
   return c;
 }
 
+// A cosine power p: pixels at angles theta from the axis, inside a hard cone of A degrees, where a
+// value is Li (kd + ks) window(1) c^p, c = cos(theta). c^p's relative error is p times the absolute
+// error of 1 - c, which is ~3 u of 1 - c (no cancellation) where the kernel takes the logarithm
+// from it: an amplification of p (1 - c) / c, counted where c^p is above the absolute floor.
+StabilityCase spot_power(double power, double cone_deg, const std::vector<long double>& thetas) {
+  std::vector<glm::vec3> pixels;
+  double amplification = spot_window_amplification();
+  for (long double theta : thetas) {
+    pixels.push_back(on_sphere(theta));
+    const long double c = std::cos(theta), versine = 1 - c;
+    if (std::pow(c, power) > 1e-6L) amplification = std::max(amplification, 1.0 + static_cast<double>(power * versine / c));
+  }
+  StabilityCase c = spot_case("power p=" + number(power) + " A=" + number(cone_deg),
+                              "spot of A = " + number(cone_deg) + " degrees with cosine power " + number(power) +
+                                  ": c^p from the axis to theta = " + number(static_cast<double>(thetas.back())) + " rad",
+                              cone_deg, 0.0, pixels, power);
+  // Positions are packed exactly (the eye at the origin); the double reference takes pow(c, p) with
+  // c rounded to 2^-53 absolutely, an amplification of p / c.
+  c.expect = {double_expectation(amplification), precise_expectation(amplification), fast_expectation(amplification),
+              Expectation::finite_only("half moves theta by ~5e-4 rad, c^p by p theta 5e-4 relative (or 5e-4 / c)")};
+  return c;
+}
+
 std::vector<StabilityCase> spot_cases() {
   std::vector<StabilityCase> cases;
   for (double cone : {1e-3, 60.0, 179.999}) cases.push_back(hard_spot(cone));
   for (auto [cone, penumbra] : {std::pair{1e-3, 10.0}, {1e-3, 89.9995}, {20.0, 80.0}, {179.998, 0.001}})
     cases.push_back(soft_spot(cone, penumbra));
+  // Large p near the axis (c^p from 1 to e^-4.5 within 0.03 rad; p = 1e6 within 3e-3 rad), and p = 1
+  // out to grazing, 0.06 degrees inside a cone of 179.8 degrees (c = 2.7e-3).
+  cases.push_back(spot_power(1e4, 60.0, {0, 1e-4L, 1e-3L, 5e-3L, 1e-2L, 2e-2L, 3e-2L, 0.5L}));
+  cases.push_back(spot_power(1e6, 60.0, {0, 1e-5L, 1e-4L, 5e-4L, 1e-3L, 2e-3L, 3e-3L}));
+  cases.push_back(spot_power(1.0, 179.8, {0, kPi / 4, kPi * 80 / 180, kPi * 89 / 180, kPi * 89.8L / 180, kPi * 89.84L / 180}));
   return cases;
 }
 

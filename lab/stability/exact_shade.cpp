@@ -83,6 +83,9 @@ long double shape_factor(const Light& light, const Vec& to_light, const Vec& l) 
       const long double s = std::clamp((outer - off) / (outer - inner), 0.0L, 1.0L);
       cone = s * s * (3 - 2 * s);
     }
+    // c^p = exp(p log(1 - off)): log1p keeps a large p's precision near the axis.
+    if (light.cosine_power != 0 && cone != 0)
+      cone *= off >= 1 ? 0 : std::exp(static_cast<long double>(light.cosine_power) * std::log1p(-off));
   }
   return falloff * window * cone;
 }

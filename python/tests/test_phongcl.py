@@ -197,6 +197,37 @@ def test_shadows_are_a_relighter_option(scene, gbuffer):
         phongcl.Relighter(casting, gbuffer, shadows="screen", shadow_thickness="-3")
 
 
+@needs_device
+def test_light_groups_come_back_apart_and_add_up(scene, gbuffer):
+    grouped = phongcl.load_scene(str(DEFAULT))
+    lights = grouped.lights
+    assert len(lights) >= 2, "the default scene has two lights or more"
+    lights[0].group = "key"
+    lights[1].group = "fill"
+    grouped.lights = lights
+    relighter = phongcl.Relighter(grouped, gbuffer, terms=True)
+    shaded = relighter.shade_terms()
+    assert sorted(shaded["groups"]) == ["fill", "key"]
+    image = shaded["image"]
+    check_against_reference(image, scene, gbuffer, "grouped")
+    key = phongcl.Relighter(grouped, gbuffer, terms=True)
+    key.set_lights(lights[0:1])
+    key_terms = key.shade_terms()
+    np.testing.assert_allclose(shaded["groups"]["key"][..., :3], (key_terms["diffuse"] + key_terms["specular"])[..., :3],
+                               rtol=1e-5, atol=1e-6)
+    rest = phongcl.Relighter(grouped, gbuffer, terms=True)
+    rest.set_lights(lights[2:])
+    rest_terms = rest.shade_terms()
+    total = (shaded["ambient"] + rest_terms["diffuse"] + rest_terms["specular"])[..., :3].astype(np.float64)
+    for layer in shaded["groups"].values():
+        total += layer[..., :3]
+    lit = image[..., 3] == 1
+    np.testing.assert_allclose(total[lit], image[..., :3][lit], rtol=1e-5, atol=1e-6)
+    assert (shaded["groups"]["key"][lit] > 0).any()
+    with pytest.raises(RuntimeError, match="terms"):
+        phongcl.Relighter(grouped, gbuffer).shade_terms()
+
+
 def test_write_png_through_a_view_over_a_background(tmp_path):
     """The binding passes each setting on (the display transform itself is tested in C++):
     equal settings make equal files, and each setting changes the file."""

@@ -16,7 +16,8 @@ Conventions (docs/formats.md "Renderers' G-buffers", "From a Blender scene"):
   centre of the visible meshes). A spot's cone: Cycles lights where cos(angle to the axis) exceeds
   cos(spot_size/2) and smoothsteps over the spot_blend fraction of 1 - cos(spot_size/2) above it,
   in cosines, as phongcl's penumbra does, so cone_angle_deg is the angle whose cosine ends that
-  blend and penumbra_angle_deg the rest of spot_size/2. Area lights are skipped with a note.
+  blend and penumbra_angle_deg the rest of spot_size/2; inside the cone Cycles 3.x also multiplies by
+  that cosine, so Blender 3.x spots get "cosine_power": 1. Area lights are skipped with a note.
 - Materials by pass index (Material.pass_index): a Principled BSDF becomes "blinn-phong-normalized"
   (phongcl's ks (q+8)/8 (n.h)^q n.l, a BRDF) with kd = base colour * (1 - metallic),
   ks = mix(0.08 * specular, base colour, metallic) (the BSDF's normal-incidence reflectance) and
@@ -28,6 +29,7 @@ Conventions (docs/formats.md "Renderers' G-buffers", "From a Blender scene"):
   lights an unoccluded Lambertian surface with rho * L). Indices no material uses get a grey
   material.
 - Shadows: a light that casts shadows in Cycles (its cast_shadow setting) gets "shadows": true.
+- Light groups: a light's Object.lightgroup (Blender 3.2+) becomes its "group".
 - --geometry DIR writes every visible mesh that casts shadows (Object.visible_shadow) as a
   world-space binary little-endian PLY in DIR, modifiers applied and triangulated, one file per
   object and material slot (DIR/<object>.<slot>.ply), and lists each as a {"type": "mesh"} object
@@ -106,14 +108,24 @@ def spot_cone(light):
     cos_inner = cos_outer + (1.0 - cos_outer) * light.data.spot_blend
     inner_half = max(math.acos(min(cos_inner, 1.0)), math.radians(MIN_CONE_DEG / 2.0))
     axis = light.matrix_world.to_3x3() @ Vector((0.0, 0.0, -1.0))
-    return {"type": "spot", "direction": rounded(axis.normalized()),
+    cone = {"type": "spot", "direction": rounded(axis.normalized()),
             "cone_angle_deg": round(math.degrees(2.0 * inner_half), 6),
             "penumbra_angle_deg": round(max(math.degrees(outer_half - inner_half), 0.0), 6)}
+    # Cycles 3.x multiplies a spot's light by cos(angle to its axis) (spot_light_attenuation() in
+    # intern/cycles/kernel/light/common.h returns dot(dir, N)); Blender 4.0 dropped the factor.
+    if bpy.app.version < (4, 0, 0):
+        cone["cosine_power"] = 1
+    return cone
 
 
-def with_shadows(light, entry):
+def with_shadow_and_group(light, entry):
     if light.data.cycles.cast_shadow:
         entry["shadows"] = True
+    # Blender 3.2+ light groups (Object.lightgroup): Cycles writes a Combined pass per group, phongcl
+    # --aov a group.<name> layer. Blender allows letters, digits and '_' in the name, as phongcl does.
+    group = getattr(light, "lightgroup", "")
+    if group:
+        entry["group"] = group
     return entry
 
 
@@ -125,8 +137,9 @@ def lights_json(scene, falloff):
         colour = Vector(data.color)
         if data.type == "SUN":
             direction = light.matrix_world.to_3x3() @ Vector((0.0, 0.0, -1.0))
-            lights.append(with_shadows(light, {"type": "directional", "direction": rounded(direction.normalized()),
-                                               "color": rounded(colour * data.energy / math.pi)}))
+            entry = {"type": "directional", "direction": rounded(direction.normalized()),
+                     "color": rounded(colour * data.energy / math.pi)}
+            lights.append(with_shadow_and_group(light, entry))
             continue
         if data.type not in ("POINT", "SPOT"):
             note("light '%s' is an %s light, which phongcl has not: skipped" % (light.name, data.type.lower()))
@@ -143,7 +156,7 @@ def lights_json(scene, falloff):
             intensity = intensity / distance ** 2
             note("point light '%s' at %.3g from the meshes' centre, taken at that distance (no falloff)" % (light.name, distance))
         entry["color"] = rounded(intensity)
-        lights.append(with_shadows(light, entry))
+        lights.append(with_shadow_and_group(light, entry))
     return lights
 
 
