@@ -17,6 +17,7 @@
  *   LIGHT_LINKING=w                        w mask words per light; 0: every light lights every material
  *   TILED_CULLING                          point and spot lights from the work-item's tile list (cull.cl)
  *   WRITE_TERMS                            also write ambient, diffuse, specular apart (AOVs)
+ *   AREA_LIGHTS                            some light is a rect or disk emitter (area_light.h)
  *   SHADOWS, SCREEN_SHADOWS                some light casts shadows: traced against the scene's geometry,
  *                                          or marched across the frame's depth plane (shadow.h)
  */
@@ -29,7 +30,7 @@
     !defined(MATERIAL_COUNT) || !defined(PER_PIXEL_KA) || !defined(PER_PIXEL_KD) || !defined(PER_PIXEL_KS) ||     \
     !defined(PER_PIXEL_Q) || !defined(FALLOFF) || !defined(FALLOFF_MIXED) || !defined(RANGE_WINDOW) ||            \
     !defined(SPOT_LIGHTS) || !defined(LIGHT_LINKING) || !defined(TILED_CULLING) || !defined(WRITE_TERMS) ||        \
-    !defined(SHADOWS) || !defined(SCREEN_SHADOWS)
+    !defined(SHADOWS) || !defined(SCREEN_SHADOWS) || !defined(AREA_LIGHTS)
 #error "phong.cl is built with every flag of features.h defined (host/shading/recipe.cpp writes them)"
 #endif
 

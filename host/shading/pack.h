@@ -21,6 +21,7 @@ struct UniformData {
   std::vector<LinkWord> links;              // recipe.link_words per light: point lights, then directional
   std::vector<DirectionalLight> directional_lights;
   std::vector<MaterialRecord> materials;
+  std::vector<AreaLightRecord> area_lights;  // shading/pack_area.h
   // Ambient, background, radiance scales and light counts; the shader sets plane_stride. Light and
   // ambient colours are divided by 2^e (exact), which the kernel undoes at the end.
   FrameScalars scalars{};

@@ -34,6 +34,8 @@ struct PhongArguments {
   // lights' then directional lights'; the geometry; the screen march's depth plane; the scalars
   cl::Buffer shadow_casters, shadow_nodes, shadow_primitives, shadow_planes, shadow_depth;
   ShadowFrame shadow_frame{};
+  // area lights (kernels/area_light.h), read only with AREA_LIGHTS
+  cl::Buffer area_lights;
 };
 
 // visit(name, field) for every argument, in phong_shade's parameter order.
@@ -59,6 +61,7 @@ void for_each_argument(Arguments& a, Visit&& visit) {
   visit("shadow_planes", a.shadow_planes);
   visit("shadow_depth", a.shadow_depth);
   visit("shadow_frame", a.shadow_frame);
+  visit("area_lights", a.area_lights);
 }
 
 // The kernel's parameter names as the host sets them, in order.

@@ -178,7 +178,8 @@ cl::Event PhongShader::cull_and_launch(cl::Kernel& kernel, FrameSetup& frame, co
                                  .shadow_primitives = shadows ? shadows->device.primitives : uniforms.no_tiles,
                                  .shadow_planes = shadows ? shadows->device.planes : uniforms.no_tiles,
                                  .shadow_depth = shadows ? shadows->device.depth : uniforms.no_tiles,
-                                 .shadow_frame = shadows ? shadows->device.frame : ShadowFrame{}};
+                                 .shadow_frame = shadows ? shadows->device.frame : ShadowFrame{},
+                                 .area_lights = uniforms.area_lights};
   return launch_phong(kernel, compute_.queue, arguments, padded, recipe.lanes);
 }
 

@@ -199,7 +199,7 @@ void decide_terms(Recipe& recipe, const Scene& scene, const GBuffer& gbuffer) {
     return;
   }
   const auto& materials = scene.materials;
-  const bool any_lights = !scene.lights.empty();
+  const bool any_lights = !scene.lights.empty() || !scene.area_lights.empty();
   const bool table_ks_zero = std::all_of(materials.begin(), materials.end(), [](const Material& m) { return is_zero(m.ks); });
   const bool ks_zero = gbuffer.has_per_pixel_ks() ? all_zero(gbuffer.ks) : table_ks_zero;
   const bool specular = any_lights && !ks_zero;
@@ -281,6 +281,22 @@ void decide_shadows(Recipe& recipe, const Scene& scene, const ShadeOptions& opti
            mode == ShadowMode::screen ? "screen-space shadows: " + march : "screen-space shadows: none");
 }
 
+// Area lights live in __global memory and are looped over untiled: a few rects and disks, each
+// costing far more than its load.
+void decide_area_lights(Recipe& recipe, const Scene& scene) {
+  const auto disks = std::count_if(scene.area_lights.begin(), scene.area_lights.end(),
+                                   [](const AreaLight& light) { return light.shape == AreaShape::disk; });
+  recipe.area_lights = static_cast<int>(scene.area_lights.size());
+  const int rects = recipe.area_lights - static_cast<int>(disks);
+  std::string kinds;
+  if (rects > 0) kinds = plural(rects, "rect");
+  if (disks > 0) kinds += (kinds.empty() ? "" : " + ") + plural(static_cast<int>(disks), "disk");
+  add_flag(recipe, "AREA_LIGHTS", recipe.area_lights > 0,
+           recipe.area_lights > 0 ? "area lights: " + kinds + ", untiled (diffuse exact, specular by quadrature)"
+                                  : "area lights: compiled out (none in the scene)",
+           recipe.area_lights > 0 ? kinds + " area" : "");
+}
+
 void decide_memory(Recipe& recipe, const Scene& scene, const DeviceInfo& device) {
   const bool shapes = recipe.value("FALLOFF") != "0" || recipe.value("FALLOFF_MIXED") == "1" ||
                       recipe.value("RANGE_WINDOW") == "1" || recipe.value("SPOT_LIGHTS") == "1";
@@ -352,6 +368,7 @@ Recipe make_recipe(const Scene& scene, const GBuffer& gbuffer, const DeviceInfo&
   decide_culling(recipe, scene, options);
   decide_lights(recipe);
   decide_light_shapes(recipe, scene);
+  decide_area_lights(recipe, scene);
   decide_terms(recipe, scene, gbuffer);
   decide_materials(recipe, scene, gbuffer);
   decide_memory(recipe, scene, device);
