@@ -52,7 +52,7 @@ struct AreaLight {
   glm::dvec3 position{0.0};
   glm::dvec3 direction{0.0, 0.0, -1.0};  // the emitting side's normal; any length but zero
   glm::dvec3 up{0.0, 1.0, 0.0};          // rect: the side of size[1] runs along up, projected off direction
-  glm::dvec2 size{1.0};                  // rect: width, height; disk: the diameter twice
+  glm::dvec2 size{1.0};                  // rect: width, height; disk: the diameter in x (the reader sets y to it too)
   glm::dvec3 color{1.0};
   double range = 0.0;  // > 0: windowed to 0 at this distance from the centre (as a point light's); 0: no range
 

@@ -41,7 +41,7 @@ std::vector<AreaLightRecord> pack_area_lights(const Scene& scene, double scale) 
     store3(record.center, light.position - scene.camera.eye);
     store3(record.normal, normal);
     store3(record.axis_u, u * (light.size.x / 2.0));
-    store3(record.axis_v, v * (light.size.y / 2.0));
+    store3(record.axis_v, v * ((light.shape == AreaShape::rect ? light.size.y : light.size.x) / 2.0));  // a disk's diameter is size.x
     store3(record.color, light.color * scale);
     record.shape = light.shape == AreaShape::rect ? AREA_RECT : AREA_DISK;
     record.inverse_range = light.has_range() ? static_cast<float>(1.0 / light.range) : 0.0f;
