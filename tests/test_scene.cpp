@@ -460,6 +460,15 @@ TEST(CameraSpace, TheCameraGoesToTheOriginLookingDownMinusZ) {
     else
       EXPECT_NEAR(glm::length(moved.lights[i].direction), glm::length(scene.lights[i].direction), 1e-12);
   }
+  Scene with_area = scene;
+  AreaLight area;
+  area.position = scene.camera.eye + glm::dvec3(0.0, 2.0, 0.0);
+  with_area.area_lights = {area};
+  const Scene moved_area = to_camera_space(with_area);
+  ASSERT_EQ(moved_area.area_lights.size(), 1u);
+  EXPECT_NEAR(glm::length(moved_area.area_lights[0].position), 2.0, 1e-12);
+  EXPECT_NEAR(glm::dot(moved_area.area_lights[0].direction, moved_area.area_lights[0].up),
+              glm::dot(area.direction, area.up), 1e-12);
 }
 
 }  // namespace

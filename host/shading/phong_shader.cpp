@@ -43,6 +43,7 @@ void describe_recipe(const Recipe& recipe, ShadeReport& report) {
   report.point_lights = recipe.point_lights;
   report.spot_lights = recipe.spot_lights;
   report.directional_lights = recipe.directional_lights;
+  report.area_lights = recipe.area_lights;
   report.culled = recipe.tiled;
 }
 

@@ -1,8 +1,10 @@
-"""The scene of the area light comparison (docs/shading.md "Area lights"): a sphere and a box on a
-ground plane under a rectangle and a disk area light that cast no shadows, pure diffuse (Lambert),
-no bounces, the light threshold at 0, and Cycles' direct diffuse light of each light alone from
-pixel centres (box filter of 0.01 px). Cycles samples an area light, so its light is noisy: --samples
-sets the samples per pixel.
+"""The scene of the area light comparison (docs/shading.md "Area lights"): a ground plane under a
+rectangle and a disk area light, pure diffuse (Lambert), no bounces, the light threshold at 0, and
+Cycles' direct diffuse light of each light alone from pixel centres (box filter of 0.01 px). Cycles
+samples an area light, so its light is noisy: --samples sets the samples per pixel. No smooth-shaded
+objects: Cycles averages the Normal pass over a pixel's samples, so a 1024-sample render's normals
+differ from the G-buffer's (4 samples) where normals vary within a pixel, which a sphere's do; the
+emitters' planes meet the ground outside the frame, where their light falls to 0.
 
     blender -b --factory-startup --python scripts/blender/area_scene.py -- --out DIR [--width 96 --height 72] [--samples 1024]
 
@@ -22,23 +24,16 @@ import make_fixtures  # noqa: E402
 import shadow_scene  # noqa: E402
 
 # name, shape, location, rotation (XYZ Euler, radians), size, size_y, watts
-LIGHTS = (("rect", "RECTANGLE", (2.0, -1.5, 3.0), (0.5, 0.3, 0.4), 2.0, 1.0, 300.0),
-          ("disk", "DISK", (-2.6, -0.8, 2.2), (-0.6, -0.7, 0.0), 1.5, 1.5, 200.0))
+LIGHTS = (("rect", "RECTANGLE", (2.0, -1.5, 3.0), (0.3, 0.2, 0.4), 2.0, 1.0, 300.0),
+          ("disk", "DISK", (-2.6, -0.8, 2.2), (-0.08, -0.08, 0.0), 1.5, 1.5, 200.0))
 
 
 def build_area_scene(width, height, samples):
     scene = make_fixtures.empty_scene(width, height, strength=0.0)  # no ambient light
-    objects = []
     bpy.ops.mesh.primitive_plane_add(size=14.0, location=(0.0, 0.0, 0.0))
-    objects.append((bpy.context.object, shadow_scene.diffuse_material("ground", (0.6, 0.6, 0.55), 0)))
-    bpy.ops.mesh.primitive_uv_sphere_add(radius=1.0, location=(0.0, 0.0, 1.0), segments=64, ring_count=32)
-    bpy.ops.object.shade_smooth()
-    objects.append((bpy.context.object, shadow_scene.diffuse_material("red", (0.8, 0.15, 0.1), 1)))
-    bpy.ops.mesh.primitive_cube_add(size=0.8, location=(1.3, 1.4, 0.4), rotation=(0.0, 0.0, 0.5))
-    objects.append((bpy.context.object, shadow_scene.diffuse_material("blue", (0.15, 0.25, 0.8), 2)))
-    for index, (obj, material) in enumerate(objects, start=1):
-        obj.data.materials.append(material)
-        obj.pass_index = index
+    ground = bpy.context.object
+    ground.data.materials.append(shadow_scene.diffuse_material("ground", (0.6, 0.6, 0.55), 0))
+    ground.pass_index = 1
 
     for name, shape, location, rotation, size, size_y, energy in LIGHTS:
         bpy.ops.object.light_add(type="AREA", location=location, rotation=rotation)
@@ -59,7 +54,10 @@ def build_area_scene(width, height, samples):
     make_fixtures.cycles(scene, samples)
     scene.cycles.max_bounces = 0
     scene.cycles.light_sampling_threshold = 0.0
+    # Cycles 3.x filters with render.filter_size (cycles.filter_width is not read): with more than
+    # one sample a wide filter averages the light over the pixel, and the passes with it.
     scene.cycles.pixel_filter_type, scene.cycles.filter_width = "BOX", 0.01
+    scene.render.filter_size = 0.01
     layer = bpy.context.view_layer
     layer.use_pass_diffuse_direct = True
     layer.use_pass_object_index = True

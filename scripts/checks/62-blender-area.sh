@@ -1,7 +1,6 @@
 #!/usr/bin/env bash
-# Area lights against Cycles: renders scripts/blender/area_scene.py (a sphere and a box on a ground
-# under a rectangle and a disk area light; pure diffuse, no bounces, no shadows, light threshold 0,
-# pixel centres) at 96x72, shades each light alone, and holds `phongcl agreement` (Cycles' direct
+# Area lights against Cycles: renders scripts/blender/area_scene.py (a ground under a rectangle and
+# a disk area light; pure diffuse, no bounces, light threshold 0, pixel centres) at 96x72, shades each light alone, and holds `phongcl agreement` (Cycles' direct
 # diffuse light, DiffDir x DiffCol, away from silhouettes) to the targets of docs/shading.md "Area
 # lights": a median relative error <= 1e-3 (half the pixels within 1e-3) and a 99th percentile <=
 # 1e-2 (99% within 1e-2). Cycles samples area lights: PHONGCL_AREA_CHECK_SAMPLES (default 1024) sets
