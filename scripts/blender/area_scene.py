@@ -6,7 +6,7 @@ objects: Cycles averages the Normal pass over a pixel's samples, so a 1024-sampl
 differ from the G-buffer's (4 samples) where normals vary within a pixel, which a sphere's do; the
 emitters' planes meet the ground outside the frame, where their light falls to 0.
 
-    blender -b --factory-startup --python scripts/blender/area_scene.py -- --out DIR [--width 96 --height 72] [--samples 1024]
+    blender -b --factory-startup --python scripts/blender/area_scene.py -- --out DIR [--width 96 --height 72] [--samples 1024] [--seed 1]
 
 writes DIR/area.blend, with export_scene.py DIR/scene.json and DIR/gbuffer.exr, then DIR/light0.exr
 (the rectangle) and DIR/light1.exr (the disk): each light alone, its DiffDir, DiffCol and IndexOB passes.
@@ -54,10 +54,7 @@ def build_area_scene(width, height, samples):
     make_fixtures.cycles(scene, samples)
     scene.cycles.max_bounces = 0
     scene.cycles.light_sampling_threshold = 0.0
-    # Cycles 3.x filters with render.filter_size (cycles.filter_width is not read): with more than
-    # one sample a wide filter averages the light over the pixel, and the passes with it.
     scene.cycles.pixel_filter_type, scene.cycles.filter_width = "BOX", 0.01
-    scene.render.filter_size = 0.01
     layer = bpy.context.view_layer
     layer.use_pass_diffuse_direct = True
     layer.use_pass_object_index = True
@@ -70,10 +67,12 @@ def main():
     parser.add_argument("--width", type=int, default=96)
     parser.add_argument("--height", type=int, default=72)
     parser.add_argument("--samples", type=int, default=1024)
+    parser.add_argument("--seed", type=int, default=1, help="Cycles' seed: two seeds measure the noise floor")
     args = parser.parse_args(sys.argv[sys.argv.index("--") + 1:])
     out = os.path.abspath(args.out)
     os.makedirs(out, exist_ok=True)
     scene = build_area_scene(args.width, args.height, args.samples)
+    scene.cycles.seed = args.seed
     bpy.ops.wm.save_as_mainfile(filepath=os.path.join(out, "area.blend"))
     export_scene.render_gbuffer(scene, os.path.join(out, "gbuffer.exr"), 4)
     scene.cycles.samples = args.samples
