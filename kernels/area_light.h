@@ -40,9 +40,7 @@ vec3 select3(vec3 if_true, vec3 if_false, realv condition) {
   return make_vec3(SELECT(condition != 0, if_true.x, if_false.x), SELECT(condition != 0, if_true.y, if_false.y),
                    SELECT(condition != 0, if_true.z, if_false.z));
 }
-vec3 area_vector(__global const float* x, real scale) {
-  return make_vec3((realv)((real)x[0] * scale), (realv)((real)x[1] * scale), (realv)((real)x[2] * scale));
-}
+vec3 area_vector(__global const float* x) { return make_vec3((realv)x[0], (realv)x[1], (realv)x[2]); }
 
 /* The angle edge a -> b subtends at P times n's dot with the unit normal of their plane: the angle
  * as atan2(|a x b|, a.b), which keeps its precision where acos of a dot near 1 would not. */
@@ -192,14 +190,14 @@ realv area_specular(int shape, vec3 c, vec3 u, vec3 v, vec3 n, vec3 r, realv shi
  * to the eye) with unit normal n and r, the eye vector mirrored about n. */
 void area_light_terms(__global const AreaLightRecord* light, vec3 p, vec3 n, vec3 r, realv shininess, int specular,
                       realv* irradiance, realv* highlight) {
-  const vec3 c_eye = sub3(area_vector(light->center, 1), p);
-  const vec3 normal = area_vector(light->normal, 1);
+  const vec3 c_eye = sub3(area_vector(light->center), p);
+  const vec3 normal = area_vector(light->normal);
   const float extent = length((float3)(light->axis_u[0], light->axis_u[1], light->axis_u[2])) +
                        length((float3)(light->axis_v[0], light->axis_v[1], light->axis_v[2]));
   const realv distance = sqrt(dot3(c_eye, c_eye));
   const realv scale = 1 / (distance + extent);
   const vec3 c = scale3(c_eye, scale);
-  const vec3 u = scale3(area_vector(light->axis_u, 1), scale), v = scale3(area_vector(light->axis_v, 1), scale);
+  const vec3 u = scale3(area_vector(light->axis_u), scale), v = scale3(area_vector(light->axis_v), scale);
   const realv area = light->area * scale * scale;
   const realv h = -dot3(c, normal); /* P's height above the emitting side */
   realv window = 1;
