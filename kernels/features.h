@@ -12,6 +12,8 @@
  *   MATERIAL_COUNT=n                       a table of n <= PHONGCL_LANES materials: selects, no gather;
  *                                          0: gathered per lane
  *   PER_PIXEL_KA, _KD, _KS, _Q             the G-buffer has per-pixel material planes (material.h)
+ *   POSITION_REST                          positions and point lights come as float pairs, value + rest:
+ *                                          L - P to float precision however near the light (phong.cl)
  *   FALLOFF=k, FALLOFF_MIXED               every light falls off as 1/d^k; powers differ (light_shape.h)
  *   RANGE_WINDOW, SPOT_LIGHTS              some light has a range; some light is a spot
  *   LIGHT_LINKING=w                        w mask words per light; 0: every light lights every material
@@ -30,7 +32,7 @@
     !defined(MATERIAL_COUNT) || !defined(PER_PIXEL_KA) || !defined(PER_PIXEL_KD) || !defined(PER_PIXEL_KS) ||     \
     !defined(PER_PIXEL_Q) || !defined(FALLOFF) || !defined(FALLOFF_MIXED) || !defined(RANGE_WINDOW) ||            \
     !defined(SPOT_LIGHTS) || !defined(LIGHT_LINKING) || !defined(TILED_CULLING) || !defined(WRITE_TERMS) ||        \
-    !defined(SHADOWS) || !defined(SCREEN_SHADOWS) || !defined(AREA_LIGHTS)
+    !defined(SHADOWS) || !defined(SCREEN_SHADOWS) || !defined(POSITION_REST) || !defined(AREA_LIGHTS)
 #error "phong.cl is built with every flag of features.h defined (host/shading/recipe.cpp writes them)"
 #endif
 

@@ -33,10 +33,14 @@ typedef struct {
 } FrameScalars;
 
 /* A point light. position is relative to the eye: the host rebases in double so that a scene far
- * from the origin loses nothing when converted to float. color is scaled by 2^-radiance_exponent. */
+ * from the origin loses nothing when converted to float. position_rest is what the float rounding
+ * of position lost (position + position_rest is the double): with the G-buffer's rest planes the
+ * kernel forms L - P to float precision where a light is 1e-8 of its distance from a surface
+ * (phong.cl, light_offset()). color is scaled by 2^-radiance_exponent. */
 typedef struct {
-  layout_float position[4]; /* xyz, w unused */
-  layout_float color[4];    /* rgb, a unused */
+  layout_float position[4];      /* xyz, w unused */
+  layout_float color[4];         /* rgb, a unused */
+  layout_float position_rest[4]; /* xyz, w unused */
 } PointLight;
 
 /* How a point or spot light's F = falloff(d) * window(d) * cone(l) is shaped (docs/shading.md
@@ -122,7 +126,7 @@ enum { MATERIAL_KA = 0, MATERIAL_KD = 4, MATERIAL_KS = 8, MATERIAL_SHININESS = 1
  * arrays vectorise, float3 code does not). Plane k of a tile starts at k * plane_stride. The
  * per-pixel material planes follow the geometry planes, in this order, only if present. */
 enum {
-  PLANE_PX, PLANE_PY, PLANE_PZ, /* position - eye */
+  PLANE_PX, PLANE_PY, PLANE_PZ, /* position - eye, rounded to float (its rest: material.h's PLANE_REST) */
   PLANE_NX, PLANE_NY, PLANE_NZ, /* normal, any length */
   PLANE_GEOMETRY_COUNT
 };

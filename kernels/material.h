@@ -7,12 +7,14 @@
 #include "layout.h"
 #include "phong_math.h"
 
-/* The per-pixel material planes follow the geometry planes, in this order, only if present (the
- * host packs them so: host/shading/pack.cpp). */
+/* The per-pixel material planes follow the geometry planes, in this order, only if present, and
+ * with POSITION_REST the three planes of what the position planes' float rounding lost (the host
+ * packs them so: host/shading/pack.cpp). */
 #define PLANE_KA PLANE_GEOMETRY_COUNT
 #define PLANE_KD (PLANE_KA + 3 * PER_PIXEL_KA)
 #define PLANE_KS (PLANE_KD + 3 * PER_PIXEL_KD)
 #define PLANE_Q (PLANE_KS + 3 * PER_PIXEL_KS)
+#define PLANE_REST (PLANE_Q + PER_PIXEL_Q)
 
 /* A work-item's lanes' entries of the material table. Background lanes read entry 0 (the kernel
  * replaces them by the background colour). */

@@ -26,6 +26,7 @@
 /* A vector of pixels as the lights see it. The eye is the origin. */
 typedef struct {
   vec3 p;          /* position */
+  vec3 p_rest;     /* with POSITION_REST, what p's float rounding lost (p + p_rest is the host's double) */
   vec3 n, v;       /* unit normal; unit vector to the eye, normalize(-p) (zero where degenerate) */
   realv shininess; /* q */
   intv material;   /* material index, PHONGCL_BACKGROUND in background lanes */
@@ -114,6 +115,18 @@ static inline realv shadowed_weight(realv weight, const Surface* surface, const 
   return SELECT(TO_REALV(blocked) != 0, 0, weight);
 }
 
+/* L - P for a point light at `position` (+ `rest` with POSITION_REST). With the rests, the leading
+ * parts' difference is exact where the light is near the surface (Sterbenz: within a factor of 2),
+ * and the rests add what float positions relative to the eye lost: a light 1e-4 from a surface 1e4
+ * from the eye is 1e-8 of the position, below float's rounding unit 6e-8. */
+static inline vec3 light_offset(vec3 position, vec3 rest, const Surface* surface) {
+#pragma clang fp reassociate(off) /* -cl-fast-relaxed-math would add the rests to the leading parts first */
+  const vec3 leading = sub3(position, surface->p);
+  if (!POSITION_REST) return leading;
+  return make_vec3(leading.x + (rest.x - surface->p_rest.x), leading.y + (rest.y - surface->p_rest.y),
+                   leading.z + (rest.z - surface->p_rest.z));
+}
+
 /* What a point or spot light adds, F from its shape and linking mask, times its visibility with
  * SHADOWS. In a tile's list a light
  * whose F is 0 in every lane is left early: that changes no bit of the sums. */
@@ -122,7 +135,8 @@ static inline void add_point_light(LightSums* sums, const Surface* surface, cons
   UNIFORM_SPACE const LightShape* shape = &lights->point_shapes[i];
   UNIFORM_SPACE const LinkWord* link_mask = &lights->point_links[i * LIGHT_LINKING];
   const vec3 position = make_vec3(light->position[0], light->position[1], light->position[2]);
-  vec3 toward = sub3(position, surface->p);
+  const vec3 rest = make_vec3(light->position_rest[0], light->position_rest[1], light->position_rest[2]);
+  vec3 toward = light_offset(position, rest, surface);
   if (TILED_CULLING && RANGE_WINDOW && beyond_range_in_every_lane(shape, toward)) return;
   realv distance = 0, inverse_distance = 0; /* spots alone read neither */
   const realv inverse = NEEDS_DISTANCE ? distance_in_range(&toward, &distance, &inverse_distance)
@@ -213,6 +227,8 @@ static inline void shade_pixel(Terms* terms, const PixelPlanes* pixels, const Ma
   surface.material = materials->index;
   surface.shininess = PER_PIXEL_Q ? pixel_plane(pixels, PLANE_Q) : material_field(materials, MATERIAL_SHININESS);
   surface.p = PIXEL_PLANE3(pixels, PLANE_PX);
+  const realv zero = 0;
+  surface.p_rest = POSITION_REST ? PIXEL_PLANE3(pixels, PLANE_REST) : make_vec3(zero, zero, zero);
   surface.n = unit_or_zero(PIXEL_PLANE3(pixels, PLANE_NX));
   surface.v = unit_or_zero(make_vec3(-surface.p.x, -surface.p.y, -surface.p.z)); /* v = normalize(E - P), E = 0 */
 
@@ -220,7 +236,6 @@ static inline void shade_pixel(Terms* terms, const PixelPlanes* pixels, const Ma
   LightSums sums;
   sum_lights(&sums, &surface, lights);
 
-  const realv zero = 0;
   const Terms no_terms = {{zero, zero, zero}, {zero, zero, zero}, {zero, zero, zero}};
   *terms = no_terms;
   const vec3 kd = PER_PIXEL_KD ? PIXEL_PLANE3(pixels, PLANE_KD) : MATERIAL_FIELD3(materials, MATERIAL_KD);
@@ -278,7 +293,7 @@ static inline void store_pixels(const PixelOutputs* out, const Terms* terms, int
 /* The host sets these arguments by name (host/shading/phong_arguments.h): a new one is a parameter
  * here and a field and a line there. */
 __kernel void phong_shade(
-    /* G-buffer tile: planes (see layout.h), positions relative to the eye */
+    /* G-buffer tile: planes (see layout.h, material.h), positions relative to the eye */
     __global const STORAGE* restrict planes,
     __global const int* restrict material_index,
     /* scene; colours scaled by 2^-radiance_exponent, undone by the two scale factors */

@@ -12,7 +12,7 @@ static_assert(sizeof(FrameScalars) == 64 && offsetof(FrameScalars, background) =
               offsetof(FrameScalars, radiance_scale_a) == 32 && offsetof(FrameScalars, point_count) == 40 &&
               offsetof(FrameScalars, plane_stride) == 48);
 static_assert(PHONGCL_UNROLL_LIGHT_LIMIT <= PHONGCL_LIGHT_BLOCK, "an unrolled light loop is one compensated block");
-static_assert(sizeof(PointLight) == 32 && offsetof(PointLight, color) == 16);
+static_assert(sizeof(PointLight) == 48 && offsetof(PointLight, color) == 16 && offsetof(PointLight, position_rest) == 32);
 static_assert(sizeof(DirectionalLight) == 32 && offsetof(DirectionalLight, color) == 16);
 static_assert(sizeof(MaterialRecord) == 64);
 static_assert(offsetof(FrameScalars, area_count) == 52);

@@ -23,6 +23,9 @@ void store3(layout_float* out, const glm::dvec3& value) {
   out[3] = 0.0f;
 }
 
+// What rounding `value` to float loses.
+float rest_of(double value) { return static_cast<float>(value - static_cast<double>(static_cast<float>(value))); }
+
 double largest_component(const glm::dvec3& c) { return std::max({c.x, c.y, c.z}); }
 
 const char* plane_name(const Recipe& recipe, int plane) {
@@ -68,7 +71,9 @@ UniformData pack_uniforms(const Scene& scene, const Recipe& recipe) {
   for (const Light& light : scene.lights) {
     if (light.type != LightType::directional) {
       PointLight packed{};
-      store3(packed.position, light.position - eye);
+      const glm::dvec3 position = light.position - eye;
+      store3(packed.position, position);
+      for (int axis = 0; axis < 3; ++axis) packed.position_rest[axis] = rest_of(position[axis]);
       store3(packed.color, light.color * scale);
       data.point_lights.push_back(packed);
       data.point_shapes.push_back(light_shape(light));
@@ -181,12 +186,17 @@ PixelCounts pack_range(const GBuffer& gbuffer, const glm::dvec3& eye, const Reci
     material_index[t] =
         pixel_class == PixelClass::shaded ? static_cast<std::int32_t>(gbuffer.material[first + t]) : PHONGCL_BACKGROUND;
   }
+  // With position rests they follow every other plane.
+  const int rest_plane = recipe.plane_count() - 3;
   for (int axis = 0; axis < 3; ++axis) {
     float* position = planes + (PLANE_PX + axis) * stride;
+    float* rest = planes + (rest_plane + axis) * stride;
     const float* source_position = gbuffer.position[axis].data() + first;
     const double eye_axis = eye[axis];
     for (std::size_t t = begin; t < end; ++t) {
-      position[t] = static_cast<float>(static_cast<double>(source_position[t]) - eye_axis);
+      const double relative = static_cast<double>(source_position[t]) - eye_axis;
+      position[t] = static_cast<float>(relative);
+      if (recipe.position_rest) rest[t] = rest_of(relative);
     }
   }
   float* next_plane = planes + PLANE_NX * stride;
@@ -205,6 +215,8 @@ PixelCounts pack_range(const GBuffer& gbuffer, const glm::dvec3& eye, const Reci
     for (std::size_t t = begin; t < end; ++t) {
       if (material_index[t] != PHONGCL_BACKGROUND) continue;
       for (int plane = PLANE_PX; plane < PLANE_GEOMETRY_COUNT; ++plane) planes[plane * stride + t] = 0.0f;
+      if (recipe.position_rest)
+        for (int axis = 0; axis < 3; ++axis) planes[(rest_plane + axis) * stride + t] = 0.0f;
     }
   }
   return counts;

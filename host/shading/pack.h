@@ -41,7 +41,8 @@ LightBounds light_bounds(const Light& light, const glm::dvec3& eye);
 // kernels/layout.h, then the recipe's per-pixel material planes) and the material index of each
 // pixel (PHONGCL_BACKGROUND when not shaded); slots [count, padded_count) become background
 // padding, so the kernel's SIMD lanes never read stale memory. Positions are stored relative to
-// the eye, subtracted in double so that scenes far from the origin keep their precision.
+// the eye, subtracted in double so that scenes far from the origin keep their precision; with
+// recipe.position_rest also what their float rounding lost, in three planes after the others.
 PixelCounts pack_tile(const GBuffer& gbuffer, const glm::dvec3& eye, const Recipe& recipe, std::size_t first,
                       std::size_t count, std::size_t padded_count, std::size_t stride, float* planes,
                       std::int32_t* material_index);

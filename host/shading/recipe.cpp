@@ -297,6 +297,20 @@ void decide_area_lights(Recipe& recipe, const Scene& scene) {
            recipe.area_lights > 0 ? kinds + " area" : "");
 }
 
+// Needs recipe.precision. Positions relative to the eye rounded to float lose a light near a
+// surface far away (1e-4 from a surface 1e4 from the eye is 1e-8 of the position): with point or
+// spot lights, positions and lights come as float pairs, value + rest. Decided by the scene in the
+// general kernel too (it sets the planes packed). Half storage keeps 11 bits of a position, far
+// fewer than a rest could restore, and is there to move fewer bytes.
+void decide_position_rest(Recipe& recipe) {
+  const bool half = recipe.precision == Precision::half_storage;
+  recipe.position_rest = add_flag(recipe, "POSITION_REST", recipe.point_lights > 0 && !half,
+                                  recipe.point_lights == 0 ? "position rests: none (no point or spot lights)"
+                                  : half ? "position rests: none (half storage)"
+                                         : "position rests: positions and point lights as float pairs (L - P to float "
+                                           "precision near lights)");
+}
+
 void decide_memory(Recipe& recipe, const Scene& scene, const DeviceInfo& device) {
   const bool shapes = recipe.value("FALLOFF") != "0" || recipe.value("FALLOFF_MIXED") == "1" ||
                       recipe.value("RANGE_WINDOW") == "1" || recipe.value("SPOT_LIGHTS") == "1";
@@ -323,7 +337,7 @@ Culling parse_culling(const std::string& name) {
 }
 
 int Recipe::plane_count() const {
-  return PLANE_GEOMETRY_COUNT + 3 * (per_pixel_ka + per_pixel_kd + per_pixel_ks) + per_pixel_shininess;
+  return PLANE_GEOMETRY_COUNT + 3 * (per_pixel_ka + per_pixel_kd + per_pixel_ks) + per_pixel_shininess + 3 * position_rest;
 }
 
 const std::string& Recipe::value(const std::string& name) const {
@@ -371,6 +385,7 @@ Recipe make_recipe(const Scene& scene, const GBuffer& gbuffer, const DeviceInfo&
   decide_area_lights(recipe, scene);
   decide_terms(recipe, scene, gbuffer);
   decide_materials(recipe, scene, gbuffer);
+  decide_position_rest(recipe);
   decide_memory(recipe, scene, device);
   decide_shadows(recipe, scene, options);
   recipe.write_terms = add_flag(recipe, "WRITE_TERMS", options.write_terms,

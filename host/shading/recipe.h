@@ -44,6 +44,7 @@ struct Recipe {
   bool tiled = false;    // tiled light culling (host/shading/tile_culling.h)
   int tile_size = 16;
   bool per_pixel_ka = false, per_pixel_kd = false, per_pixel_ks = false, per_pixel_shininess = false;
+  bool position_rest = false;  // positions and point lights as float pairs: three rest planes after the others
   bool write_terms = false;
   int lanes = 1;         // pixels per work-item (explicit SIMD on CPU devices)
   ShadowMode shadows = ShadowMode::off;  // geometry, screen or off (no light casts shadows, or off as asked)

@@ -12,7 +12,7 @@ std::vector<StabilityCase> stability_catalogue();
 
 // The groups, each in its own file.
 std::vector<StabilityCase> stiff_exponent_cases();   // catalogue_stiff.cpp
-std::vector<StabilityCase> geometry_cases();         // catalogue_geometry.cpp: grazing, degenerate, far
+std::vector<StabilityCase> geometry_cases();         // catalogue_geometry.cpp: grazing, degenerate, far, near lights
 std::vector<StabilityCase> range_cases();            // catalogue_range.cpp: HDR, half, many lights, non-finite
 std::vector<StabilityCase> light_shape_cases();      // catalogue_lights.cpp: falloff, range window, spots, linking
 std::vector<StabilityCase> area_light_cases();       // catalogue_area.cpp: rects and disks at their limits

@@ -1,4 +1,5 @@
-// Grazing and back-facing light, degenerate vectors, and scenes far from the origin.
+// Grazing and back-facing light, degenerate vectors, scenes far from the origin, lights near surfaces.
+#include <cmath>
 #include <limits>
 
 #include "stability/accuracy_bars.h"
@@ -130,11 +131,51 @@ std::vector<StabilityCase> far_cases() {
   return cases;
 }
 
+// One point light (quadratic falloff, range 1) a distance D from an eye that is not at the origin,
+// and 16 pixels 1e-4 to 1e-1 from it, facing it at 4 angles. L - P is then as small as 1e-8 of
+// P - eye, below float's rounding unit: positions and the light relative to the eye, each rounded
+// to float, lose it entirely, and the kernel takes both as float pairs (value + rest) instead.
+StabilityCase near_light(double distance) {
+  StabilityCase c;
+  c.name = "light 1e-4 to 0.1 from surfaces " + number(distance) + " away";
+  c.group = "lights near surfaces";
+  c.what = "point light at " + number(distance) + " from the eye, pixels 1e-4, 1e-3, 1e-2, 0.1 from it: "
+           "L - P from positions and the light as float pairs relative to the eye";
+  c.scene = starting_scene(0.0, 0.5, 0.5, 8.0);
+  c.scene.camera.eye = {0.1, -0.2, 0.3};  // not floats: the positions relative to it have rests
+  Light light{LightType::point, c.scene.camera.eye + distance * glm::normalize(glm::dvec3(0.3, -0.2, -1.0)), {},
+              {1.0, 1.0, 1.0}};
+  light.falloff = Falloff::quadratic;
+  light.range = 1.0;
+  c.scene.lights.push_back(light);
+  c.gbuffer = blank_gbuffer(4, 4, c.name);
+  const glm::dvec3 toward_light[4] = {{0.0, 0.0, 1.0}, {0.6, 0.0, 0.8}, {-0.3, 0.5, 0.6}, {0.2, -0.7, 0.3}};
+  for (int row = 0; row < 4; ++row) {
+    for (int k = 0; k < 4; ++k) {
+      const glm::dvec3 l = glm::normalize(toward_light[k]);
+      const glm::dvec3 position = light.position - std::pow(10.0, row - 4) * l;
+      const glm::dvec3 normal = glm::normalize(2.0 * l + glm::normalize(c.scene.camera.eye - position));
+      set_surface(c.gbuffer, static_cast<std::size_t>(row * 4 + k), glm::vec3(position), glm::vec3(normal));
+    }
+  }
+  c = complete(std::move(c));
+  const double amplification = highlight_amplification(8.0);
+  c.expect = {double_expectation(amplification), precise_expectation(amplification), fast_expectation(amplification),
+              Expectation::finite_only("half storage keeps 11 bits of a position relative to the eye: no rests")};
+  return c;
+}
+
+std::vector<StabilityCase> near_light_cases() {
+  std::vector<StabilityCase> cases;
+  for (double distance : {1.0, 1e2, 1e4}) cases.push_back(near_light(distance));
+  return cases;
+}
+
 }  // namespace
 
 std::vector<StabilityCase> geometry_cases() {
   std::vector<StabilityCase> cases = grazing_cases();
-  for (auto* group : {&degenerate_cases, &far_cases}) {
+  for (auto* group : {&degenerate_cases, &far_cases, &near_light_cases}) {
     for (StabilityCase& c : group()) cases.push_back(std::move(c));
   }
   return cases;
