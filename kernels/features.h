@@ -24,6 +24,7 @@
  *   WRITE_TERMS                            also write ambient, diffuse, specular apart (AOVs)
  *   LIGHT_GROUPS=g                         with WRITE_TERMS: g light groups, each one's diffuse + specular
  *                                          also written apart after the terms; 0: no groups
+ *   AREA_LIGHTS                            some light is a rect or disk emitter (area_light.h)
  *   SHADOWS, SCREEN_SHADOWS                some light casts shadows: traced against the scene's geometry,
  *                                          or marched across the frame's depth plane (shadow.h)
  */
@@ -37,7 +38,7 @@
     !defined(PER_PIXEL_Q) || !defined(FALLOFF) || !defined(FALLOFF_MIXED) || !defined(RANGE_WINDOW) ||            \
     !defined(SPOT_LIGHTS) || !defined(SPOT_COSINE_POWER) || !defined(LIGHT_LINKING) || !defined(TILED_CULLING) ||   \
     !defined(WRITE_TERMS) || !defined(SHADOWS) || !defined(SCREEN_SHADOWS) || !defined(POSITION_REST) ||          \
-    !defined(LIGHT_GROUPS) || !defined(SPECULAR_MODELS)
+    !defined(LIGHT_GROUPS) || !defined(SPECULAR_MODELS) || !defined(AREA_LIGHTS)
 #error "phong.cl is built with every flag of features.h defined (host/shading/recipe.cpp writes them)"
 #endif
 

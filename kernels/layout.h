@@ -28,7 +28,8 @@ typedef struct {
   layout_float radiance_scale_a, radiance_scale_b; /* two power-of-two factors, each a normal float */
   layout_int point_count, directional_count;      /* entries in the light tables */
   layout_uint plane_stride;                       /* values per plane in every buffer, a multiple of PHONGCL_LANES */
-  layout_uint padding[3];
+  layout_int area_count;                          /* entries in the area light table */
+  layout_uint padding[2];
 } FrameScalars;
 
 /* A point light. position is relative to the eye: the host rebases in double so that a scene far
@@ -94,6 +95,23 @@ typedef struct {
   layout_float to_light[4]; /* xyz, w unused */
   layout_float color[4];    /* rgb, a unused */
 } DirectionalLight;
+
+/* An area light (kernels/area_light.h): a one-sided Lambertian rect or disk. center is relative to
+ * the eye (rebased in double, like a point light's position). A rect spans center +- axis_u +-
+ * axis_v, with axis_u x axis_v along normal; a disk has radius |axis_u| = |axis_v| in their plane.
+ * color (radiance, 1/pi folded in) is scaled by 2^-radiance_exponent. */
+enum { AREA_RECT = 0, AREA_DISK = 1 };
+typedef struct {
+  layout_float center[4]; /* xyz, w unused */
+  layout_float normal[4]; /* unit normal of the emitting side; w unused */
+  layout_float axis_u[4]; /* rect: half the width; disk: the radius along u; w unused */
+  layout_float axis_v[4]; /* rect: half the height; disk: the radius along v; w unused */
+  layout_float color[4];  /* rgb, a unused */
+  layout_int shape;       /* AREA_RECT or AREA_DISK */
+  layout_float inverse_range; /* 1 / R, 0 without a range */
+  layout_float area;      /* of the emitter */
+  layout_float padding;
+} AreaLightRecord;
 
 /* One entry of the scene's material table. */
 typedef struct {

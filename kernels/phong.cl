@@ -5,6 +5,8 @@
  * is that formula. What one light adds is add_point_light() or add_directional_light(),
  * its F_i (falloff, range, cone, linking) light_shape.h's, the specular lobe specular.h's; the tuned
  * arithmetic (robust normalisation, the power, compensated sums, streaming stores) is phong_math.h's.
+ * With AREA_LIGHTS rects and disks add theirs too (area_light.h: the diffuse term exact, the
+ * specular one by quadrature), looped over untiled.
  * With SHADOWS a light that casts shadows is multiplied by its visibility (shadow.h: a ray traced
  * against the scene's geometry, or with SCREEN_SHADOWS marched across the frame's depth plane).
  * With LIGHT_GROUPS the lights are summed group by group, and each group's terms also written apart.
@@ -12,6 +14,7 @@
  * Every buffer is planar with frame.plane_stride values per plane, a multiple of PHONGCL_LANES (the
  * host pads each tile with background pixels).
  */
+#include "area_light.h"
 #include "features.h"
 #include "layout.h"
 #include "light_shape.h"
@@ -51,6 +54,8 @@ typedef struct {
   UNIFORM_SPACE const LinkWord* directional_links;   /* LIGHT_LINKING words per directional light */
   __global const uint* point_list;                   /* TILED_CULLING: the work-item's tile's lights */
   int point_count, directional_count;                /* lights to loop over (of point_list when culled) */
+  __global const AreaLightRecord* area;              /* AREA_LIGHTS: rects and disks */
+  int area_count;
   __global const uint* point_casters;                /* SHADOWS: 1 where point light i casts shadows */
   __global const uint* directional_casters;          /* SHADOWS: the same per directional light */
   const ShadowInputs* shadows;                       /* SHADOWS: what the shadow rays test (shadow.h) */
@@ -161,6 +166,24 @@ static inline void add_directional_light(LightSums* sums, const Surface* surface
   add_lobes(sums, surface->n, surface->v, surface->shininess, surface->specular_model, l, 1, light->color, weight);
 }
 
+/* What an area light adds: Li E and Li S (area_light.h), with r = 2(n.v)n - v. */
+static inline void add_area_light(LightSums* sums, const Surface* surface, const Lights* lights, int k) {
+  __global const AreaLightRecord* light = &lights->area[k];
+  const vec3 n = surface->n, v = surface->v;
+  const realv two_n_dot_v = 2 * dot3(n, v);
+  const vec3 r = make_vec3(fma(two_n_dot_v, n.x, -v.x), fma(two_n_dot_v, n.y, -v.y), fma(two_n_dot_v, n.z, -v.z));
+  realv irradiance, highlight;
+  area_light_terms(light, surface->p, n, r, surface->shininess, SPECULAR, &irradiance, &highlight);
+  sums->diffuse.x += light->color[0] * irradiance;
+  sums->diffuse.y += light->color[1] * irradiance;
+  sums->diffuse.z += light->color[2] * irradiance;
+  if (SPECULAR) {
+    sums->specular.x += light->color[0] * highlight;
+    sums->specular.y += light->color[1] * highlight;
+    sums->specular.z += light->color[2] * highlight;
+  }
+}
+
 void add_block(LightSums* sums, LightSums* compensation, const LightSums* block) {
   kahan_add(&sums->diffuse.x, &compensation->diffuse.x, block->diffuse.x, WEIGHT_CAN_OVERFLOW);
   kahan_add(&sums->diffuse.y, &compensation->diffuse.y, block->diffuse.y, WEIGHT_CAN_OVERFLOW);
@@ -195,6 +218,13 @@ static inline void sum_lights(LightSums* out, const Surface* surface, const Ligh
       LightSums block = no_light;
       for (int k = first; k < min(first + PHONGCL_LIGHT_BLOCK, lights->directional_count); ++k)
         if (!LIGHT_GROUPS || lights->directional_groups[k] == group) add_directional_light(&block, surface, lights, k);
+      add_block(&sums, &compensation, &block);
+    }
+  if (AREA_LIGHTS && (!LIGHT_GROUPS || group == LIGHT_GROUPS)) /* area lights take no group */
+    for (int first = 0; first < lights->area_count; first += PHONGCL_LIGHT_BLOCK) {
+      LightSums block = no_light;
+      for (int k = first; k < min(first + PHONGCL_LIGHT_BLOCK, lights->area_count); ++k)
+        add_area_light(&block, surface, lights, k);
       add_block(&sums, &compensation, &block);
     }
   *out = sums;
@@ -337,7 +367,9 @@ __kernel void phong_shade(
     __global const float* restrict shadow_depth, const ShadowFrame shadow_frame,
     /* light groups, read only with LIGHT_GROUPS: each light's group (point lights', then directional
      * lights'), LIGHT_GROUPS for none; their planes follow the terms in out_terms */
-    __global const uint* restrict light_groups) {
+    __global const uint* restrict light_groups,
+    /* area lights (area_light.h), read only with AREA_LIGHTS */
+    __global const AreaLightRecord* restrict area_lights) {
   const size_t group = get_global_id(0);
   const PixelOutputs outputs = {out_rgba, out_terms, frame.plane_stride, group};
   const float radiance_scale_a = frame.radiance_scale_a, radiance_scale_b = frame.radiance_scale_b;
@@ -352,6 +384,8 @@ __kernel void phong_shade(
       .point_list = tile_lights + (TILED_CULLING ? tile_offsets[tile] : 0),
       .point_count = TILED_CULLING ? (int)tile_counts[tile] : POINT_COUNT > 0 ? POINT_COUNT : frame.point_count,
       .directional_count = DIRECTIONAL_COUNT > 0 ? DIRECTIONAL_COUNT : frame.directional_count,
+      .area = area_lights,
+      .area_count = frame.area_count,
       .point_casters = shadow_casters,
       .directional_casters = shadow_casters + frame.point_count,
       .shadows = &shadows,

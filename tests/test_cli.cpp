@@ -144,7 +144,7 @@ TEST_F(Cli, BadScenesFailCleanly) {
   const Case cases[] = {
       {"syntax", R"({"camera": {"eye": [0, 1, 6]},)", "syntax.json"},
       {"unknown_key", R"({"camera": {"eye": [0, 1, 6]}, "colour": 1})", "colour"},
-      {"light_type", R"({"camera": {"eye": [0, 1, 6]}, "lights": [{"type": "area", "position": [0, 0, 0]}]})", "area"},
+      {"light_type", R"({"camera": {"eye": [0, 1, 6]}, "lights": [{"type": "mesh", "position": [0, 0, 0]}]})", "mesh"},
       {"shininess", "{\"camera\": {\"eye\": [0, 1, 6]}, " + base_lights +
                         R"(, "materials": [{"ka": [0,0,0], "kd": [1,1,1], "ks": [1,1,1], "shininess": -3}]})",
        "shininess"},

@@ -11,6 +11,7 @@
 #include "common/error.h"
 #include "scene/camera_space.h"
 #include "scene/scene.h"
+#include "scene/scene_check.h"
 
 namespace phongcl {
 namespace {
@@ -177,6 +178,33 @@ TEST(Scene, ReadsTheLightShapes) {
   EXPECT_FALSE(scene.lights.at(3).reaches(0)) << "'materials': [] lights none";
 }
 
+TEST(Scene, AreaLightsGoToTheirOwnTable) {
+  const Scene scene = parse_scene(scene_json(R"(
+      "lights": [{"type": "point", "position": [0, 0, 0]},
+                 {"type": "area", "shape": "rect", "position": [1, 2, 3], "direction": [0, -2, 0], "up": [0, 0, 1],
+                  "size": [2, 0.5], "color": [3, 2, 1], "range": 9},
+                 {"type": "area", "shape": "disk", "position": [0, 4, 0], "direction": [0, 0, -1], "size": 0.25}])"),
+                                  kSource);
+  ASSERT_EQ(scene.lights.size(), 1u) << "area lights are not point, spot or directional lights";
+  ASSERT_EQ(scene.area_lights.size(), 2u);
+  const AreaLight& rect = scene.area_lights[0];
+  EXPECT_EQ(rect.shape, AreaShape::rect);
+  EXPECT_EQ(rect.position, glm::dvec3(1, 2, 3));
+  EXPECT_EQ(rect.direction, glm::dvec3(0, -2, 0));
+  EXPECT_EQ(rect.up, glm::dvec3(0, 0, 1));
+  EXPECT_EQ(rect.size, glm::dvec2(2, 0.5));
+  EXPECT_EQ(rect.color, glm::dvec3(3, 2, 1));
+  EXPECT_EQ(rect.range, 9.0);
+  const AreaLight& disk = scene.area_lights[1];
+  EXPECT_EQ(disk.shape, AreaShape::disk);
+  EXPECT_EQ(disk.size, glm::dvec2(0.25, 0.25));
+  EXPECT_EQ(disk.color, glm::dvec3(1.0));
+  EXPECT_FALSE(disk.has_range());
+  EXPECT_THROW(parse_lights(R"([{"type": "area", "shape": "disk", "position": [0, 0, 0], "direction": [0, 0, -1], "size": 1}])",
+                            kSource),
+               InputError);
+}
+
 TEST(Scene, HdrValuesUpToFloatRangeParse) {
   const Scene scene = parse_scene(scene_json(R"(
       "ambient": [3e38, 0, 0],
@@ -230,8 +258,28 @@ TEST(Scene, EachProblemIsAOneLineInputErrorNamingFileAndPlace) {
       {"number beyond float range", scene_json(R"("ambient": [1e39, 0, 0])"),
        {"ambient[0] must be a finite single-precision number"}},
       {"number beyond double range", scene_json(R"("ambient": [1e999, 0, 0])"), {"invalid JSON", "1e999"}},
-      {"unknown light type", scene_json(R"("lights": [{"type": "area", "position": [0, 0, 0]}])"),
-       {"unknown light type 'area' in lights[0] (expected point, spot or directional)"}},
+      {"unknown light type", scene_json(R"("lights": [{"type": "mesh", "position": [0, 0, 0]}])"),
+       {"unknown light type 'mesh' in lights[0] (expected point, spot, directional or area)"}},
+      {"area light without a shape", scene_json(R"("lights": [{"type": "area", "position": [0, 0, 0]}])"),
+       {"missing key 'shape' in lights[0]"}},
+      {"unknown area shape", scene_json(R"("lights": [{"type": "area", "shape": "ellipse", "position": [0, 0, 0], "direction": [0, 0, -1], "size": 1}])"),
+       {"lights[0].shape 'ellipse' is not an area light shape (expected rect or disk)"}},
+      {"zero area size", scene_json(R"("lights": [{"type": "area", "shape": "rect", "position": [0, 0, 0], "direction": [0, 0, -1], "size": [1, 0]}])"),
+       {"lights[0].size[1] must be finite and > 0 (got 0)"}},
+      {"negative disk size", scene_json(R"("lights": [{"type": "area", "shape": "disk", "position": [0, 0, 0], "direction": [0, 0, -1], "size": -2}])"),
+       {"lights[0].size must be finite and > 0 (got -2)"}},
+      {"rect size not a pair", scene_json(R"("lights": [{"type": "area", "shape": "rect", "position": [0, 0, 0], "direction": [0, 0, -1], "size": [1, 2, 3]}])"),
+       {"lights[0].size must be [width, height] for a rect"}},
+      {"zero area direction", scene_json(R"("lights": [{"type": "area", "shape": "disk", "position": [0, 0, 0], "direction": [0, 0, 0], "size": 1}])"),
+       {"lights[0].direction must not be zero"}},
+      {"up parallel to direction", scene_json(R"("lights": [{"type": "area", "shape": "rect", "position": [0, 0, 0], "direction": [0, 0, -1], "up": [0, 0, 2], "size": [1, 1]}])"),
+       {"lights[0].up must not be zero or parallel to direction"}},
+      {"direction along the default up", scene_json(R"("lights": [{"type": "area", "shape": "rect", "position": [0, 0, 0], "direction": [0, -1, 0], "size": [1, 1]}])"),
+       {"lights[0].direction is parallel to the default up (0, 1, 0): give 'up'"}},
+      {"up on a disk", scene_json(R"("lights": [{"type": "area", "shape": "disk", "position": [0, 0, 0], "direction": [0, 0, -1], "up": [0, 1, 0], "size": 1}])"),
+       {"lights[0].up is used only by rect area lights"}},
+      {"falloff on an area light", scene_json(R"("lights": [{"type": "area", "shape": "disk", "position": [0, 0, 0], "direction": [0, 0, -1], "size": 1, "falloff": "quadratic"}])"),
+       {"unknown key 'falloff' in lights[0] (expected: type, shape, position, direction, up, size, color, range)"}},
       {"unknown specular model", scene_json("").replace(scene_json("").find("{\"kd\""), 1, "{\"specular_model\": \"blinn\", "),
        {"materials[0].specular_model 'blinn' is not a specular model (expected phong, phong-normalized, blinn-phong or "
         "blinn-phong-normalized)"}},
@@ -436,6 +484,15 @@ TEST(CameraSpace, TheCameraGoesToTheOriginLookingDownMinusZ) {
     else
       EXPECT_NEAR(glm::length(moved.lights[i].direction), glm::length(scene.lights[i].direction), 1e-12);
   }
+  Scene with_area = scene;
+  AreaLight area;
+  area.position = scene.camera.eye + glm::dvec3(0.0, 2.0, 0.0);
+  with_area.area_lights = {area};
+  const Scene moved_area = to_camera_space(with_area);
+  ASSERT_EQ(moved_area.area_lights.size(), 1u);
+  EXPECT_NEAR(glm::length(moved_area.area_lights[0].position), 2.0, 1e-12);
+  EXPECT_NEAR(glm::dot(moved_area.area_lights[0].direction, moved_area.area_lights[0].up),
+              glm::dot(area.direction, area.up), 1e-12);
 }
 
 }  // namespace

@@ -276,7 +276,14 @@ TEST(Shading, TermImagesSumToTheCombinedImage) {
 
 TEST(CameraSpace, ShadesLikeWorldSpace) {
   PHONGCL_REQUIRE_DEVICE(shader);
-  const auto [scene, g] = default_scene();
+  auto [scene, g] = default_scene();
+  AreaLight rect;  // its position, direction and up turn with the camera too
+  rect.position = scene.camera.look_at + glm::dvec3(0.5, 3.0, 0.5);
+  rect.direction = {0.1, -1.0, 0.2};
+  rect.up = {0.0, 0.0, 1.0};
+  rect.size = {1.5, 0.7};
+  rect.color = glm::dvec3(0.8);
+  scene.area_lights.push_back(rect);
   const Image world = shader.shade(scene, g, {}).image;
   for (const auto& [what, camera_gbuffer] :
        {std::pair{"moved by world_to_camera", in_camera_space(g, scene.camera)},

@@ -167,6 +167,13 @@ TEST(KernelVariants, EveryVariantBuilds) {
   sphere.kind = Object::Kind::sphere;
   shadowed.objects.push_back(sphere);
   for (const ShadeOptions& options : {narrow, culled}) add(shadowed, scenes[1].second, options);
+  // Area lights, a rect and a disk: one pixel and a vector per work-item, culled, general, in double.
+  Scene lit = scenes[1].first;
+  lit.area_lights = {{AreaShape::rect, {0.3, 1.5, 2.0}, {0, -1, 0}, {0, 0, 1}, {1.0, 0.5}, {1, 1, 1}},
+                     {AreaShape::disk, {-0.4, 1.0, 1.0}, {0.2, -1, 0}, {0, 1, 0}, glm::dvec2(0.7), {1, 0.5, 0.2}, 4.0}};
+  ShadeOptions in_double;
+  in_double.precision = Precision::double_precision;
+  for (const ShadeOptions& options : {narrow, culled, general, ShadeOptions{}, in_double}) add(lit, scenes[1].second, options);
   // Unoptimised too (-cl-opt-disable), built and launched once: an implementation may link a kernel
   // only for its first launch.
   const auto& [scene, gbuffer] = scenes[1];

@@ -107,7 +107,8 @@ void run_shade(const ShadeArguments& args) {
             << with_commas(gbuffer.pixel_count() - result.counts.shaded) << " background\n"
             << "  lights     " << result.point_lights - result.spot_lights << " point + "
             << (result.spot_lights > 0 ? std::to_string(result.spot_lights) + " spot + " : "")
-            << result.directional_lights << " directional\n"
+            << result.directional_lights << " directional"
+            << (result.area_lights > 0 ? " + " + std::to_string(result.area_lights) + " area" : "") << "\n"
             << "  device     " << describe(relighter.device()) << "\n"
             << "  kernel     " << result.kernel_summary << "\n"
             << "  build      " << to_string(result.cache) << ", " << milliseconds(t.build_ms)

@@ -80,6 +80,8 @@ void convert_scene_colors(Scene& scene, const ColorConfig& config) {
   convert(scene.background, "background");
   convert(scene.ambient, "ambient");
   for (std::size_t i = 0; i < scene.lights.size(); ++i) convert(scene.lights[i].color, "lights[" + std::to_string(i) + "].color");
+  for (std::size_t i = 0; i < scene.area_lights.size(); ++i)
+    convert(scene.area_lights[i].color, "area light " + std::to_string(i) + "'s color");
   for (std::size_t i = 0; i < scene.materials.size(); ++i) {
     const std::string name = "materials[" + std::to_string(i) + "].";
     convert(scene.materials[i].ka, name + "ka");

@@ -13,6 +13,11 @@ Scene to_camera_space(const Scene& scene) {
     light.position = glm::dvec3(view * glm::dvec4(light.position, 1.0));
     light.direction = glm::dvec3(view * glm::dvec4(light.direction, 0.0));  // rigid: no inverse transpose needed
   }
+  for (AreaLight& light : moved.area_lights) {
+    light.position = glm::dvec3(view * glm::dvec4(light.position, 1.0));
+    light.direction = glm::dvec3(view * glm::dvec4(light.direction, 0.0));
+    light.up = glm::dvec3(view * glm::dvec4(light.up, 0.0));
+  }
   moved.camera.eye = glm::dvec3(0.0);
   moved.camera.look_at = glm::dvec3(0.0, 0.0, -1.0);
   moved.camera.up = glm::dvec3(0.0, 1.0, 0.0);

@@ -51,6 +51,27 @@ enum class SpecularModel { phong = 0, phong_normalized = 1, blinn_phong = 2, bli
 inline constexpr SpecularModel kSpecularModels[] = {SpecularModel::phong, SpecularModel::phong_normalized,
                                                     SpecularModel::blinn_phong, SpecularModel::blinn_phong_normalized};
 
+// A one-sided Lambertian emitter (docs/shading.md "Area lights"): a rectangle or a disk around
+// `position`, lighting the side its unit `direction` points to. Its colour is a radiance with the
+// diffuse 1/pi folded in, like a point light's Li: a surface facing it sees kd * color * (the
+// emitter's solid angle weighted by n.l). Kept apart from `lights`: nothing that loops over point,
+// spot and directional lights has to know about it.
+enum class AreaShape { rect, disk };
+
+struct AreaLight {
+  AreaShape shape = AreaShape::rect;
+  glm::dvec3 position{0.0};
+  glm::dvec3 direction{0.0, 0.0, -1.0};  // the emitting side's normal; any length but zero
+  glm::dvec3 up{0.0, 1.0, 0.0};          // rect: the side of size[1] runs along up, projected off direction
+  glm::dvec2 size{1.0};                  // rect: width, height; disk: the diameter in x (the reader sets y to it too)
+  glm::dvec3 color{1.0};
+  double range = 0.0;  // > 0: windowed to 0 at this distance from the centre (as a point light's); 0: no range
+
+  bool has_range() const { return range > 0.0; }
+};
+
+const char* to_string(AreaShape shape);  // "rect", "disk"
+
 struct Material {
   std::string name;
   glm::dvec3 ka{0.0}, kd{0.0}, ks{0.0};
@@ -79,6 +100,7 @@ struct Scene {
   glm::dvec3 background{0.0};
   glm::dvec3 ambient{0.0};
   std::vector<Light> lights;
+  std::vector<AreaLight> area_lights;  // the file's lights of type "area", in file order
   std::vector<Material> materials;
   std::vector<Object> objects;
   // "color_space": the OCIO colour space the colours above are in (lights, materials, ambient,

@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "common/error.h"
+#include "scene/area_light_json.h"
 #include "scene/json_reader.h"
 #include "scene/object_json.h"
 #include "scene/scene.h"
@@ -116,7 +117,7 @@ Light read_light(const JsonValue& value, std::size_t material_count) {
       if (object.has(key)) object.at(key).fail("is not used by a directional light (it has no distance)");
   } else {
     throw InputError(value.file(), "unknown light type '" + type + "' in " + value.place() +
-                                       " (expected point, spot or directional)");
+                                       " (expected point, spot, directional or area)");
   }
   if (light.type == LightType::point) {
     if (object.has("direction")) object.at("direction").fail("is not used by a point light (use 'position')");
@@ -165,6 +166,11 @@ Material read_material(const JsonValue& value) {
   return material;
 }
 
+bool is_area_light(const JsonValue& value) {
+  const JsonObject object = value.object();
+  return object.has("type") && object.at("type").string() == "area";
+}
+
 std::filesystem::path read_gbuffer_path(const JsonValue& value, const std::filesystem::path& source) {
   const std::filesystem::path path = value.string();
   if (path.empty()) value.fail("must not be empty");
@@ -190,7 +196,10 @@ Scene read_scene(const nlohmann::json& document, const std::filesystem::path& so
     for (const JsonValue& material : value->elements()) scene.materials.push_back(read_material(material));
   // After materials: lights (linking) and objects refer to them by index.
   if (auto value = top.find("lights"))
-    for (const JsonValue& light : value->elements()) scene.lights.push_back(read_light(light, scene.materials.size()));
+    for (const JsonValue& light : value->elements()) {
+      if (is_area_light(light)) scene.area_lights.push_back(read_area_light(light.object()));
+      else scene.lights.push_back(read_light(light, scene.materials.size()));
+    }
   if (auto value = top.find("objects")) scene.objects = read_objects(*value, scene.materials.size());
   if (auto value = top.find("gbuffer")) scene.gbuffer = read_gbuffer_path(*value, source);
   if (auto value = top.find("color_space")) {
@@ -262,8 +271,10 @@ std::vector<Material> parse_materials(std::string_view json_text, const std::fil
 std::vector<Light> read_lights(const nlohmann::json& document, const std::filesystem::path& source,
                                std::size_t material_count) {
   std::vector<Light> lights;
-  for (const JsonValue& light : JsonValue(document, "lights", source).elements())
+  for (const JsonValue& light : JsonValue(document, "lights", source).elements()) {
+    if (is_area_light(light)) light.fail("is an area light: those come from the scene file only");
     lights.push_back(read_light(light, material_count));
+  }
   return lights;
 }
 

@@ -11,6 +11,7 @@
 
 #include "common/error.h"
 #include "shading/host_threads.h"
+#include "shading/pack_area.h"
 
 namespace phongcl {
 
@@ -60,6 +61,7 @@ UniformData pack_uniforms(const Scene& scene, const Recipe& recipe) {
   UniformData data;
   double brightest = largest_component(scene.ambient);
   for (const Light& light : scene.lights) brightest = std::max(brightest, largest_component(light.color));
+  brightest = std::max(brightest, brightest_area_light(scene));
   // Scale so the brightest colour lands in [0.5, 1); split 2^e in two factors that are both normal floats.
   const int exponent = brightest > 0.0 ? std::ilogb(brightest) + 1 : 0;
   const double scale = std::ldexp(1.0, -exponent);
@@ -117,6 +119,8 @@ UniformData pack_uniforms(const Scene& scene, const Recipe& recipe) {
   }
   data.scalars.point_count = static_cast<layout_int>(data.point_lights.size());
   data.scalars.directional_count = static_cast<layout_int>(data.directional_lights.size());
+  data.area_lights = pack_area_lights(scene, scale);
+  data.scalars.area_count = static_cast<layout_int>(data.area_lights.size());
   return data;
 }
 

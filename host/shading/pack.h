@@ -24,6 +24,7 @@ struct UniformData {
   // With LIGHT_GROUPS: each light's group (point lights, then directional), its index in
   // recipe.light_groups or their count for none.
   std::vector<layout_uint> light_groups;
+  std::vector<AreaLightRecord> area_lights;  // shading/pack_area.h
   // Ambient, background, radiance scales and light counts; the shader sets plane_stride. Light and
   // ambient colours are divided by 2^e (exact), which the kernel undoes at the end.
   FrameScalars scalars{};

@@ -37,6 +37,8 @@ struct PhongArguments {
   // light groups, read only with LIGHT_GROUPS: each light's group (point lights', then directional
   // lights'); their layers follow the terms in out_terms
   cl::Buffer light_groups;
+  // area lights (kernels/area_light.h), read only with AREA_LIGHTS
+  cl::Buffer area_lights;
 };
 
 // visit(name, field) for every argument, in phong_shade's parameter order.
@@ -63,6 +65,7 @@ void for_each_argument(Arguments& a, Visit&& visit) {
   visit("shadow_depth", a.shadow_depth);
   visit("shadow_frame", a.shadow_frame);
   visit("light_groups", a.light_groups);
+  visit("area_lights", a.area_lights);
 }
 
 // The kernel's parameter names as the host sets them, in order.

@@ -74,6 +74,7 @@ DeviceUniforms upload_uniforms(const cl::Context& context, const UniformData& un
                         .point_shapes = uniform_buffer(context, uniforms.point_shapes),
                         .links = uniform_buffer(context, uniforms.links),
                         .point_bounds = uniform_buffer(context, uniforms.point_bounds),
+                        .area_lights = uniform_buffer(context, uniforms.area_lights),
                         .no_tiles = uniform_buffer(context, std::vector<cl_uint>{}),
                         .light_groups = uniform_buffer(context, uniforms.light_groups),
                         .scalars = uniforms.scalars};

@@ -43,6 +43,7 @@ PackedTile pack_into_mapped(cl::CommandQueue& queue, const PackTarget& target, c
 struct DeviceUniforms {
   cl::Buffer materials, point_lights, directional_lights;
   cl::Buffer point_shapes, links, point_bounds;  // light shapes and linking (kernels/light_shape.h), culling spheres
+  cl::Buffer area_lights;                       // rects and disks (kernels/area_light.h)
   cl::Buffer no_tiles;                          // stands in for the tile lists when not culling
   cl::Buffer light_groups;                      // each light's group (LIGHT_GROUPS)
   FrameScalars scalars{};

@@ -48,6 +48,7 @@ void describe_recipe(const Recipe& recipe, ShadeReport& report) {
   report.point_lights = recipe.point_lights;
   report.spot_lights = recipe.spot_lights;
   report.directional_lights = recipe.directional_lights;
+  report.area_lights = recipe.area_lights;
   report.culled = recipe.tiled;
 }
 
@@ -186,7 +187,8 @@ cl::Event PhongShader::cull_and_launch(cl::Kernel& kernel, FrameSetup& frame, co
                                  .shadow_planes = shadows ? shadows->device.planes : uniforms.no_tiles,
                                  .shadow_depth = shadows ? shadows->device.depth : uniforms.no_tiles,
                                  .shadow_frame = shadows ? shadows->device.frame : ShadowFrame{},
-                                 .light_groups = uniforms.light_groups};
+                                 .light_groups = uniforms.light_groups,
+                                 .area_lights = uniforms.area_lights};
   return launch_phong(kernel, compute_.queue, arguments, padded, recipe.lanes);
 }
 

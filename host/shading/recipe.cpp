@@ -232,7 +232,7 @@ void decide_terms(Recipe& recipe, const Scene& scene, const GBuffer& gbuffer) {
     return;
   }
   const auto& materials = scene.materials;
-  const bool any_lights = !scene.lights.empty();
+  const bool any_lights = !scene.lights.empty() || !scene.area_lights.empty();
   const bool table_ks_zero = std::all_of(materials.begin(), materials.end(), [](const Material& m) { return is_zero(m.ks); });
   const bool ks_zero = gbuffer.has_per_pixel_ks() ? all_zero(gbuffer.ks) : table_ks_zero;
   const bool specular = any_lights && !ks_zero;
@@ -330,6 +330,22 @@ void decide_groups(Recipe& recipe, const Scene& scene, const ShadeOptions& optio
             count > 0 ? plural(count, "light group") : "");
 }
 
+// Area lights live in __global memory and are looped over untiled: a few rects and disks, each
+// costing far more than its load.
+void decide_area_lights(Recipe& recipe, const Scene& scene) {
+  const auto disks = std::count_if(scene.area_lights.begin(), scene.area_lights.end(),
+                                   [](const AreaLight& light) { return light.shape == AreaShape::disk; });
+  recipe.area_lights = static_cast<int>(scene.area_lights.size());
+  const int rects = recipe.area_lights - static_cast<int>(disks);
+  std::string kinds;
+  if (rects > 0) kinds = plural(rects, "rect");
+  if (disks > 0) kinds += (kinds.empty() ? "" : " + ") + plural(static_cast<int>(disks), "disk");
+  add_flag(recipe, "AREA_LIGHTS", recipe.area_lights > 0,
+           recipe.area_lights > 0 ? "area lights: " + kinds + ", untiled (diffuse exact, specular by quadrature)"
+                                  : "area lights: compiled out (none in the scene)",
+           recipe.area_lights > 0 ? kinds + " area" : "");
+}
+
 // Needs recipe.precision. Positions relative to the eye rounded to float lose a light near a
 // surface far away (1e-4 from a surface 1e4 from the eye is 1e-8 of the position): with point or
 // spot lights, positions and lights come as float pairs, value + rest. Decided by the scene in the
@@ -415,6 +431,7 @@ Recipe make_recipe(const Scene& scene, const GBuffer& gbuffer, const DeviceInfo&
   decide_culling(recipe, scene, options);
   decide_lights(recipe);
   decide_light_shapes(recipe, scene);
+  decide_area_lights(recipe, scene);
   decide_terms(recipe, scene, gbuffer);
   decide_materials(recipe, scene, gbuffer);
   decide_position_rest(recipe);

@@ -10,6 +10,7 @@
 #include "cl/compute_context.h"
 #include "cl/program_cache.h"
 #include "gbuffer/material_check.h"
+#include "scene/area_light_json.h"
 #include "scene/scene_check.h"
 #include "shading/phong_shader.h"
 #include "shading/recipe.h"
@@ -100,6 +101,7 @@ void Relighter::set_frame(const Scene& scene, GBuffer&& gbuffer) {
                                 "': convert them to the working space first (phongcl::convert_scene_colors)");
   check_material_table(scene.materials);
   check_lights(scene.lights, scene.materials.size());
+  check_area_lights(scene.area_lights);
   const std::lock_guard lock(state_->mutex);
   phongcl::check_materials(gbuffer, scene.materials.size());
   Recipe recipe = state_->recipe_for(scene, gbuffer);

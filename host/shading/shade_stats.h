@@ -64,6 +64,7 @@ struct ShadeReport {
   std::vector<std::string> recipe_reasons;  // one line per decision and why (`phongcl shade --explain`)
   std::string build_options;
   int point_lights = 0, spot_lights = 0, directional_lights = 0;  // point_lights counts the spots too
+  int area_lights = 0;                                            // rects and disks
   // How shadows were made, one line ("geometry: 2 lights, a BVH of ..."); empty without shadows.
   std::string shadows;
   // The on-disk program cache: its directory (empty: none writable) and why it could not be used.

@@ -2,6 +2,7 @@
 #include <cmath>
 
 #include "reference/reference.h"
+#include "reference/reference_area.h"
 
 namespace phongcl {
 
@@ -102,6 +103,15 @@ ShadingTerms reference_shade_point(const Scene& scene, const SurfacePoint& point
     diffuse += product(light.color, glm::dvec3(ndl * factor));
     const double highlight = reference_specular_lobe(point.specular_model, n, v, l, point.shininess);
     if (highlight > 0.0) specular += product(light.color, glm::dvec3(highlight * factor));
+  }
+  // Area lights: E and S by quadrature over the emitter (reference_area.h), r the eye's mirror direction.
+  const glm::dvec3 r = 2.0 * glm::dot(n, v) * n - v;
+  for (const AreaLight& light : scene.area_lights) {
+    if (n == glm::dvec3(0.0)) break;
+    const AreaIntegrals integrals = reference_area_integrals(light, point.position, n, r, point.shininess);
+    const double window = area_range_window(light, point.position);
+    diffuse += product(light.color, glm::dvec3(integrals.irradiance * window));
+    specular += product(light.color, glm::dvec3(integrals.highlight * window));
   }
   terms.diffuse = product(point.kd, diffuse);
   terms.specular = product(point.ks, specular);

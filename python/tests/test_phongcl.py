@@ -133,7 +133,9 @@ def test_bad_files_and_values_raise_the_command_lines_messages(tmp_path, scene):
         phongcl.read_gbuffer(str(tmp_path / "no-such.exr"))
     with pytest.raises(phongcl.InputError, match="unknown key 'colour' in the top level"):
         phongcl.Scene.from_dict({"lights": [], "colour": 1})
-    with pytest.raises(phongcl.InputError, match=r"unknown light type 'area' in lights\[0\]"):
+    with pytest.raises(phongcl.InputError, match=r"unknown light type 'mesh' in lights\[0\]"):
+        phongcl.Scene.from_dict({"camera": {"eye": [0, 0, 5]}, "lights": [{"type": "mesh"}]})
+    with pytest.raises(phongcl.InputError, match=r"missing key 'shape' in lights\[0\]"):
         phongcl.Scene.from_dict({"camera": {"eye": [0, 0, 5]}, "lights": [{"type": "area"}]})
 
 

@@ -17,7 +17,14 @@ Conventions (docs/formats.md "Renderers' G-buffers", "From a Blender scene"):
   cos(spot_size/2) and smoothsteps over the spot_blend fraction of 1 - cos(spot_size/2) above it,
   in cosines, as phongcl's penumbra does, so cone_angle_deg is the angle whose cosine ends that
   blend and penumbra_angle_deg the rest of spot_size/2; inside the cone Cycles 3.x also multiplies by
-  that cosine, so Blender 3.x spots get "cosine_power": 1. Area lights are skipped with a note.
+  that cosine, so Blender 3.x spots get "cosine_power": 1.
+- Area lights (square, rectangle, disk; ellipses are skipped with a note): Cycles 3.x gives an area
+  light of P watts and area A the radiance P / (4 A) (kernel/light/light.h: eval_fac = 0.25 *
+  invarea, strength = colour * energy; measured with Blender 3.4.1 under a square, a rectangle and
+  a disk to 5e-4), and a Lambertian surface receives rho / pi times that radiance times the
+  cosine-weighted solid angle; phongcl's area colour folds the 1/pi in, so it is colour * P / (4 pi A).
+  The emitting side is the light's -Z, the rect's height runs along its +Y, and the sizes are
+  scaled by the object's scale as Cycles does. phongcl's area lights cast no shadows.
 - Materials by pass index (Material.pass_index): a Principled BSDF becomes "blinn-phong-normalized"
   (phongcl's ks (q+8)/8 (n.h)^q n.l, a BRDF) with kd = base colour * (1 - metallic),
   ks = mix(0.08 * specular, base colour, metallic) (the BSDF's normal-incidence reflectance) and
@@ -129,6 +136,36 @@ def with_shadow_and_group(light, entry):
     return entry
 
 
+def area_light_json(light):
+    """A square, rectangle or disk as phongcl's area light (the module's docstring says why the colour)."""
+    data = light.data
+    if data.shape == "ELLIPSE":
+        note("area light '%s' is an ellipse, which phongcl has not: skipped" % light.name)
+        return None
+    if getattr(data, "spread", math.pi) < math.pi - 1e-6:
+        note("area light '%s' has a spread below 180 degrees, which phongcl has not: skipped" % light.name)
+        return None
+    matrix = light.matrix_world.to_3x3()
+    u, v, z = matrix.col[0], matrix.col[1], matrix.col[2]
+    width = u.length * data.size
+    height = v.length * (data.size_y if data.shape == "RECTANGLE" else data.size)
+    entry = {"type": "area", "position": rounded(light.matrix_world.translation),
+             "direction": rounded((-z).normalized())}
+    if data.shape == "DISK":
+        if abs(width - height) > 1e-6 * max(width, height):
+            note("area light '%s' is a disk scaled into an ellipse, which phongcl has not: skipped" % light.name)
+            return None
+        entry.update({"shape": "disk", "size": round(width, 9)})
+        area = math.pi / 4.0 * width * width
+    else:
+        entry.update({"shape": "rect", "up": rounded(v.normalized()), "size": [round(width, 9), round(height, 9)]})
+        area = width * height
+    entry["color"] = rounded(Vector(data.color) * data.energy / (4.0 * math.pi * area))
+    if data.cycles.cast_shadow:
+        note("area light '%s' casts shadows in Cycles; phongcl's area lights cast none" % light.name)
+    return entry
+
+
 def lights_json(scene, falloff):
     lights = []
     centre = meshes_centre(scene)
@@ -140,6 +177,11 @@ def lights_json(scene, falloff):
             entry = {"type": "directional", "direction": rounded(direction.normalized()),
                      "color": rounded(colour * data.energy / math.pi)}
             lights.append(with_shadow_and_group(light, entry))
+            continue
+        if data.type == "AREA":
+            entry = area_light_json(light)
+            if entry is not None:
+                lights.append(entry)
             continue
         if data.type not in ("POINT", "SPOT"):
             note("light '%s' is an %s light, which phongcl has not: skipped" % (light.name, data.type.lower()))

@@ -1,0 +1,26 @@
+#pragma once
+// Area lights in the reference: both terms integrated over the emitter by Gauss-Legendre product
+// rules in double, independent of the kernel's Lambert formula (docs/shading.md "Area lights").
+#include <glm/glm.hpp>
+
+#include "scene/scene.h"
+
+namespace phongcl {
+
+struct AreaIntegrals {
+  double irradiance = 0.0;  // E: the emitter's visible part, weighted by max(0, n.w)
+  double highlight = 0.0;   // S: the same part, weighted by max(0, r.w)^q (q = 0: 1)
+};
+
+// E and S at `position` (unit normal n, unit mirror direction r) without the range window, by a
+// rule of `order` Gauss points per dimension and per piece: a rect's (s, t) square is cut where the
+// horizon crosses its sides and at the foot of the point (the nodes graded towards it, where a
+// near point's integrand peaks), a disk's (rho^2, angle) where the horizon crosses its rim; each
+// inner range is clipped to the horizon. 0 behind the emitting side.
+AreaIntegrals reference_area_integrals(const AreaLight& light, const glm::dvec3& position, const glm::dvec3& n,
+                                       const glm::dvec3& r, double shininess, int order = 48);
+
+// The range window of an area light at `position` (1 without a range), as a point light's.
+double area_range_window(const AreaLight& light, const glm::dvec3& position);
+
+}  // namespace phongcl
