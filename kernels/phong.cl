@@ -220,7 +220,8 @@ static inline void sum_lights(LightSums* out, const Surface* surface, const Ligh
         if (!LIGHT_GROUPS || lights->directional_groups[k] == group) add_directional_light(&block, surface, lights, k);
       add_block(&sums, &compensation, &block);
     }
-  if (AREA_LIGHTS && (!LIGHT_GROUPS || group == LIGHT_GROUPS)) /* area lights take no group */
+  const bool ungrouped = !LIGHT_GROUPS || group == LIGHT_GROUPS; /* area lights take no group */
+  if (AREA_LIGHTS && ungrouped)
     for (int first = 0; first < lights->area_count; first += PHONGCL_LIGHT_BLOCK) {
       LightSums block = no_light;
       for (int k = first; k < min(first + PHONGCL_LIGHT_BLOCK, lights->area_count); ++k)
