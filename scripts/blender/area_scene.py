@@ -16,7 +16,6 @@ import os
 import sys
 
 import bpy
-from mathutils import Vector
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import export_scene  # noqa: E402
@@ -44,11 +43,7 @@ def build_area_scene(width, height, samples):
         light.data.energy = energy
         light.data.cycles.cast_shadow = False  # phongcl's area lights cast none
 
-    bpy.ops.object.camera_add(location=(6.5, -6.0, 3.6))
-    camera = bpy.context.object
-    camera.data.lens = 40.0
-    camera.rotation_euler = (Vector((0.0, 0.0, 0.5)) - camera.location).to_track_quat("-Z", "Y").to_euler()
-    scene.camera = camera
+    make_fixtures.add_camera(scene, location=(6.5, -6.0, 3.6), target=(0.0, 0.0, 0.5), lens=40.0)
     bpy.context.view_layer.update()
 
     make_fixtures.cycles(scene, samples)

@@ -66,11 +66,7 @@ def build_light_scene(width, height):
                 layer.lightgroups.add(name=group)
             light.lightgroup = group
 
-    bpy.ops.object.camera_add(location=(6.5, -6.0, 3.6))
-    camera = bpy.context.object
-    camera.data.lens = 40.0
-    camera.rotation_euler = (Vector((0.0, 0.0, 0.5)) - camera.location).to_track_quat("-Z", "Y").to_euler()
-    scene.camera = camera
+    make_fixtures.add_camera(scene, location=(6.5, -6.0, 3.6), target=(0.0, 0.0, 0.5), lens=40.0)
     layer.update()
 
     make_fixtures.cycles(scene, 1)

@@ -80,6 +80,15 @@ def build_scene(width, height):
     return scene
 
 
+def add_camera(scene, location, target, lens):
+    """The scene's camera at `location`, looking at `target`, up along +Z."""
+    bpy.ops.object.camera_add(location=location)
+    camera = bpy.context.object
+    camera.data.lens = lens
+    camera.rotation_euler = (Vector(target) - camera.location).to_track_quat("-Z", "Y").to_euler()
+    scene.camera = camera
+
+
 def cycles(scene, samples):
     """Cycles on the CPU, a fixed number of samples and seed, no denoising: renders that repeat."""
     scene.render.engine = "CYCLES"

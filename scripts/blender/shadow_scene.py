@@ -13,7 +13,6 @@ import os
 import sys
 
 import bpy
-from mathutils import Vector
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import export_scene  # noqa: E402
@@ -64,11 +63,7 @@ def build_shadow_scene(width, height):
         light.data.energy = energy
         light.data.shadow_soft_size = 0.0  # a point: hard shadows
 
-    bpy.ops.object.camera_add(location=(6.5, -6.0, 3.6))
-    camera = bpy.context.object
-    camera.data.lens = 40.0
-    camera.rotation_euler = (Vector((0.0, 0.0, 0.5)) - camera.location).to_track_quat("-Z", "Y").to_euler()
-    scene.camera = camera
+    make_fixtures.add_camera(scene, location=(6.5, -6.0, 3.6), target=(0.0, 0.0, 0.5), lens=40.0)
     bpy.context.view_layer.update()
 
     make_fixtures.cycles(scene, 1)
