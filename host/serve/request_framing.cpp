@@ -86,8 +86,9 @@ RequestFraming frame_request(std::string_view input, const HttpLimits& limits) {
         type = value;
       } else if (equal_ignoring_case(name, "Expect") && equal_ignoring_case(value, "100-continue")) {
         framing.expects_continue = true;
-        framing.expect_line_begin = begin;
-        framing.expect_line_end = line_end + 1;
+        framing.unread_lines.push_back({begin, line_end + 1});
+      } else if (equal_ignoring_case(name, "Range") || equal_ignoring_case(name, "If-Range")) {
+        framing.unread_lines.push_back({begin, line_end + 1});
       }
     }
     begin = line_end + 1;
@@ -105,8 +106,9 @@ RequestFraming frame_request(std::string_view input, const HttpLimits& limits) {
 std::string take_request(std::string& input, const RequestFraming& framing) {
   std::string request = input.substr(0, framing.total());
   input.erase(0, framing.total());
-  if (framing.expects_continue)
-    request.erase(framing.expect_line_begin, framing.expect_line_end - framing.expect_line_begin);
+  // Last line first, so that each erase leaves the earlier lines' offsets as they were.
+  for (auto line = framing.unread_lines.rbegin(); line != framing.unread_lines.rend(); ++line)
+    request.erase(line->begin, line->end - line->begin);
   return request;
 }
 

@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "serve/http_limits.h"
 
@@ -16,7 +17,13 @@ struct RequestFraming {
   std::size_t head_bytes = 0;  // the request line and headers, with the blank line after them
   std::size_t body_bytes = 0;  // Content-Length
   bool expects_continue = false;  // "Expect: 100-continue": the client waits for an interim 100
-  std::size_t expect_line_begin = 0, expect_line_end = 0;  // that header line, to take it out
+  struct Line {
+    std::size_t begin, end;  // a header line, with its line break
+  };
+  // Header lines the library must not see: "Expect: 100-continue" (the room answers it; the
+  // library would send a second interim 100) and Range (every response is whole, as RFC 9110
+  // allows; the library would cut an error's JSON body down to the range asked for).
+  std::vector<Line> unread_lines;
   int status = 0;              // refused: 400, 411, 413, 415 or 431
   std::string error;           // refused: why, in one line
   std::size_t total() const { return head_bytes + body_bytes; }
@@ -28,8 +35,7 @@ struct RequestFraming {
 // max_body_bytes (413), or a form-encoded body (415: every endpoint reads JSON).
 RequestFraming frame_request(std::string_view input, const HttpLimits& limits);
 
-// Takes a complete request off the front of `input`, without its "Expect: 100-continue" line (the
-// room answers that itself; the library would send a second interim 100).
+// Takes a complete request off the front of `input`, without its unread header lines.
 std::string take_request(std::string& input, const RequestFraming& framing);
 
 // A whole response with a JSON body {"error": message}, for the room's own refusals. `close`
