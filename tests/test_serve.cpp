@@ -92,6 +92,16 @@ void wait_for_frames(httplib::Client& client, std::uint64_t count) {
   }
 }
 
+// Polls the server until `count` requests wait for a frame, so that what follows happens while
+// they wait; the deadline only ends a hung server.
+void wait_for_waiting_requests(httplib::Client& client, std::size_t count) {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::minutes(2);
+  while (body_json(client.Get("/api/stats"))["waiting_for_frames"].get<std::size_t>() < count) {
+    ASSERT_LT(std::chrono::steady_clock::now(), deadline) << "fewer than " << count << " requests ever waited";
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+}
+
 Image decode_exr(const std::string& bytes) {
   TempDir dir("serve");
   std::ofstream(dir / "image.exr", std::ios::binary) << bytes;
@@ -315,7 +325,7 @@ TEST_F(Serve, LongPollWaitsForANewerFrameAndTimesOutWith204) {
     auto own = server_->client();
     return own.Get("/api/frame?format=jpeg&timeout_ms=30000&after=" + version);
   });
-  std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  wait_for_waiting_requests(client, 1);
   json edited = default_scene();
   edited["lights"][0]["color"] = {1, 0, 0};
   const json put = body_json(client.Put("/api/scene", edited.dump(), "application/json"));
@@ -552,7 +562,7 @@ TEST(ServeShutdown, StopEndsWaitingRequestsPromptly) {
     auto own = server->client();
     return own.Get("/api/frame?timeout_ms=60000&after=" + version);
   });
-  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  wait_for_waiting_requests(client, 1);
   const auto start = std::chrono::steady_clock::now();
   server.reset();
   poll.wait();
