@@ -9,7 +9,7 @@
  *   POINT_COUNT=n, DIRECTIONAL_COUNT=n     light counts in the code (loops unroll); 0: read at run time
  *   SPECULAR, AMBIENT                      terms present
  *   SPECULAR_MODELS=m                      the specular models the materials use, a mask of bit 1 << model
- *                                          (specular.h); 1: Phong's alone, the seed's lobe
+ *                                          (specular.h); 1: Phong's alone, the default lobe
  *   SINGLE_MATERIAL                        every shaded pixel uses materials[0]: no per-pixel fetch
  *   MATERIAL_COUNT=n                       a table of n <= PHONGCL_LANES materials: selects, no gather;
  *                                          0: gathered per lane

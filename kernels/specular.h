@@ -1,5 +1,5 @@
 /* The specular lobes (docs/shading.md "Specular models"), numbered as the host's SpecularModel:
- *   0 phong                   max(0, v.r)^q, r = 2(n.l)n - l        (the seed's, the default)
+ *   0 phong                   max(0, v.r)^q, r = 2(n.l)n - l        (the default)
  *   1 phong-normalized        (q+2)/2 max(0, v.r)^q n.l            (Lafortune and Willems 1994)
  *   2 blinn-phong             max(0, n.h)^q, h = normalize(l + v)
  *   3 blinn-phong-normalized  (q+8)/8 max(0, n.h)^q n.l            (Real-Time Rendering's approximation)

@@ -42,7 +42,7 @@ struct Light {
   bool reaches(int material) const;  // light linking
 };
 
-// The specular lobe (docs/shading.md "Specular models"): Phong's (v.r)^q, the seed's and the default;
+// The specular lobe (docs/shading.md "Specular models"): Phong's (v.r)^q, the default;
 // Blinn's (n.h)^q; each as is (the classic highlight, no cosine) or normalised, a BRDF times pi
 // that takes the cosine n.l and reflects at most what it receives: (q+2)/2 (v.r)^q (Lafortune and
 // Willems 1994), (q+8)/8 (n.h)^q (Akenine-Moller et al., Real-Time Rendering). The enum value is

@@ -201,7 +201,7 @@ void decide_light_shapes(Recipe& recipe, const Scene& scene) {
 }
 
 // The lobes the materials choose, decided by the scene in the general kernel too: Phong's alone is
-// the seed's kernel, bit for bit. A G-buffer has no model channel: a pixel takes its material's
+// the kernel without specular models, bit for bit. A G-buffer has no model channel: a pixel takes its material's
 // model from the table, as the coefficients it does not carry. Where it carries every one the
 // table is not consulted (its indices need not be in it): phong, as with no table.
 void decide_specular_models(Recipe& recipe, const Scene& scene, const GBuffer& gbuffer, bool specular) {

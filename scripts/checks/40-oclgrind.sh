@@ -52,9 +52,11 @@ done
 
 export OCL_ICD_VENDORS="$work" PHONGCL_CACHE_DIR="$work/cache"
 export OCLGRIND_CHECK_API=1 OCLGRIND_UNINITIALIZED=1 OCLGRIND_DATA_RACES=1
-# Bounds from tests/test_shading.cpp: the product's 5e-4 relative; half storage rounds its
-# inputs to 11 bits, which the specular power multiplies (measured bound 0.5).
-declare -A bound=([double]=5e-4 [precise]=5e-4 [fast]=5e-4 [half-storage]=0.5)
+# Bounds: the product's relative bound (tests/accuracy_bound.h, as the tests hold it); half storage
+# rounds its inputs to 11 bits, which the specular power multiplies (measured bound 0.5).
+product_bound=$(sed -n 's/^constexpr double kRelativeBound = \(.*\);$/\1/p' tests/accuracy_bound.h)
+[ -n "$product_bound" ] || { echo "40-oclgrind: no kRelativeBound in tests/accuracy_bound.h" >&2; exit 1; }
+declare -A bound=([double]=$product_bound [precise]=$product_bound [fast]=$product_bound [half-storage]=0.5)
 runs=0
 # on_oclgrind WHAT SCENE_DIR PRECISION [FLAGS...]: shades $work/lit.exr and lit.png on Oclgrind.
 on_oclgrind() {
