@@ -61,6 +61,7 @@ typedef struct {
   const ShadowInputs* shadows;                       /* SHADOWS: what the shadow rays test (shadow.h) */
   __global const uint* point_groups;                 /* LIGHT_GROUPS: point light i's group, LIGHT_GROUPS for none */
   __global const uint* directional_groups;           /* LIGHT_GROUPS: the same per directional light */
+  __global const uint* area_groups;                  /* LIGHT_GROUPS: the same per area light */
 } Lights;
 
 /* A work-item's slots of the G-buffer planes. */
@@ -220,12 +221,11 @@ static inline void sum_lights(LightSums* out, const Surface* surface, const Ligh
         if (!LIGHT_GROUPS || lights->directional_groups[k] == group) add_directional_light(&block, surface, lights, k);
       add_block(&sums, &compensation, &block);
     }
-  const bool ungrouped = !LIGHT_GROUPS || group == LIGHT_GROUPS; /* area lights take no group */
-  if (AREA_LIGHTS && ungrouped)
+  if (AREA_LIGHTS)
     for (int first = 0; first < lights->area_count; first += PHONGCL_LIGHT_BLOCK) {
       LightSums block = no_light;
       for (int k = first; k < min(first + PHONGCL_LIGHT_BLOCK, lights->area_count); ++k)
-        add_area_light(&block, surface, lights, k);
+        if (!LIGHT_GROUPS || lights->area_groups[k] == group) add_area_light(&block, surface, lights, k);
       add_block(&sums, &compensation, &block);
     }
   *out = sums;
@@ -367,7 +367,7 @@ __kernel void phong_shade(
     __global const ShadowPrimitive* restrict shadow_primitives, __global const ShadowPlane* restrict shadow_planes,
     __global const float* restrict shadow_depth, const ShadowFrame shadow_frame,
     /* light groups, read only with LIGHT_GROUPS: each light's group (point lights', then directional
-     * lights'), LIGHT_GROUPS for none; their planes follow the terms in out_terms */
+     * lights', then area lights'), LIGHT_GROUPS for none; their planes follow the terms in out_terms */
     __global const uint* restrict light_groups,
     /* area lights (area_light.h), read only with AREA_LIGHTS */
     __global const AreaLightRecord* restrict area_lights) {
@@ -392,6 +392,7 @@ __kernel void phong_shade(
       .shadows = &shadows,
       .point_groups = light_groups,
       .directional_groups = light_groups + frame.point_count,
+      .area_groups = light_groups + frame.point_count + frame.directional_count,
   };
   MaterialLookup material;
   look_up_materials(&material, materials, material_index, group);

@@ -319,7 +319,7 @@ void decide_shadows(Recipe& recipe, const Scene& scene, const ShadeOptions& opti
 // Light groups are AOVs: their layers are written with the terms; without terms the kernel is the
 // one without groups. The count is compiled in (the group loop unrolls), in the general kernel too.
 void decide_groups(Recipe& recipe, const Scene& scene, const ShadeOptions& options) {
-  const std::vector<std::string> groups = light_groups(scene.lights);
+  const std::vector<std::string> groups = light_groups(scene.lights, scene.area_lights);
   if (options.write_terms) recipe.light_groups = groups;
   const int count = static_cast<int>(recipe.light_groups.size());
   add_count(recipe, "LIGHT_GROUPS", count,
