@@ -214,6 +214,30 @@ TEST(AreaLights, GroupLayersMatchTheReference) {
   }
 }
 
+// An area light's group and shadows compile in only where asked: without them its scene builds the
+// options it built before either existed.
+TEST(AreaLights, GroupsAndShadowsCompileInOnlyWhenAsked) {
+  PHONGCL_REQUIRE_DEVICE(shader);
+  AreaScene s = area_scene(emitters(false), glm::dvec3(0.0), 1.0, 504);
+  const DeviceInfo& device = shader.compute().device.info;
+  ShadeOptions terms;
+  terms.write_terms = true;
+  auto value = [&](const char* flag, const ShadeOptions& options) {
+    return make_recipe(s.scene, s.gbuffer, device, options).value(flag);
+  };
+  EXPECT_EQ(value("LIGHT_GROUPS", terms), "0");
+  EXPECT_EQ(value("SHADOWS", terms), "0");
+  s.scene.area_lights[1].group = "wall";
+  EXPECT_EQ(value("LIGHT_GROUPS", terms), "1") << "an area light's group is a group";
+  EXPECT_EQ(value("LIGHT_GROUPS", {}), "0") << "groups are layers of the terms";
+  s.scene.area_lights[0].shadows = true;
+  EXPECT_EQ(value("SHADOWS", {}), "1");
+  EXPECT_EQ(value("SCREEN_SHADOWS", {}), "1") << "no objects: the march";
+  ShadeOptions off;
+  off.shadows.mode = ShadowMode::off;
+  EXPECT_EQ(value("SHADOWS", off), "0");
+}
+
 TEST(AreaLights, SpecularQuadratureErrorIsMeasured) {
   PHONGCL_REQUIRE_DEVICE(shader);
   for (bool rect : {true, false})

@@ -38,7 +38,7 @@ double read_size(const JsonValue& value) {
 const char* to_string(AreaShape shape) { return shape == AreaShape::rect ? "rect" : "disk"; }
 
 AreaLight read_area_light(const JsonObject& object) {
-  object.expect_keys({"type", "shape", "position", "direction", "up", "size", "color", "range", "group"});
+  object.expect_keys({"type", "shape", "position", "direction", "up", "size", "color", "range", "shadows", "group"});
   AreaLight light;
   light.shape = read_shape(object.at("shape"));
   light.position = object.at("position").vec3();
@@ -70,6 +70,7 @@ AreaLight read_area_light(const JsonObject& object) {
     light.range = range->number();
     if (!(light.range > 0.0)) range->fail("must be > 0 (got " + format_number(light.range) + ")");
   }
+  if (auto shadows = object.find("shadows")) light.shadows = shadows->boolean();
   if (auto group = object.find("group")) {
     light.group = group->string();
     if (!valid_light_group_name(light.group)) group->fail(kLightGroupNameRule);

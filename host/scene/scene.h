@@ -66,6 +66,7 @@ struct AreaLight {
   glm::dvec2 size{1.0};                  // rect: width, height; disk: the diameter in x (the reader sets y to it too)
   glm::dvec3 color{1.0};
   double range = 0.0;  // > 0: windowed to 0 at this distance from the centre (as a point light's); 0: no range
+  bool shadows = false;  // casts a hard shadow, decided by one ray to the centre (when the shadow mode is not off)
   std::string group;     // light group, as a Light's; empty: none
 
   bool has_range() const { return range > 0.0; }

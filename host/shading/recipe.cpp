@@ -292,7 +292,9 @@ void decide_shadows(Recipe& recipe, const Scene& scene, const ShadeOptions& opti
   check_shadow_settings(asked);
   recipe.shadow_settings = asked;
   recipe.shadow_casters = static_cast<int>(
-      std::count_if(scene.lights.begin(), scene.lights.end(), [](const Light& light) { return light.shadows; }));
+      std::count_if(scene.lights.begin(), scene.lights.end(), [](const Light& light) { return light.shadows; }) +
+      std::count_if(scene.area_lights.begin(), scene.area_lights.end(),
+                    [](const AreaLight& light) { return light.shadows; }));
   const bool objects = !scene.objects.empty();
   if (recipe.shadow_casters > 0 && asked.mode == ShadowMode::geometry && !objects)
     throw std::invalid_argument("shadows geometry: the scene has no objects to cast them (use screen or auto)");
