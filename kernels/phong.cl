@@ -6,7 +6,7 @@
  * its F_i (falloff, range, cone, linking) light_shape.h's, the specular lobe specular.h's; the tuned
  * arithmetic (robust normalisation, the power, compensated sums, streaming stores) is phong_math.h's.
  * With AREA_LIGHTS rects and disks add theirs too (area_light.h: the diffuse term exact, the
- * specular one by quadrature), looped over untiled.
+ * specular one by quadrature), looped over untiled; their shadows are one ray to the centre.
  * With SHADOWS a light that casts shadows is multiplied by its visibility (shadow.h: a ray traced
  * against the scene's geometry, or with SCREEN_SHADOWS marched across the frame's depth plane).
  * With LIGHT_GROUPS the lights are summed group by group, and each group's terms also written apart.
@@ -58,9 +58,11 @@ typedef struct {
   int area_count;
   __global const uint* point_casters;                /* SHADOWS: 1 where point light i casts shadows */
   __global const uint* directional_casters;          /* SHADOWS: the same per directional light */
+  __global const uint* area_casters;                 /* SHADOWS: the same per area light */
   const ShadowInputs* shadows;                       /* SHADOWS: what the shadow rays test (shadow.h) */
   __global const uint* point_groups;                 /* LIGHT_GROUPS: point light i's group, LIGHT_GROUPS for none */
   __global const uint* directional_groups;           /* LIGHT_GROUPS: the same per directional light */
+  __global const uint* area_groups;                  /* LIGHT_GROUPS: the same per area light */
 } Lights;
 
 /* A work-item's slots of the G-buffer planes. */
@@ -166,7 +168,21 @@ static inline void add_directional_light(LightSums* sums, const Surface* surface
   add_lobes(sums, surface->n, surface->v, surface->shininess, surface->specular_model, l, 1, light->color, weight);
 }
 
-/* What an area light adds: Li E and Li S (area_light.h), with r = 2(n.v)n - v. */
+/* An area light's hard shadow: its E and S are 0 in the lanes where the one ray to the emitter's
+ * centre is blocked, as a point light's there would be (lanes whose horizon hides the centre trace
+ * nothing and stay lit). Selects, not products, as shadowed_weight's. */
+static inline void shadow_area_light(realv* irradiance, realv* highlight, const Surface* surface, const Lights* lights,
+                                     __global const AreaLightRecord* light) {
+  const intv lit = LANE_MASK(*irradiance > 0) | LANE_MASK(*highlight > 0);
+  const intv pending = lit & LANE_MASK(surface->material != PHONGCL_BACKGROUND);
+  const intv blocked = light_blocked(lights->shadows, surface->p, surface->n, area_vector(light->center), 0,
+                                     SCREEN_SHADOWS, pending);
+  *irradiance = SELECT(TO_REALV(blocked) != 0, 0, *irradiance);
+  *highlight = SELECT(TO_REALV(blocked) != 0, 0, *highlight);
+}
+
+/* What an area light adds: Li E and Li S (area_light.h), with r = 2(n.v)n - v, times its visibility
+ * with SHADOWS. */
 static inline void add_area_light(LightSums* sums, const Surface* surface, const Lights* lights, int k) {
   __global const AreaLightRecord* light = &lights->area[k];
   const vec3 n = surface->n, v = surface->v;
@@ -174,6 +190,7 @@ static inline void add_area_light(LightSums* sums, const Surface* surface, const
   const vec3 r = make_vec3(fma(two_n_dot_v, n.x, -v.x), fma(two_n_dot_v, n.y, -v.y), fma(two_n_dot_v, n.z, -v.z));
   realv irradiance, highlight;
   area_light_terms(light, surface->p, n, r, surface->shininess, SPECULAR, &irradiance, &highlight);
+  if (SHADOWS && lights->area_casters[k]) shadow_area_light(&irradiance, &highlight, surface, lights, light);
   sums->diffuse.x += light->color[0] * irradiance;
   sums->diffuse.y += light->color[1] * irradiance;
   sums->diffuse.z += light->color[2] * irradiance;
@@ -220,12 +237,11 @@ static inline void sum_lights(LightSums* out, const Surface* surface, const Ligh
         if (!LIGHT_GROUPS || lights->directional_groups[k] == group) add_directional_light(&block, surface, lights, k);
       add_block(&sums, &compensation, &block);
     }
-  const bool ungrouped = !LIGHT_GROUPS || group == LIGHT_GROUPS; /* area lights take no group */
-  if (AREA_LIGHTS && ungrouped)
+  if (AREA_LIGHTS)
     for (int first = 0; first < lights->area_count; first += PHONGCL_LIGHT_BLOCK) {
       LightSums block = no_light;
       for (int k = first; k < min(first + PHONGCL_LIGHT_BLOCK, lights->area_count); ++k)
-        add_area_light(&block, surface, lights, k);
+        if (!LIGHT_GROUPS || lights->area_groups[k] == group) add_area_light(&block, surface, lights, k);
       add_block(&sums, &compensation, &block);
     }
   *out = sums;
@@ -361,13 +377,13 @@ __kernel void phong_shade(
     __global const uint* restrict tile_offsets, __global const uint* restrict tile_counts,
     __global const uint* restrict tile_lights, const TileGrid grid,
     /* shadows (shadow.h), read only with SHADOWS: 1 per light where it casts shadows (point lights',
-     * then directional lights'), the geometry (shadow_layout.h), the screen march's depth plane and
-     * the frame's shadow scalars */
+     * then directional lights', then area lights'), the geometry (shadow_layout.h), the screen
+     * march's depth plane and the frame's shadow scalars */
     __global const uint* restrict shadow_casters, __global const BvhNode* restrict shadow_nodes,
     __global const ShadowPrimitive* restrict shadow_primitives, __global const ShadowPlane* restrict shadow_planes,
     __global const float* restrict shadow_depth, const ShadowFrame shadow_frame,
     /* light groups, read only with LIGHT_GROUPS: each light's group (point lights', then directional
-     * lights'), LIGHT_GROUPS for none; their planes follow the terms in out_terms */
+     * lights', then area lights'), LIGHT_GROUPS for none; their planes follow the terms in out_terms */
     __global const uint* restrict light_groups,
     /* area lights (area_light.h), read only with AREA_LIGHTS */
     __global const AreaLightRecord* restrict area_lights) {
@@ -389,9 +405,11 @@ __kernel void phong_shade(
       .area_count = frame.area_count,
       .point_casters = shadow_casters,
       .directional_casters = shadow_casters + frame.point_count,
+      .area_casters = shadow_casters + frame.point_count + frame.directional_count,
       .shadows = &shadows,
       .point_groups = light_groups,
       .directional_groups = light_groups + frame.point_count,
+      .area_groups = light_groups + frame.point_count + frame.directional_count,
   };
   MaterialLookup material;
   look_up_materials(&material, materials, material_index, group);

@@ -185,6 +185,59 @@ TEST(AreaLights, DiffuseMatchesTheReference) {
   }
 }
 
+// A light group's layer is the reference's image of that group's lights alone, area and point
+// lights together (ks 0: the area lights' S is a stated quadrature, measured apart below).
+TEST(AreaLights, GroupLayersMatchTheReference) {
+  PHONGCL_REQUIRE_DEVICE(shader);
+  std::vector<AreaLight> lights = emitters(true);
+  lights[0].group = "top";
+  lights[1].group = "wall";
+  AreaScene s = area_scene(lights, glm::dvec3(0.0), 1.0, 503);
+  Light point;
+  point.position = {0.5, 2.0, 0.5};
+  point.color = glm::dvec3(0.3);
+  point.group = "top";
+  s.scene.lights.push_back(point);
+  ShadeOptions options;
+  options.write_terms = true;
+  const ShadeResult result = shader.shade(s.scene, s.gbuffer, options);
+  const std::vector<std::string> names{"top", "wall"};
+  ASSERT_EQ(result.terms.group_names, names);
+  EXPECT_EQ(result.recipe.value("LIGHT_GROUPS"), "2");
+  for (std::size_t g = 0; g < names.size(); ++g) {
+    const TermError error =
+        term_error(result.terms.groups[g], reference_image(reference_group_scene(s.scene, names[g]), s.gbuffer));
+    std::cout << "group " << names[g] << ": against the reference, " << error.lit << " lit pixels, median "
+              << error.median_rel << ", max " << error.max_rel << "\n";
+    EXPECT_GT(error.lit, s.gbuffer.pixel_count() / 10) << names[g];
+    EXPECT_LE(error.max_rel, 5e-5) << names[g];  // the rects' bound of DiffuseMatchesTheReference
+  }
+}
+
+// An area light's group and shadows compile in only where asked: without them its scene builds the
+// options it built before either existed.
+TEST(AreaLights, GroupsAndShadowsCompileInOnlyWhenAsked) {
+  PHONGCL_REQUIRE_DEVICE(shader);
+  AreaScene s = area_scene(emitters(false), glm::dvec3(0.0), 1.0, 504);
+  const DeviceInfo& device = shader.compute().device.info;
+  ShadeOptions terms;
+  terms.write_terms = true;
+  auto value = [&](const char* flag, const ShadeOptions& options) {
+    return make_recipe(s.scene, s.gbuffer, device, options).value(flag);
+  };
+  EXPECT_EQ(value("LIGHT_GROUPS", terms), "0");
+  EXPECT_EQ(value("SHADOWS", terms), "0");
+  s.scene.area_lights[1].group = "wall";
+  EXPECT_EQ(value("LIGHT_GROUPS", terms), "1") << "an area light's group is a group";
+  EXPECT_EQ(value("LIGHT_GROUPS", {}), "0") << "groups are layers of the terms";
+  s.scene.area_lights[0].shadows = true;
+  EXPECT_EQ(value("SHADOWS", {}), "1");
+  EXPECT_EQ(value("SCREEN_SHADOWS", {}), "1") << "no objects: the march";
+  ShadeOptions off;
+  off.shadows.mode = ShadowMode::off;
+  EXPECT_EQ(value("SHADOWS", off), "0");
+}
+
 TEST(AreaLights, SpecularQuadratureErrorIsMeasured) {
   PHONGCL_REQUIRE_DEVICE(shader);
   for (bool rect : {true, false})

@@ -183,7 +183,8 @@ TEST(Scene, AreaLightsGoToTheirOwnTable) {
       "lights": [{"type": "point", "position": [0, 0, 0]},
                  {"type": "area", "shape": "rect", "position": [1, 2, 3], "direction": [0, -2, 0], "up": [0, 0, 1],
                   "size": [2, 0.5], "color": [3, 2, 1], "range": 9},
-                 {"type": "area", "shape": "disk", "position": [0, 4, 0], "direction": [0, 0, -1], "size": 0.25}])"),
+                 {"type": "area", "shape": "disk", "position": [0, 4, 0], "direction": [0, 0, -1], "size": 0.25,
+                  "group": "fill", "shadows": true}])"),
                                   kSource);
   ASSERT_EQ(scene.lights.size(), 1u) << "area lights are not point, spot or directional lights";
   ASSERT_EQ(scene.area_lights.size(), 2u);
@@ -195,11 +196,16 @@ TEST(Scene, AreaLightsGoToTheirOwnTable) {
   EXPECT_EQ(rect.size, glm::dvec2(2, 0.5));
   EXPECT_EQ(rect.color, glm::dvec3(3, 2, 1));
   EXPECT_EQ(rect.range, 9.0);
+  EXPECT_FALSE(rect.shadows);
+  EXPECT_TRUE(rect.group.empty());
   const AreaLight& disk = scene.area_lights[1];
   EXPECT_EQ(disk.shape, AreaShape::disk);
   EXPECT_EQ(disk.size, glm::dvec2(0.25, 0.25));
   EXPECT_EQ(disk.color, glm::dvec3(1.0));
   EXPECT_FALSE(disk.has_range());
+  EXPECT_TRUE(disk.shadows);
+  EXPECT_EQ(disk.group, "fill");
+  EXPECT_EQ(light_groups(scene.lights, scene.area_lights), std::vector<std::string>{"fill"});
   EXPECT_THROW(parse_lights(R"([{"type": "area", "shape": "disk", "position": [0, 0, 0], "direction": [0, 0, -1], "size": 1}])",
                             kSource),
                InputError);
@@ -279,7 +285,11 @@ TEST(Scene, EachProblemIsAOneLineInputErrorNamingFileAndPlace) {
       {"up on a disk", scene_json(R"("lights": [{"type": "area", "shape": "disk", "position": [0, 0, 0], "direction": [0, 0, -1], "up": [0, 1, 0], "size": 1}])"),
        {"lights[0].up is used only by rect area lights"}},
       {"falloff on an area light", scene_json(R"("lights": [{"type": "area", "shape": "disk", "position": [0, 0, 0], "direction": [0, 0, -1], "size": 1, "falloff": "quadratic"}])"),
-       {"unknown key 'falloff' in lights[0] (expected: type, shape, position, direction, up, size, color, range)"}},
+       {"unknown key 'falloff' in lights[0] (expected: type, shape, position, direction, up, size, color, range, shadows, group)"}},
+      {"bad group on an area light", scene_json(R"("lights": [{"type": "area", "shape": "disk", "position": [0, 0, 0], "direction": [0, 0, -1], "size": 1, "group": "a b"}])"),
+       {"lights[0].group must be a name of letters, digits, '_' and '-'"}},
+      {"shadows on an area light not a boolean", scene_json(R"("lights": [{"type": "area", "shape": "disk", "position": [0, 0, 0], "direction": [0, 0, -1], "size": 1, "shadows": 1}])"),
+       {"lights[0].shadows"}},
       {"unknown specular model", scene_json("").replace(scene_json("").find("{\"kd\""), 1, "{\"specular_model\": \"blinn\", "),
        {"materials[0].specular_model 'blinn' is not a specular model (expected phong, phong-normalized, blinn-phong or "
         "blinn-phong-normalized)"}},

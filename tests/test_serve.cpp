@@ -467,6 +467,38 @@ TEST_F(Serve, LightGroupsAreListedShownSoloedAndMuted) {
   expect_error(client.Put("/api/settings", R"({"mute": "key"})", "application/json"), 400, "array");
 }
 
+// Area lights' groups are listed after the other lights', and solo and mute reach area lights too:
+// muted, the image is the one of the scene without that area light.
+TEST_F(Serve, AreaLightGroupsAreListedAndMuted) {
+  auto client = server_->client();
+  json scene = default_scene();
+  scene["lights"][0]["group"] = "key";
+  json panel = {{"type", "area"}, {"shape", "rect"}, {"position", {0, 4, 2}}, {"direction", {0, -1, -0.3}},
+                {"up", {0, 0, 1}},  {"size", {2, 1}},    {"color", {3, 3, 3}},    {"group", "panel"}};
+  scene["lights"].push_back(panel);
+  ASSERT_EQ(client.Put("/api/scene", scene.dump(), "application/json")->status, 200);
+  EXPECT_EQ(body_json(client.Get("/api/stats"))["light_groups"], json({"key", "panel"}));
+  const auto image_of = [&](const std::string& query) {
+    const auto result = client.Get("/api/image?format=exr" + query);
+    EXPECT_EQ(result->status, 200) << query << ": " << result->body;
+    return decode_exr(result->body);
+  };
+  const Image lit_by_panel = image_of("&aov=group.panel");
+  bool any_lit = false;
+  for (std::size_t i = 0; i < lit_by_panel.pixel_count(); ++i) any_lit |= lit_by_panel.pixel(i)[0] > 0.0f;
+  EXPECT_TRUE(any_lit) << "the panel lights nothing: the test checks too little";
+  ASSERT_EQ(client.Put("/api/settings", R"({"mute": ["panel"]})", "application/json")->status, 200);
+  const Image muted = image_of("");
+  ASSERT_EQ(client.Put("/api/settings", R"({"mute": []})", "application/json")->status, 200);
+  scene["lights"].erase(scene["lights"].size() - 1);
+  ASSERT_EQ(client.Put("/api/scene", scene.dump(), "application/json")->status, 200);
+  const Image without = image_of("");
+  std::vector<bool> covered(without.pixel_count());
+  for (std::size_t i = 0; i < covered.size(); ++i) covered[i] = without.pixel(i)[3] > 0.0f;
+  const ErrorStats error = testing::shading_error(muted, without, covered);
+  EXPECT_LE(error.max_rel, 1e-5) << "worst pixel (" << error.worst_x << ", " << error.worst_y << ")";
+}
+
 TEST_F(Serve, PickReadsTheGBufferUnderTheCursor) {
   auto client = server_->client();
   const GBuffer& gbuffer = server_->session().gbuffer();

@@ -246,10 +246,12 @@ TEST(Lights, TiledCullingKeepsUnrangedLightsEverywhere) {
 
 // --- Light groups.
 
-// The diffuse + specular of `scene` lit by the lights `keep` selects, shaded with terms.
+// The diffuse + specular of `scene` lit by the lights of `group` alone (empty: the ungrouped ones),
+// area lights too, shaded with terms.
 Image lights_alone(PhongShader& shader, Scene scene, const GBuffer& gbuffer, const ShadeOptions& options,
-                   const std::function<bool(const Light&)>& keep) {
-  std::erase_if(scene.lights, [&](const Light& light) { return !keep(light); });
+                   const std::string& group) {
+  std::erase_if(scene.lights, [&](const Light& light) { return light.group != group; });
+  std::erase_if(scene.area_lights, [&](const AreaLight& light) { return light.group != group; });
   const ShadeResult result = shader.shade(scene, gbuffer, options);
   Image light = result.terms.diffuse;
   for (std::size_t i = 0; i < light.pixel_count(); ++i)
@@ -263,17 +265,17 @@ Image lights_alone(PhongShader& shader, Scene scene, const GBuffer& gbuffer, con
 void expect_groups_add_up(PhongShader& shader, const Scene& scene, const GBuffer& gbuffer, const ShadeOptions& options,
                           const std::string& where) {
   const ShadeResult result = shader.shade(scene, gbuffer, options);
-  const std::vector<std::string> names = light_groups(scene.lights);
+  const std::vector<std::string> names = light_groups(scene.lights, scene.area_lights);
   ASSERT_EQ(result.terms.group_names, names) << where;
   ASSERT_EQ(result.terms.groups.size(), names.size()) << where;
   EXPECT_EQ(result.recipe.value("LIGHT_GROUPS"), std::to_string(names.size())) << where;
   const std::vector<bool> mask = testing::shaded_mask(gbuffer);
   for (std::size_t g = 0; g < names.size(); ++g) {
-    const Image alone = lights_alone(shader, scene, gbuffer, options, [&](const Light& l) { return l.group == names[g]; });
+    const Image alone = lights_alone(shader, scene, gbuffer, options, names[g]);
     const ErrorStats same = shading_error(result.terms.groups[g], alone, mask);
     EXPECT_LE(same.max_rel, 1e-5) << where << ", group " << names[g] << ": " << describe_worst(same);
   }
-  const Image ungrouped = lights_alone(shader, scene, gbuffer, options, [](const Light& l) { return l.group.empty(); });
+  const Image ungrouped = lights_alone(shader, scene, gbuffer, options, "");
   constexpr double kEightUlp = 8 * 0x1p-24;
   bool any_group = false;
   for (std::size_t i = 0; i < gbuffer.pixel_count(); ++i) {
@@ -298,6 +300,25 @@ TEST(Lights, GroupsAddUpToTheImageInEveryVariant) {
   auto [scene, gbuffer] = shaped_scene({"groups", shapes}, 4242);
   const char* groups[] = {"key", "fill", "", "key", "rim-2"};  // light 2 and those past 4 in none
   for (std::size_t i = 0; i < scene.lights.size() && i < 5; ++i) scene.lights[i].group = groups[i];
+  // Area lights in a group of point lights, in one of their own, and in none.
+  AreaLight rect;
+  rect.position = {0.0, 1.0, 4.0};
+  rect.direction = {0.0, 0.0, -1.0};
+  rect.size = {1.5, 1.0};
+  rect.color = {0.8, 0.7, 0.6};
+  rect.group = "key";
+  AreaLight disk;
+  disk.shape = AreaShape::disk;
+  disk.position = {1.5, 3.0, 2.0};
+  disk.direction = {-0.3, -1.0, -0.5};
+  disk.size = glm::dvec2(1.2);
+  disk.color = {0.5, 0.6, 0.9};
+  disk.group = "panel";
+  AreaLight ungrouped = disk;
+  ungrouped.position = {-2.0, 0.5, 3.0};
+  ungrouped.direction = {0.5, 0.0, -1.0};
+  ungrouped.group.clear();
+  scene.area_lights = {rect, disk, ungrouped};
   for (Precision precision : {Precision::precise, Precision::fast, Precision::double_precision}) {
     if (precision == Precision::double_precision && !shader.compute().device.info.has_fp64) continue;
     for (int lanes : {1, 16}) {

@@ -4,6 +4,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "scene/scene_check.h"
+
 namespace phongcl {
 
 namespace {
@@ -36,7 +38,7 @@ double read_size(const JsonValue& value) {
 const char* to_string(AreaShape shape) { return shape == AreaShape::rect ? "rect" : "disk"; }
 
 AreaLight read_area_light(const JsonObject& object) {
-  object.expect_keys({"type", "shape", "position", "direction", "up", "size", "color", "range"});
+  object.expect_keys({"type", "shape", "position", "direction", "up", "size", "color", "range", "shadows", "group"});
   AreaLight light;
   light.shape = read_shape(object.at("shape"));
   light.position = object.at("position").vec3();
@@ -68,6 +70,11 @@ AreaLight read_area_light(const JsonObject& object) {
     light.range = range->number();
     if (!(light.range > 0.0)) range->fail("must be > 0 (got " + format_number(light.range) + ")");
   }
+  if (auto shadows = object.find("shadows")) light.shadows = shadows->boolean();
+  if (auto group = object.find("group")) {
+    light.group = group->string();
+    if (!valid_light_group_name(light.group)) group->fail(kLightGroupNameRule);
+  }
   return light;
 }
 
@@ -87,6 +94,7 @@ void check_area_lights(const std::vector<AreaLight>& lights) {
     if (light.shape == AreaShape::rect)
       require(finite(light.up) && up_sine(light) > kMinimumUpSine, "up", "must not be zero or parallel to direction");
     require(std::isfinite(light.range) && light.range >= 0.0, "range", "must be finite and > 0 (0: no range)");
+    require(light.group.empty() || valid_light_group_name(light.group), "group", kLightGroupNameRule);
   }
 }
 

@@ -66,8 +66,11 @@ struct AreaLight {
   glm::dvec2 size{1.0};                  // rect: width, height; disk: the diameter in x (the reader sets y to it too)
   glm::dvec3 color{1.0};
   double range = 0.0;  // > 0: windowed to 0 at this distance from the centre (as a point light's); 0: no range
+  bool shadows = false;  // casts a hard shadow, decided by one ray to the centre (when the shadow mode is not off)
+  std::string group;     // light group, as a Light's; empty: none
 
   bool has_range() const { return range > 0.0; }
+  bool operator==(const AreaLight&) const = default;
 };
 
 const char* to_string(AreaShape shape);  // "rect", "disk"
@@ -122,7 +125,8 @@ const char* to_string(SpecularModel model);  // "phong", "blinn-phong-normalized
 // The model a name stands for; std::invalid_argument naming the allowed names otherwise.
 SpecularModel parse_specular_model(const std::string& name);
 
-// The scene's light groups, each name once, in the order of the lights that first name them.
-std::vector<std::string> light_groups(const std::vector<Light>& lights);
+// The scene's light groups, each name once, in the order of the lights that first name them: the
+// point, spot and directional lights first, then the area lights.
+std::vector<std::string> light_groups(const std::vector<Light>& lights, const std::vector<AreaLight>& area_lights = {});
 
 }  // namespace phongcl

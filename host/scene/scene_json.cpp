@@ -236,11 +236,13 @@ SpecularModel parse_specular_model(const std::string& name) {
                               "blinn-phong-normalized)");
 }
 
-std::vector<std::string> light_groups(const std::vector<Light>& lights) {
+std::vector<std::string> light_groups(const std::vector<Light>& lights, const std::vector<AreaLight>& area_lights) {
   std::vector<std::string> names;
-  for (const Light& light : lights)
-    if (!light.group.empty() && std::find(names.begin(), names.end(), light.group) == names.end())
-      names.push_back(light.group);
+  auto add = [&](const std::string& group) {
+    if (!group.empty() && std::find(names.begin(), names.end(), group) == names.end()) names.push_back(group);
+  };
+  for (const Light& light : lights) add(light.group);
+  for (const AreaLight& light : area_lights) add(light.group);
   return names;
 }
 

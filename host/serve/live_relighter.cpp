@@ -46,7 +46,7 @@ void LiveRelighter::stop() {
 
 SceneSnapshot LiveRelighter::scene() const {
   std::lock_guard lock(mutex_);
-  return {scene_version_, scene_json_, light_groups(scene_.lights)};
+  return {scene_version_, scene_json_, light_groups(scene_.lights, scene_.area_lights)};
 }
 
 // The document as the shader takes it: colours in the working space.

@@ -30,15 +30,16 @@ RelightSession::~RelightSession() = default;
 
 void RelightSession::check(const Scene& scene) const { material_check_.check(gbuffer_, scene.materials.size()); }
 
-// The Relighter keeps its precision, ambient, background, shadow settings and whether it shades the terms from
-// construction: a change of those builds a new one (which packs the G-buffer again); lights,
-// materials and the eye are updates.
+// The Relighter keeps its precision, ambient, background, area lights, shadow settings and whether it shades the
+// terms from construction: a change of those builds a new one (which packs the G-buffer again); lights,
+// materials and the eye are updates. (Solo and mute change area lights' colours too.)
 Relighter& RelightSession::relighter_for(const Scene& scene, const RenderSettings& settings) {
   const bool same = relighter_ && relighter_settings_.precision == settings.precision &&
                     relighter_settings_.specialise == settings.specialise &&
                     relighter_settings_.terms == settings.terms && relighter_settings_.shadows == settings.shadows &&
                     relighter_->scene().ambient == scene.ambient &&
-                    relighter_->scene().background == scene.background;
+                    relighter_->scene().background == scene.background &&
+                    relighter_->scene().area_lights == scene.area_lights;
   if (!same) {
     relighter_.reset();  // first: two copies of a large G-buffer need not fit on the device
     RelighterOptions options;
@@ -58,14 +59,20 @@ Relighter& RelightSession::relighter_for(const Scene& scene, const RenderSetting
 
 namespace {
 
-// The scene with the lights that solo and mute leave out at colour 0.
+// Whether solo and mute leave out a light of `group`.
+bool left_out(const std::string& group, const RenderSettings& settings) {
+  const bool muted =
+      !group.empty() && std::find(settings.muted.begin(), settings.muted.end(), group) != settings.muted.end();
+  return muted || (!settings.solo.empty() && group != settings.solo);
+}
+
+// The scene with the lights that solo and mute leave out at colour 0, area lights too.
 Scene soloed_and_muted(const Scene& scene, const RenderSettings& settings) {
   Scene lit = scene;
-  for (Light& light : lit.lights) {
-    const bool muted = std::find(settings.muted.begin(), settings.muted.end(), light.group) != settings.muted.end() &&
-                       !light.group.empty();
-    if (muted || (!settings.solo.empty() && light.group != settings.solo)) light.color = glm::dvec3(0.0);
-  }
+  for (Light& light : lit.lights)
+    if (left_out(light.group, settings)) light.color = glm::dvec3(0.0);
+  for (AreaLight& light : lit.area_lights)
+    if (left_out(light.group, settings)) light.color = glm::dvec3(0.0);
   return lit;
 }
 

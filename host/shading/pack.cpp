@@ -93,16 +93,17 @@ UniformData pack_uniforms(const Scene& scene, const Recipe& recipe) {
     for (const Light& light : scene.lights)
       if (light.type == LightType::directional) append_link_mask(light, recipe.link_words, data.links);
   }
-  // Light groups in the same order; a light in none gets the group count.
+  // Light groups in the same order, then the area lights'; a light in none gets the group count.
   if (!recipe.light_groups.empty()) {
     const auto& groups = recipe.light_groups;
-    auto index = [&](const Light& light) {
-      return static_cast<layout_uint>(std::find(groups.begin(), groups.end(), light.group) - groups.begin());
+    auto index = [&](const std::string& group) {
+      return static_cast<layout_uint>(std::find(groups.begin(), groups.end(), group) - groups.begin());
     };
     for (const Light& light : scene.lights)
-      if (light.type != LightType::directional) data.light_groups.push_back(index(light));
+      if (light.type != LightType::directional) data.light_groups.push_back(index(light.group));
     for (const Light& light : scene.lights)
-      if (light.type == LightType::directional) data.light_groups.push_back(index(light));
+      if (light.type == LightType::directional) data.light_groups.push_back(index(light.group));
+    for (const AreaLight& light : scene.area_lights) data.light_groups.push_back(index(light.group));
   }
   for (const Material& material : scene.materials) {
     MaterialRecord record{};

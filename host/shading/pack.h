@@ -21,7 +21,7 @@ struct UniformData {
   std::vector<LinkWord> links;              // recipe.link_words per light: point lights, then directional
   std::vector<DirectionalLight> directional_lights;
   std::vector<MaterialRecord> materials;
-  // With LIGHT_GROUPS: each light's group (point lights, then directional), its index in
+  // With LIGHT_GROUPS: each light's group (point lights, then directional, then area lights), its index in
   // recipe.light_groups or their count for none.
   std::vector<layout_uint> light_groups;
   std::vector<AreaLightRecord> area_lights;  // shading/pack_area.h

@@ -115,7 +115,7 @@ PhongShader::FrameSetup PhongShader::prepare(const Scene& scene, const GBuffer& 
   if (!uniforms_ || uniforms_options_ != report.build_options || uniforms_stride_ != stride) {
     const auto upload_start = Clock::now();
     uniforms_ = upload_uniforms(context, pack_uniforms(scene, recipe), stride);
-    shadow_casters_ = table_buffer(context, shadow_casters(scene.lights));
+    shadow_casters_ = table_buffer(context, shadow_casters(scene.lights, scene.area_lights));
     uniforms_options_ = report.build_options;
     uniforms_stride_ = stride;
     report.timings.upload_ms += milliseconds(upload_start, Clock::now());

@@ -292,7 +292,9 @@ void decide_shadows(Recipe& recipe, const Scene& scene, const ShadeOptions& opti
   check_shadow_settings(asked);
   recipe.shadow_settings = asked;
   recipe.shadow_casters = static_cast<int>(
-      std::count_if(scene.lights.begin(), scene.lights.end(), [](const Light& light) { return light.shadows; }));
+      std::count_if(scene.lights.begin(), scene.lights.end(), [](const Light& light) { return light.shadows; }) +
+      std::count_if(scene.area_lights.begin(), scene.area_lights.end(),
+                    [](const AreaLight& light) { return light.shadows; }));
   const bool objects = !scene.objects.empty();
   if (recipe.shadow_casters > 0 && asked.mode == ShadowMode::geometry && !objects)
     throw std::invalid_argument("shadows geometry: the scene has no objects to cast them (use screen or auto)");
@@ -319,7 +321,7 @@ void decide_shadows(Recipe& recipe, const Scene& scene, const ShadeOptions& opti
 // Light groups are AOVs: their layers are written with the terms; without terms the kernel is the
 // one without groups. The count is compiled in (the group loop unrolls), in the general kernel too.
 void decide_groups(Recipe& recipe, const Scene& scene, const ShadeOptions& options) {
-  const std::vector<std::string> groups = light_groups(scene.lights);
+  const std::vector<std::string> groups = light_groups(scene.lights, scene.area_lights);
   if (options.write_terms) recipe.light_groups = groups;
   const int count = static_cast<int>(recipe.light_groups.size());
   add_count(recipe, "LIGHT_GROUPS", count,

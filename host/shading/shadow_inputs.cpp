@@ -58,12 +58,13 @@ std::string describe_shadows(ShadowMode mode, int casters, const ShadowSettings&
          built + ")";
 }
 
-std::vector<cl_uint> shadow_casters(const std::vector<Light>& lights) {
+std::vector<cl_uint> shadow_casters(const std::vector<Light>& lights, const std::vector<AreaLight>& area_lights) {
   std::vector<cl_uint> casters;
   for (const Light& light : lights)
     if (light.type != LightType::directional) casters.push_back(light.shadows ? 1u : 0u);
   for (const Light& light : lights)
     if (light.type == LightType::directional) casters.push_back(light.shadows ? 1u : 0u);
+  for (const AreaLight& light : area_lights) casters.push_back(light.shadows ? 1u : 0u);
   return casters;
 }
 

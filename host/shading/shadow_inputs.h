@@ -34,8 +34,8 @@ ShadowDevice make_shadow_device(const cl::Context& context, const Scene& scene, 
 // One line for a report: the mode, the casters, what the rays test, what building it cost.
 std::string describe_shadows(ShadowMode mode, int casters, const ShadowSettings& settings, const ShadowDevice& device);
 
-// One word per light in the kernel's table order (point and spot lights, then directional ones):
-// 1 where the light casts shadows.
-std::vector<cl_uint> shadow_casters(const std::vector<Light>& lights);
+// One word per light in the kernel's table order (point and spot lights, then directional ones,
+// then area lights): 1 where the light casts shadows.
+std::vector<cl_uint> shadow_casters(const std::vector<Light>& lights, const std::vector<AreaLight>& area_lights);
 
 }  // namespace phongcl

@@ -46,4 +46,9 @@ SurfacePoint reference_surface(const Scene& scene, const GBuffer& gbuffer, std::
 // The whole image: shaded pixels get total() (alpha 1), the rest the scene background (alpha 0).
 Image reference_image(const Scene& scene, const GBuffer& gbuffer, const LightReach& reaches = {});
 
+// The scene lit by one light group alone (`group` empty: the ungrouped lights), point, spot,
+// directional and area lights alike, with no ambient: its reference_image() is that group's layer
+// (docs/shading.md "Light groups").
+Scene reference_group_scene(const Scene& scene, const std::string& group);
+
 }  // namespace phongcl

@@ -199,4 +199,14 @@ AreaIntegrals reference_area_integrals(const AreaLight& light, const glm::dvec3&
   return result;
 }
 
+Light area_shadow_light(const AreaLight& light) {
+  Light centre;
+  centre.type = LightType::point;
+  centre.position = light.position;
+  centre.color = light.color;
+  centre.shadows = light.shadows;
+  centre.group = light.group;
+  return centre;
+}
+
 }  // namespace phongcl

@@ -23,4 +23,8 @@ AreaIntegrals reference_area_integrals(const AreaLight& light, const glm::dvec3&
 // The range window of an area light at `position` (1 without a range), as a point light's.
 double area_range_window(const AreaLight& light, const glm::dvec3& position);
 
+// The point light at an area light's centre: an area light's hard shadow is that light's shadow
+// ray (docs/shadows.md), so a LightReach decides it as it decides a point light's.
+Light area_shadow_light(const AreaLight& light);
+
 }  // namespace phongcl

@@ -1,5 +1,7 @@
 #include "reference/reference.h"
 
+#include <vector>
+
 namespace phongcl {
 
 Image reference_image(const Scene& scene, const GBuffer& gbuffer, const LightReach& reaches) {
@@ -19,6 +21,14 @@ Image reference_image(const Scene& scene, const GBuffer& gbuffer, const LightRea
     }
   }
   return image;
+}
+
+Scene reference_group_scene(const Scene& scene, const std::string& group) {
+  Scene alone = scene;
+  alone.ambient = glm::dvec3(0.0);
+  std::erase_if(alone.lights, [&](const Light& light) { return light.group != group; });
+  std::erase_if(alone.area_lights, [&](const AreaLight& light) { return light.group != group; });
+  return alone;
 }
 
 }  // namespace phongcl

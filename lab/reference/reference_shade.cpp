@@ -108,6 +108,7 @@ ShadingTerms reference_shade_point(const Scene& scene, const SurfacePoint& point
   const glm::dvec3 r = 2.0 * glm::dot(n, v) * n - v;
   for (const AreaLight& light : scene.area_lights) {
     if (n == glm::dvec3(0.0)) break;
+    if (reaches && light.shadows && !reaches(point, area_shadow_light(light))) continue;
     const AreaIntegrals integrals = reference_area_integrals(light, point.position, n, r, point.shininess);
     const double window = area_range_window(light, point.position);
     diffuse += product(light.color, glm::dvec3(integrals.irradiance * window));

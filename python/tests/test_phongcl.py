@@ -1,4 +1,5 @@
 """The Python module against an independent NumPy reference, relit in a loop, and on bad inputs."""
+import json
 import math
 import os
 import pathlib
@@ -197,6 +198,23 @@ def test_shadows_are_a_relighter_option(scene, gbuffer):
         phongcl.Relighter(casting, gbuffer, shadows="sideways")
     with pytest.raises(ValueError, match="thickness"):
         phongcl.Relighter(casting, gbuffer, shadows="screen", shadow_thickness="-3")
+
+
+@needs_device
+def test_area_light_groups_come_back_apart(tmp_path, scene, gbuffer):
+    document = json.loads(DEFAULT.read_text())
+    document["lights"].append({"type": "area", "shape": "disk", "position": [0, 4, 2], "direction": [0, -1, -0.3],
+                               "size": 1.5, "color": [3, 3, 3], "group": "panel"})
+    path = tmp_path / "scene.json"
+    path.write_text(json.dumps(document))
+    shaded = phongcl.Relighter(phongcl.load_scene(str(path)), gbuffer, terms=True).shade_terms()
+    assert sorted(shaded["groups"]) == ["panel"]
+    plain = phongcl.Relighter(scene, gbuffer, terms=True).shade_terms()
+    image = shaded["image"]
+    lit = image[..., 3] == 1
+    total = (shaded["ambient"] + plain["diffuse"] + plain["specular"] + shaded["groups"]["panel"])[..., :3]
+    np.testing.assert_allclose(total[lit], image[..., :3][lit], rtol=1e-5, atol=1e-6)
+    assert (shaded["groups"]["panel"][lit] > 0).any()
 
 
 @needs_device

@@ -41,7 +41,7 @@ def build_area_scene(width, height, samples):
         light.data.shape = shape
         light.data.size, light.data.size_y = size, size_y
         light.data.energy = energy
-        light.data.cycles.cast_shadow = False  # phongcl's area lights cast none
+        light.data.cycles.cast_shadow = False  # unshadowed light: phongcl's area shadows are hard, Cycles' soft
 
     make_fixtures.add_camera(scene, location=(6.5, -6.0, 3.6), target=(0.0, 0.0, 0.5), lens=40.0)
     bpy.context.view_layer.update()

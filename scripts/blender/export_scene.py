@@ -24,7 +24,9 @@ Conventions (docs/formats.md "Renderers' G-buffers", "From a Blender scene"):
   a disk to 5e-4), and a Lambertian surface receives rho / pi times that radiance times the
   cosine-weighted solid angle; phongcl's area colour folds the 1/pi in, so it is colour * P / (4 pi A).
   The emitting side is the light's -Z, the rect's height runs along its +Y, and the sizes are
-  scaled by the object's scale as Cycles does. phongcl's area lights cast no shadows.
+  scaled by the object's scale as Cycles does. An area light that casts shadows in Cycles gets
+  "shadows": true, but phongcl's is a hard shadow, decided by one ray to the emitter's centre (Cycles'
+  is soft): a note says so.
 - Materials by pass index (Material.pass_index): a Principled BSDF becomes "blinn-phong-normalized"
   (phongcl's ks (q+8)/8 (n.h)^q n.l, a BRDF) with kd = base colour * (1 - metallic),
   ks = mix(0.08 * specular, base colour, metallic) (the BSDF's normal-incidence reflectance) and
@@ -36,7 +38,7 @@ Conventions (docs/formats.md "Renderers' G-buffers", "From a Blender scene"):
   lights an unoccluded Lambertian surface with rho * L). Indices no material uses get a grey
   material.
 - Shadows: a light that casts shadows in Cycles (its cast_shadow setting) gets "shadows": true.
-- Light groups: a light's Object.lightgroup (Blender 3.2+) becomes its "group".
+- Light groups: a light's Object.lightgroup (Blender 3.2+) becomes its "group", area lights' too.
 - --geometry DIR writes every visible mesh that casts shadows (Object.visible_shadow) as a
   world-space binary little-endian PLY in DIR, modifiers applied and triangulated, one file per
   object and material slot (DIR/<object>.<slot>.ply), and lists each as a {"type": "mesh"} object
@@ -162,8 +164,8 @@ def area_light_json(light):
         area = width * height
     entry["color"] = rounded(Vector(data.color) * data.energy / (4.0 * math.pi * area))
     if data.cycles.cast_shadow:
-        note("area light '%s' casts shadows in Cycles; phongcl's area lights cast none" % light.name)
-    return entry
+        note("area light '%s' casts soft shadows in Cycles; phongcl's are hard, from its centre" % light.name)
+    return with_shadow_and_group(light, entry)
 
 
 def lights_json(scene, falloff):
