@@ -428,6 +428,13 @@ TEST_F(Serve, StatsDescribeTheKernelAndTheFrameTimes) {
   expect_error(client.Get("/api/stats?verbose=1"), 400, "unknown parameter 'verbose'");
 }
 
+// The served frame as an EXR, `query` added to the image request's.
+Image served_exr(httplib::Client& client, const std::string& query) {
+  const auto result = client.Get("/api/image?format=exr" + query);
+  EXPECT_EQ(result->status, 200) << query << ": " << result->body;
+  return decode_exr(result->body);
+}
+
 // Light groups: listed in the stats, shown with aov=group.<name>, soloed and muted on the host (the
 // other lights, or the muted group's, at colour 0): soloed, the image is the ambient plus the group's
 // layer; muted, it is the reference of the scene without that group's light.
@@ -438,11 +445,7 @@ TEST_F(Serve, LightGroupsAreListedShownSoloedAndMuted) {
   scene["lights"][2]["group"] = "fill";
   ASSERT_EQ(client.Put("/api/scene", scene.dump(), "application/json")->status, 200);
   EXPECT_EQ(body_json(client.Get("/api/stats"))["light_groups"], json({"key", "fill"}));
-  const auto image_of = [&](const std::string& query) {
-    const auto result = client.Get("/api/image?format=exr" + query);
-    EXPECT_EQ(result->status, 200) << query << ": " << result->body;
-    return decode_exr(result->body);
-  };
+  const auto image_of = [&](const std::string& query) { return served_exr(client, query); };
   const Image key = image_of("&aov=group.key"), ambient = image_of("&aov=ambient");
   expect_error(client.Get("/api/image?format=exr&aov=group.rim"), 400, "no light group 'rim'");
 
@@ -478,11 +481,7 @@ TEST_F(Serve, AreaLightGroupsAreListedAndMuted) {
   scene["lights"].push_back(panel);
   ASSERT_EQ(client.Put("/api/scene", scene.dump(), "application/json")->status, 200);
   EXPECT_EQ(body_json(client.Get("/api/stats"))["light_groups"], json({"key", "panel"}));
-  const auto image_of = [&](const std::string& query) {
-    const auto result = client.Get("/api/image?format=exr" + query);
-    EXPECT_EQ(result->status, 200) << query << ": " << result->body;
-    return decode_exr(result->body);
-  };
+  const auto image_of = [&](const std::string& query) { return served_exr(client, query); };
   const Image lit_by_panel = image_of("&aov=group.panel");
   bool any_lit = false;
   for (std::size_t i = 0; i < lit_by_panel.pixel_count(); ++i) any_lit |= lit_by_panel.pixel(i)[0] > 0.0f;
