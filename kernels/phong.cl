@@ -56,7 +56,8 @@ typedef struct {
   int point_count, directional_count;                /* lights to loop over (of point_list when culled) */
   __global const AreaLightRecord* area;              /* AREA_LIGHTS: rects and disks */
   int area_count;
-  __global const uint* point_casters;                /* SHADOWS: 1 where point light i casts shadows */
+  __global const uint* point_casters;                /* SHADOWS: where point light i casts shadows, 1 + its
+                                                        place in the culling's casters (shadow.h), else 0 */
   __global const uint* directional_casters;          /* SHADOWS: the same per directional light */
   __global const uint* area_casters;                 /* SHADOWS: the same per area light */
   const ShadowInputs* shadows;                       /* SHADOWS: what the shadow rays test (shadow.h) */
@@ -114,13 +115,15 @@ void add_lobes(LightSums* sums, vec3 n, vec3 v, realv shininess, realv model, ve
 }
 
 /* F times the light's visibility: 0 in the lanes where its shadow ray is blocked (a select, not a
- * product: F may be +Inf at a light), traced only where the light casts shadows and lights the lane.
- * `where` is a point light's eye-relative position or a directional light's unit l. */
+ * product: F may be +Inf at a light), traced only where the light casts shadows (`casts`, its
+ * caster word) and lights the lane. `where` is a point light's eye-relative position or a
+ * directional light's unit l. */
 static inline realv shadowed_weight(realv weight, const Surface* surface, const Lights* lights, vec3 where,
                                     int directional, uint casts) {
   if (!casts) return weight;
   const intv pending = LANE_MASK(weight > 0) & LANE_MASK(surface->material != PHONGCL_BACKGROUND);
-  const intv blocked = light_blocked(lights->shadows, surface->p, surface->n, where, directional, SCREEN_SHADOWS, pending);
+  const intv blocked =
+      light_blocked(lights->shadows, surface->p, surface->n, where, directional, SCREEN_SHADOWS, casts - 1, pending);
   return SELECT(TO_REALV(blocked) != 0, 0, weight);
 }
 
@@ -172,11 +175,11 @@ static inline void add_directional_light(LightSums* sums, const Surface* surface
  * centre is blocked, as a point light's there would be (lanes whose horizon hides the centre trace
  * nothing and stay lit). Selects, not products, as shadowed_weight's. */
 static inline void shadow_area_light(realv* irradiance, realv* highlight, const Surface* surface, const Lights* lights,
-                                     __global const AreaLightRecord* light) {
+                                     __global const AreaLightRecord* light, uint casts) {
   const intv lit = LANE_MASK(*irradiance > 0) | LANE_MASK(*highlight > 0);
   const intv pending = lit & LANE_MASK(surface->material != PHONGCL_BACKGROUND);
   const intv blocked = light_blocked(lights->shadows, surface->p, surface->n, area_vector(light->center), 0,
-                                     SCREEN_SHADOWS, pending);
+                                     SCREEN_SHADOWS, casts - 1, pending);
   *irradiance = SELECT(TO_REALV(blocked) != 0, 0, *irradiance);
   *highlight = SELECT(TO_REALV(blocked) != 0, 0, *highlight);
 }
@@ -190,7 +193,8 @@ static inline void add_area_light(LightSums* sums, const Surface* surface, const
   const vec3 r = make_vec3(fma(two_n_dot_v, n.x, -v.x), fma(two_n_dot_v, n.y, -v.y), fma(two_n_dot_v, n.z, -v.z));
   realv irradiance, highlight;
   area_light_terms(light, surface->p, n, r, surface->shininess, SPECULAR, &irradiance, &highlight);
-  if (SHADOWS && lights->area_casters[k]) shadow_area_light(&irradiance, &highlight, surface, lights, light);
+  if (SHADOWS && lights->area_casters[k])
+    shadow_area_light(&irradiance, &highlight, surface, lights, light, lights->area_casters[k]);
   sums->diffuse.x += light->color[0] * irradiance;
   sums->diffuse.y += light->color[1] * irradiance;
   sums->diffuse.z += light->color[2] * irradiance;
@@ -376,12 +380,15 @@ __kernel void phong_shade(
     /* tiled culling (cull.cl): tile t's point lights are tile_lights[tile_offsets[t] ...] */
     __global const uint* restrict tile_offsets, __global const uint* restrict tile_counts,
     __global const uint* restrict tile_lights, const TileGrid grid,
-    /* shadows (shadow.h), read only with SHADOWS: 1 per light where it casts shadows (point lights',
-     * then directional lights', then area lights'), the geometry (shadow_layout.h), the screen
-     * march's depth plane and the frame's shadow scalars */
+    /* shadows (shadow.h), read only with SHADOWS: a word per light (point lights', then directional
+     * lights', then area lights'), 1 + its place among the casters where it casts shadows, else 0;
+     * the geometry (shadow_layout.h), the screen march's depth plane and the frame's shadow scalars;
+     * with shadow_tiles > 0 tiled shadow culling's lists (shadow_cull.cl) over shadow_grid's tiles */
     __global const uint* restrict shadow_casters, __global const BvhNode* restrict shadow_nodes,
     __global const ShadowPrimitive* restrict shadow_primitives, __global const ShadowPlane* restrict shadow_planes,
     __global const float* restrict shadow_depth, const ShadowFrame shadow_frame,
+    __global const uint* restrict shadow_counts, __global const uint* restrict shadow_offsets,
+    __global const ShadowCandidate* restrict shadow_candidates, const TileGrid shadow_grid, const uint shadow_tiles,
     /* light groups, read only with LIGHT_GROUPS: each light's group (point lights', then directional
      * lights', then area lights'), LIGHT_GROUPS for none; their planes follow the terms in out_terms */
     __global const uint* restrict light_groups,
@@ -391,7 +398,10 @@ __kernel void phong_shade(
   const PixelOutputs outputs = {out_rgba, out_terms, frame.plane_stride, group};
   const float radiance_scale_a = frame.radiance_scale_a, radiance_scale_b = frame.radiance_scale_b;
   const uint tile = TILED_CULLING ? tile_of_pixel(grid, grid.first_pixel + (uint)(group * PHONGCL_LANES)) : 0;
-  const ShadowInputs shadows = {shadow_nodes, shadow_primitives, shadow_planes, shadow_depth, shadow_frame};
+  const uint shadow_tile =
+      shadow_tiles > 0 ? tile_of_pixel(shadow_grid, shadow_grid.first_pixel + (uint)(group * PHONGCL_LANES)) : 0;
+  const ShadowInputs shadows = {shadow_nodes,  shadow_primitives, shadow_planes,     shadow_depth, shadow_frame,
+                                shadow_counts, shadow_offsets,    shadow_candidates, shadow_tiles, shadow_tile};
   const Lights lights = {
       .point = point_lights,
       .point_shapes = point_shapes,

@@ -151,25 +151,43 @@ static inline intv screen_march_blocked(__global const float* depth, ScreenMarch
   return blocked;
 }
 
-/* What the shading kernel's shadow tests read (phong.cl): the geometry (shadow_layout.h), the
- * screen march's depth plane, and the frame's shadow scalars. */
+/* What the shading kernel's shadow tests read (phong.cl): the geometry (shadow_layout.h), the screen
+ * march's depth plane, the frame's shadow scalars, and with tiled shadow culling (tiles > 0) the
+ * lists of shadow_cull.cl for the work-item's tile: pair caster * tiles + tile holds counts[pair]
+ * candidates from candidates[offsets[pair]], or PHONGCL_SHADOW_TRAVERSE. */
 typedef struct {
   __global const BvhNode* nodes;
   __global const ShadowPrimitive* primitives;
   __global const ShadowPlane* planes;
   __global const float* depth;
   ShadowFrame frame;
+  __global const uint* counts;
+  __global const uint* offsets;
+  __global const ShadowCandidate* candidates;
+  uint tiles, tile;
 } ShadowInputs;
 
 /* The lanes of `pending` that a light does not reach (shadow_ray_toward's light): its ray is blocked
- * by the geometry, or with `screen` by a surface of the depth plane. */
+ * by the geometry, or with `screen` by a surface of the depth plane. `caster` is the light's place
+ * in the culling's list of shadow-casting lights: where its tile's list is empty nothing can block
+ * the tile's rays, and no ray is made. */
 static inline intv light_blocked(const ShadowInputs* shadows, vec3 p, vec3 n, vec3 where, int directional, int screen,
-                                 intv pending) {
+                                 uint caster, intv pending) {
+  if (!any_lane(pending)) return pending;
+  uint pair = 0, count = PHONGCL_SHADOW_TRAVERSE;
+  if (!screen && shadows->tile < shadows->tiles) {
+    pair = caster * shadows->tiles + shadows->tile;
+    count = shadows->counts[pair];
+    if (count == 0) return pending & 0;
+  }
   const ShadowRay ray = shadow_ray_toward(p, n, where, directional, shadows->frame.offset_scale,
                                           shadows->frame.eye_extent, &pending);
   pending &= LANE_MASK(ray.t_max > 0);
   if (!any_lane(pending)) return pending;
   if (screen) return screen_march_blocked(shadows->depth, shadows->frame.march, &ray, pending);
+  if (count != PHONGCL_SHADOW_TRAVERSE)
+    return candidates_block(&shadows->candidates[shadows->offsets[pair]], count, shadows->primitives, shadows->planes,
+                            &ray, pending);
   return shadow_ray_blocked(shadows->nodes, shadows->frame.node_count, shadows->primitives, shadows->planes,
                             shadows->frame.plane_count, &ray, pending);
 }

@@ -17,9 +17,10 @@ inline double largest_magnitude(const glm::dvec3& v) { return std::max({std::abs
 
 // A scene that exercises every shape: a ground plane, a knot mesh, spheres plain and under
 // non-uniform transforms, loose triangles; point lights and a directional one. `offset` moves
-// everything (camera and lights too).
-inline Scene shadow_test_scene(const std::filesystem::path& dir, const glm::dvec3& offset, int width, int height) {
-  Scene scene = knot_scene(dir, 48, 10, 2);
+// everything (camera and lights too). The knot has 20 triangles per segment.
+inline Scene shadow_test_scene(const std::filesystem::path& dir, const glm::dvec3& offset, int width, int height,
+                               int knot_segments = 48) {
+  Scene scene = knot_scene(dir, knot_segments, 10, 2);
   scene.camera.width = width;
   scene.camera.height = height;
   Object plane, wall, ball, squashed, triangle, everything;

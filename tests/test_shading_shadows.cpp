@@ -17,6 +17,7 @@
 #include "reference/reference_area.h"
 #include "reference/reference_screen_shadows.h"
 #include "reference/reference_shadows.h"
+#include "shading/shadow_inputs.h"
 #include "shadow_test_scene.h"
 #include "temp_dir.h"
 
@@ -32,8 +33,8 @@ using testing::TempDir;
 
 // The test scene with every light but the first casting shadows (so a light that does not cast
 // them is in every kernel built here too).
-Scene casting_scene(const std::filesystem::path& dir, const glm::dvec3& offset) {
-  Scene scene = testing::shadow_test_scene(dir, offset, 96, 72);
+Scene casting_scene(const std::filesystem::path& dir, const glm::dvec3& offset, int knot_segments = 48) {
+  Scene scene = testing::shadow_test_scene(dir, offset, 96, 72, knot_segments);
   for (Light& light : scene.lights) light.shadows = true;
   scene.lights.front().shadows = false;
   return scene;
@@ -112,12 +113,18 @@ Expected reference_with_shadows(const Scene& scene, const GBuffer& gbuffer, cons
   return expected;
 }
 
-Image shade(const Scene& scene, const GBuffer& gbuffer, const ShadowSettings& shadows, int lanes = 0) {
+// `culled`: whether the frame's geometry shadows are to be culled per tile (the report says so).
+Image shade(const Scene& scene, const GBuffer& gbuffer, const ShadowSettings& shadows, int lanes = 0,
+            bool culled = true) {
   RelighterOptions options;
   options.lanes = lanes;
   options.shadows = shadows;
   Relighter relighter(scene, gbuffer, options);
-  return relighter.shade();
+  Image image = relighter.shade();
+  if (shadows.mode == ShadowMode::geometry)
+    EXPECT_EQ(relighter.last_report().shadows.find("culled in 32x32 tiles") != std::string::npos, culled)
+        << relighter.last_report().shadows;
+  return image;
 }
 
 void expect_agreement(const Image& got, const Expected& expected) {
@@ -146,16 +153,21 @@ Expected geometry_reference(const Scene& scene, const GBuffer& gbuffer) {
   });
 }
 
-void expect_geometry_matches_reference(const glm::dvec3& offset, int lanes) {
+void expect_geometry_matches_reference(const glm::dvec3& offset, int lanes, int knot_segments = 48) {
   TempDir dir;
-  const Scene scene = casting_scene(dir.path, offset);
+  const Scene scene = casting_scene(dir.path, offset, knot_segments);
   const GBuffer gbuffer = generate_gbuffer(scene);
-  expect_agreement(shade(scene, gbuffer, {ShadowMode::geometry}, lanes), geometry_reference(scene, gbuffer));
+  const bool culled = flatten_objects(scene.objects).bounded_count() <= kShadowCullingMaxShapes;
+  expect_agreement(shade(scene, gbuffer, {ShadowMode::geometry}, lanes, culled), geometry_reference(scene, gbuffer));
 }
 
+// The test scene's few thousand shapes are culled per tile before shading: a ray tests its tile's
+// candidates for its light, or nothing where they are none.
 TEST(ShadedShadows, GeometryAgreesWithTheBruteForceReference) { expect_geometry_matches_reference({0, 0, 0}, 0); }
 TEST(ShadedShadows, GeometryAgreesOnePixelPerWorkItem) { expect_geometry_matches_reference({0, 0, 0}, 1); }
 TEST(ShadedShadows, GeometryAMillionUnitsFromTheOriginAgrees) { expect_geometry_matches_reference({1e6, -3e5, 7e5}, 0); }
+// A knot of 5,120 triangles is more than culling takes: every ray traverses the BVH.
+TEST(ShadedShadows, GeometryOnADenseMeshTraversesAndAgrees) { expect_geometry_matches_reference({0, 0, 0}, 0, 256); }
 
 // Area lights' shadows, decided by the ray to the centre, with the point lights' in one kernel.
 TEST(ShadedShadows, AreaLightsInGeometryAgreeWithTheBruteForceReference) {

@@ -30,10 +30,14 @@ struct PhongArguments {
   // tiled culling: tile t's point lights are tile_lights[tile_offsets[t] ...], tile_counts[t] of them
   cl::Buffer tile_offsets, tile_counts, tile_lights;
   TileGrid grid{};
-  // shadows (kernels/shadow.h), read only with SHADOWS: 1 per light where it casts shadows, point
-  // lights' then directional lights'; the geometry; the screen march's depth plane; the scalars
+  // shadows (kernels/shadow.h), read only with SHADOWS: a caster word per light (point lights',
+  // directional lights', area lights'); the geometry; the screen march's depth plane; the scalars;
+  // with shadow_tiles > 0 tiled shadow culling's lists over shadow_grid's tiles
   cl::Buffer shadow_casters, shadow_nodes, shadow_primitives, shadow_planes, shadow_depth;
   ShadowFrame shadow_frame{};
+  cl::Buffer shadow_counts, shadow_offsets, shadow_candidates;
+  TileGrid shadow_grid{};
+  cl_uint shadow_tiles = 0;
   // light groups, read only with LIGHT_GROUPS: each light's group (point lights', then directional
   // lights'); their layers follow the terms in out_terms
   cl::Buffer light_groups;
@@ -64,6 +68,11 @@ void for_each_argument(Arguments& a, Visit&& visit) {
   visit("shadow_planes", a.shadow_planes);
   visit("shadow_depth", a.shadow_depth);
   visit("shadow_frame", a.shadow_frame);
+  visit("shadow_counts", a.shadow_counts);
+  visit("shadow_offsets", a.shadow_offsets);
+  visit("shadow_candidates", a.shadow_candidates);
+  visit("shadow_grid", a.shadow_grid);
+  visit("shadow_tiles", a.shadow_tiles);
   visit("light_groups", a.light_groups);
   visit("area_lights", a.area_lights);
 }

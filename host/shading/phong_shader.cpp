@@ -92,6 +92,14 @@ TileCuller& PhongShader::culler_for(const std::string& build_options) {
   return *culler_;
 }
 
+ShadowCuller& PhongShader::shadow_culler_for(const std::string& build_options) {
+  if (!shadow_culler_ || shadow_culler_options_ != build_options) {
+    shadow_culler_ = std::make_unique<ShadowCuller>(compute_, cache_, build_options);
+    shadow_culler_options_ = build_options;
+  }
+  return *shadow_culler_;
+}
+
 void PhongShader::prepare_shadows(const Scene& scene, const GBuffer& gbuffer, const Recipe& recipe,
                                   ShadeReport& report) {
   if (recipe.shadows == ShadowMode::off) return;
@@ -115,7 +123,10 @@ PhongShader::FrameSetup PhongShader::prepare(const Scene& scene, const GBuffer& 
   if (!uniforms_ || uniforms_options_ != report.build_options || uniforms_stride_ != stride) {
     const auto upload_start = Clock::now();
     uniforms_ = upload_uniforms(context, pack_uniforms(scene, recipe), stride);
-    shadow_casters_ = table_buffer(context, shadow_casters(scene.lights, scene.area_lights));
+    const ShadowCasters casters = shadow_casters(scene);
+    shadow_casters_ = table_buffer(context, casters.words);
+    shadow_lights_ = table_buffer(context, casters.lights);
+    shadow_light_count_ = casters.lights.size();
     uniforms_options_ = report.build_options;
     uniforms_stride_ = stride;
     report.timings.upload_ms += milliseconds(upload_start, Clock::now());
@@ -125,6 +136,7 @@ PhongShader::FrameSetup PhongShader::prepare(const Scene& scene, const GBuffer& 
   const PackedFor wanted{scene.camera.eye, recipe.precision, recipe.plane_count(), stride};
   const bool resident = stride >= pixels;
   if (!resident || (packed_ && packed_->key != wanted)) packed_.reset();
+  const bool shadows_culled = recipe.shadows != ShadowMode::off && shadows_->device.culled;
   return FrameSetup{
       .stride = stride,
       .pack_target = {planes_.at_least(context, plane_bytes), material_index_.at_least(context, stride * sizeof(cl_int)),
@@ -133,6 +145,8 @@ PhongShader::FrameSetup PhongShader::prepare(const Scene& scene, const GBuffer& 
       .terms = terms_.at_least(context, (recipe.write_terms ? term_planes(recipe) * stride : 1) * sizeof(cl_float)),
       .tiles = tile_layout(gbuffer.width, gbuffer.height, recipe.tile_size),
       .culler = recipe.tiled ? &culler_for(report.build_options) : nullptr,
+      .shadow_tiles = tile_layout(gbuffer.width, gbuffer.height, kShadowCullingTile),
+      .shadow_culler = shadows_culled ? &shadow_culler_for(report.build_options) : nullptr,
       .packed_for = wanted,
       .resident = resident};
 }
@@ -158,6 +172,7 @@ cl::Event PhongShader::cull_and_launch(cl::Kernel& kernel, FrameSetup& frame, co
                                        std::size_t padded, ShadeReport& report) {
   const DeviceUniforms& uniforms = *uniforms_;
   frame.tiles.grid.first_pixel = static_cast<cl_uint>(first);
+  frame.shadow_tiles.grid.first_pixel = static_cast<cl_uint>(first);
   const PackTarget& packed = frame.pack_target;
   TileCuller* culler = frame.culler;
   const ResidentShadows* shadows = recipe.shadows != ShadowMode::off ? &*shadows_ : nullptr;
@@ -167,6 +182,14 @@ cl::Event PhongShader::cull_and_launch(cl::Kernel& kernel, FrameSetup& frame, co
     report.culling += culled;
     report.timings.kernel_ms += culled.culling_ms;
   }
+  ShadowCuller* shadow_culler = frame.shadow_culler;
+  if (shadow_culler) {
+    const ShadowCullingStats culled = shadow_culler->cull(
+        packed.planes, frame.stride, packed.material_index, padded, frame.shadow_tiles, shadows->device.geometry,
+        shadow_lights_, shadow_light_count_, shadows->device.frame.offset_scale, shadows->device.frame.eye_extent);
+    report.timings.kernel_ms += culled.culling_ms;
+  }
+  const ShadowLists* lists = shadow_culler ? &shadow_culler->lists() : nullptr;
   const PhongArguments arguments{.planes = packed.planes,
                                  .material_index = packed.material_index,
                                  .materials = uniforms.materials,
@@ -182,11 +205,16 @@ cl::Event PhongShader::cull_and_launch(cl::Kernel& kernel, FrameSetup& frame, co
                                  .tile_lights = culler ? culler->lights() : uniforms.no_tiles,
                                  .grid = culler ? frame.tiles.grid : TileGrid{},
                                  .shadow_casters = shadows ? shadow_casters_ : uniforms.no_tiles,
-                                 .shadow_nodes = shadows ? shadows->device.nodes : uniforms.no_tiles,
-                                 .shadow_primitives = shadows ? shadows->device.primitives : uniforms.no_tiles,
-                                 .shadow_planes = shadows ? shadows->device.planes : uniforms.no_tiles,
+                                 .shadow_nodes = shadows ? shadows->device.geometry.nodes : uniforms.no_tiles,
+                                 .shadow_primitives = shadows ? shadows->device.geometry.primitives : uniforms.no_tiles,
+                                 .shadow_planes = shadows ? shadows->device.geometry.planes : uniforms.no_tiles,
                                  .shadow_depth = shadows ? shadows->device.depth : uniforms.no_tiles,
                                  .shadow_frame = shadows ? shadows->device.frame : ShadowFrame{},
+                                 .shadow_counts = lists ? lists->counts : uniforms.no_tiles,
+                                 .shadow_offsets = lists ? lists->offsets : uniforms.no_tiles,
+                                 .shadow_candidates = lists ? lists->candidates : uniforms.no_tiles,
+                                 .shadow_grid = lists ? frame.shadow_tiles.grid : TileGrid{},
+                                 .shadow_tiles = lists ? lists->tiles : 0u,
                                  .light_groups = uniforms.light_groups,
                                  .area_lights = uniforms.area_lights};
   return launch_phong(kernel, compute_.queue, arguments, padded, recipe.lanes);

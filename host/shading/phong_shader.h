@@ -14,6 +14,7 @@
 #include "shading/pack.h"
 #include "shading/recipe.h"
 #include "shading/shade_stats.h"
+#include "shading/shadow_culling.h"
 #include "shading/shadow_inputs.h"
 #include "shading/tile_culling.h"
 
@@ -97,11 +98,14 @@ class PhongShader {
     const cl::Buffer& terms;   // PHONGCL_TERM_PLANES planes with write_terms
     TileLayout tiles;
     TileCuller* culler = nullptr;  // with tiled culling
+    TileLayout shadow_tiles;
+    ShadowCuller* shadow_culler = nullptr;  // with geometry shadows culled per tile
     PackedFor packed_for;
     bool resident = false;  // one launch holds the frame: its packed G-buffer is kept
   };
   cl::Kernel& kernel_for(ShadeReport& report);
   TileCuller& culler_for(const std::string& build_options);
+  ShadowCuller& shadow_culler_for(const std::string& build_options);
   // With shadows: their inputs, built unless kept.
   void prepare_shadows(const Scene& scene, const GBuffer& gbuffer, const Recipe& recipe, ShadeReport& report);
   // The frame's buffers and tables (uploaded unless kept), and whether the packed G-buffer is kept.
@@ -127,7 +131,8 @@ class PhongShader {
   std::size_t uniforms_stride_ = 0;
   std::optional<PackedFrame> packed_;  // the planes hold the whole frame, packed for this
   std::optional<ResidentShadows> shadows_;
-  cl::Buffer shadow_casters_;  // uploaded with the tables
+  cl::Buffer shadow_casters_, shadow_lights_;  // uploaded with the tables (ShadowCasters' words, lights)
+  std::size_t shadow_light_count_ = 0;
   // ALLOC_HOST_PTR + map/unmap: on a CPU device packing writes straight into device memory.
   ReusableBuffer planes_{CL_MEM_READ_ONLY | CL_MEM_ALLOC_HOST_PTR};
   ReusableBuffer material_index_{CL_MEM_READ_ONLY | CL_MEM_ALLOC_HOST_PTR};
@@ -135,6 +140,8 @@ class PhongShader {
   ReusableBuffer terms_{CL_MEM_WRITE_ONLY | CL_MEM_ALLOC_HOST_PTR};
   std::unique_ptr<TileCuller> culler_;  // built for culler_options_
   std::string culler_options_;
+  std::unique_ptr<ShadowCuller> shadow_culler_;  // built for shadow_culler_options_
+  std::string shadow_culler_options_;
 };
 
 }  // namespace phongcl

@@ -25,21 +25,17 @@ ShadowDevice make_shadow_device(const cl::Context& context, const Scene& scene, 
     ScreenDepth screen = screen_depth(scene.camera, gbuffer, settings.steps, static_cast<float>(settings.thickness));
     frame.march = screen.march;
     depth = std::move(screen.depth);
-    device.nodes = table_buffer(context, std::vector<BvhNode>());
-    device.primitives = table_buffer(context, std::vector<ShadowPrimitive>());
-    device.planes = table_buffer(context, std::vector<ShadowPlane>());
+    device.geometry = upload_shadow_geometry(context, DeviceGeometry{});
   } else {
     const SceneBvh bvh = build_scene_bvh(flatten_objects(scene.objects), PHONGCL_BVH_MAX_DEPTH);
     const DeviceGeometry geometry = pack_device_geometry(bvh, eye);
-    const ShadowGeometryBuffers buffers = upload_shadow_geometry(context, geometry);
-    device.nodes = buffers.nodes;
-    device.primitives = buffers.primitives;
-    device.planes = buffers.planes;
-    frame.node_count = buffers.node_count;
-    frame.plane_count = buffers.plane_count;
+    device.geometry = upload_shadow_geometry(context, geometry);
+    frame.node_count = device.geometry.node_count;
+    frame.plane_count = device.geometry.plane_count;
     device.triangles = bvh.shapes.triangles.size();
     device.spheres = bvh.shapes.spheres.size();
     device.unbounded_planes = geometry.planes.size();
+    device.culled = bvh.shapes.bounded_count() <= kShadowCullingMaxShapes;
   }
   device.depth = table_buffer(context, depth);
   device.build_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
@@ -53,18 +49,34 @@ std::string describe_shadows(ShadowMode mode, int casters, const ShadowSettings&
   if (mode == ShadowMode::screen)
     return "screen: " + lights + ", " + std::to_string(settings.steps) + " steps, thickness " +
            format_shadow_thickness(settings.thickness) + " (depth plane in " + built + ")";
+  const std::string culled = device.culled ? ", culled in " + std::to_string(kShadowCullingTile) + "x" +
+                                                 std::to_string(kShadowCullingTile) + " tiles"
+                                           : "";
   return "geometry: " + lights + ", a BVH of " + std::to_string(device.triangles) + " triangles and " +
          std::to_string(device.spheres) + " spheres, " + std::to_string(device.unbounded_planes) + " planes (built in " +
-         built + ")";
+         built + ")" + culled;
 }
 
-std::vector<cl_uint> shadow_casters(const std::vector<Light>& lights, const std::vector<AreaLight>& area_lights) {
-  std::vector<cl_uint> casters;
-  for (const Light& light : lights)
-    if (light.type != LightType::directional) casters.push_back(light.shadows ? 1u : 0u);
-  for (const Light& light : lights)
-    if (light.type == LightType::directional) casters.push_back(light.shadows ? 1u : 0u);
-  for (const AreaLight& light : area_lights) casters.push_back(light.shadows ? 1u : 0u);
+namespace {
+
+ShadowLight shadow_light(const glm::dvec3& where, bool directional) {
+  return {{static_cast<float>(where.x), static_cast<float>(where.y), static_cast<float>(where.z)}, directional ? 1u : 0u};
+}
+
+}  // namespace
+
+ShadowCasters shadow_casters(const Scene& scene) {
+  ShadowCasters casters;
+  const glm::dvec3& eye = scene.camera.eye;
+  auto add = [&](bool casts, const glm::dvec3& where, bool directional) {
+    casters.words.push_back(casts ? static_cast<cl_uint>(casters.lights.size() + 1) : 0u);
+    if (casts) casters.lights.push_back(shadow_light(where, directional));
+  };
+  for (const Light& light : scene.lights)
+    if (light.type != LightType::directional) add(light.shadows, light.position - eye, false);
+  for (const Light& light : scene.lights)
+    if (light.type == LightType::directional) add(light.shadows, -glm::normalize(light.direction), true);
+  for (const AreaLight& light : scene.area_lights) add(light.shadows, light.position - eye, false);
   return casters;
 }
 
