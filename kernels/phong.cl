@@ -118,8 +118,8 @@ void add_lobes(LightSums* sums, vec3 n, vec3 v, realv shininess, realv model, ve
  * product: F may be +Inf at a light), traced only where the light casts shadows (`casts`, its
  * caster word) and lights the lane. `where` is a point light's eye-relative position or a
  * directional light's unit l. */
-static inline realv shadowed_weight(realv weight, const Surface* surface, const Lights* lights, vec3 where,
-                                    int directional, uint casts) {
+static inline SHADOW_INLINE realv shadowed_weight(realv weight, const Surface* surface, const Lights* lights,
+                                                  vec3 where, int directional, uint casts) {
   if (!casts) return weight;
   const intv pending = LANE_MASK(weight > 0) & LANE_MASK(surface->material != PHONGCL_BACKGROUND);
   const intv blocked =

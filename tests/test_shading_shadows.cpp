@@ -225,6 +225,27 @@ TEST(ShadedShadows, FreeRaysChangeNoBit) {
   EXPECT_TRUE(same_bits(shadowed.shade(), unshadowed.shade()));
 }
 
+// Culling keeps the tiles' boxes of shaded positions while the packed G-buffer is kept: moved
+// lights are culled against the same boxes, a moved eye packs the G-buffer again and takes new
+// ones. Either way the frame is what a new relighter shades.
+TEST(ShadedShadows, CulledShadowsFollowMovedLightsAndAMovedEye) {
+  TempDir dir;
+  Scene scene = casting_scene(dir.path, {0, 0, 0});
+  const GBuffer gbuffer = generate_gbuffer(scene);
+  RelighterOptions options;
+  options.shadows.mode = ShadowMode::geometry;
+  Relighter relighter(scene, gbuffer, options);
+  const Image before = relighter.shade();
+  for (Light& light : scene.lights) light.position += glm::dvec3(0.4, 0.3, -0.2);
+  relighter.set_lights(scene.lights);
+  const Image moved_lights = relighter.shade();
+  EXPECT_FALSE(same_bits(moved_lights, before));
+  EXPECT_TRUE(same_bits(moved_lights, Relighter(scene, gbuffer, options).shade()));
+  scene.camera.eye += glm::dvec3(0.5, 0.2, 0.0);
+  relighter.set_camera_eye(scene.camera.eye);
+  EXPECT_TRUE(same_bits(relighter.shade(), Relighter(scene, gbuffer, options).shade()));
+}
+
 TEST(ShadedShadows, TheModeFollowsTheSceneAndTheLights) {
   TempDir dir;
   Scene scene = casting_scene(dir.path, {0, 0, 0});

@@ -127,6 +127,13 @@ void run_shade(const ShadeArguments& args) {
               << c.max_lights_per_tile << "; " << milliseconds(c.culling_ms) << " (inside kernel time)\n";
   }
   if (!result.shadows.empty()) std::cout << "  shadows    " << result.shadows << "\n";
+  if (result.shadows_culled) {
+    const ShadowCullingStats& c = result.shadow_culling;
+    std::cout << "             " << with_commas(c.pairs) << " (tile, light) pairs: candidates per pair mean " << std::fixed
+              << std::setprecision(2) << c.candidates_per_pair() << std::defaultfloat << ", "
+              << with_commas(c.traversing) << " traversing the BVH; " << milliseconds(c.culling_ms)
+              << " (inside kernel time)\n";
+  }
   if (result.tiles > 1) std::cout << "  tiles      " << result.tiles << " (frame larger than one device allocation)\n";
   print_unshaded(result.counts);
   for (const auto& warning : loaded.warnings) std::cout << "  warning    " << warning << "\n";

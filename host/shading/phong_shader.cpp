@@ -148,7 +148,8 @@ PhongShader::FrameSetup PhongShader::prepare(const Scene& scene, const GBuffer& 
       .shadow_tiles = tile_layout(gbuffer.width, gbuffer.height, kShadowCullingTile),
       .shadow_culler = shadows_culled ? &shadow_culler_for(report.build_options) : nullptr,
       .packed_for = wanted,
-      .resident = resident};
+      .resident = resident,
+      .pixels_kept = packed_.has_value()};
 }
 
 std::size_t PhongShader::pack_or_reuse(const FrameSetup& frame, const Scene& scene, const GBuffer& gbuffer,
@@ -186,7 +187,10 @@ cl::Event PhongShader::cull_and_launch(cl::Kernel& kernel, FrameSetup& frame, co
   if (shadow_culler) {
     const ShadowCullingStats culled = shadow_culler->cull(
         packed.planes, frame.stride, packed.material_index, padded, frame.shadow_tiles, shadows->device.geometry,
-        shadow_lights_, shadow_light_count_, shadows->device.frame.offset_scale, shadows->device.frame.eye_extent);
+        shadow_lights_, shadow_light_count_, shadows->device.frame.offset_scale, shadows->device.frame.eye_extent,
+        frame.pixels_kept);
+    report.shadows_culled = true;
+    report.shadow_culling += culled;
     report.timings.kernel_ms += culled.culling_ms;
   }
   const ShadowLists* lists = shadow_culler ? &shadow_culler->lists() : nullptr;

@@ -102,6 +102,7 @@ class PhongShader {
     ShadowCuller* shadow_culler = nullptr;  // with geometry shadows culled per tile
     PackedFor packed_for;
     bool resident = false;  // one launch holds the frame: its packed G-buffer is kept
+    bool pixels_kept = false;  // and the kept one is this frame's: nothing is packed
   };
   cl::Kernel& kernel_for(ShadeReport& report);
   TileCuller& culler_for(const std::string& build_options);

@@ -41,6 +41,15 @@ struct CullingStats {
   CullingStats& operator+=(const CullingStats& other);
 };
 
+// What one frame's tiled shadow culling found: per (tile, shadow-casting light) pair a list of
+// candidates, or too many (the pair's rays traverse the BVH).
+struct ShadowCullingStats {
+  double culling_ms = 0.0;  // the passes' profiling events and the host's prefix sums
+  std::size_t pairs = 0, entries = 0, traversing = 0;
+  double candidates_per_pair() const { return pairs > traversing ? static_cast<double>(entries) / (pairs - traversing) : 0.0; }
+  ShadowCullingStats& operator+=(const ShadowCullingStats& other);
+};
+
 // The three terms of L_o as images (RGB, alpha as in the combined image, premultiplied like it);
 // their sum is the combined image up to float rounding.
 struct TermImages {
@@ -67,6 +76,8 @@ struct ShadeReport {
   int area_lights = 0;                                            // rects and disks
   // How shadows were made, one line ("geometry: 2 lights, a BVH of ..."); empty without shadows.
   std::string shadows;
+  bool shadows_culled = false;          // tiled shadow culling ran; then `shadow_culling` says what it found
+  ShadowCullingStats shadow_culling;    // its time is also inside timings.kernel_ms
   // The on-disk program cache: its directory (empty: none writable) and why it could not be used.
   std::string disk_cache_directory, disk_cache_problem;
 };

@@ -2,11 +2,20 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstring>
 #include <vector>
 
 #include "cl/kernel_source.h"
 
 namespace phongcl {
+
+ShadowCullingStats& ShadowCullingStats::operator+=(const ShadowCullingStats& other) {
+  culling_ms += other.culling_ms;
+  pairs += other.pairs;
+  entries += other.entries;
+  traversing += other.traversing;
+  return *this;
+}
 
 ShadowCuller::ShadowCuller(const ComputeContext& compute, ProgramCache& cache, const std::string& bounds_options)
     : compute_(compute),
@@ -102,16 +111,29 @@ void ShadowCuller::fine_level(const cl::Buffer& boxes, const ShadowGeometryBuffe
 ShadowCullingStats ShadowCuller::cull(const cl::Buffer& planes, std::size_t plane_stride, const cl::Buffer& material_index,
                                       std::size_t slot_count, const TileLayout& layout,
                                       const ShadowGeometryBuffers& geometry, const cl::Buffer& lights,
-                                      std::size_t light_count, float offset_scale, float eye_extent) {
+                                      std::size_t light_count, float offset_scale, float eye_extent,
+                                      bool pixels_unchanged) {
   ShadowCullingStats stats;
+  const bool same_layout = boxes_for_ && boxes_for_->tile_count == layout.tile_count &&
+                           std::memcmp(&boxes_for_->grid, &layout.grid, sizeof(TileGrid)) == 0;
+  if (!pixels_unchanged || !same_layout) stats.culling_ms += box_tiles(planes, plane_stride, material_index, slot_count, layout);
+  coarse_level(coarse_boxes_, geometry, lights, light_count, offset_scale, eye_extent, stats);
+  fine_.grid = layout.grid;
+  fine_.tiles = static_cast<cl_uint>(layout.tile_count);
+  fine_level(boxes_, geometry, lights, light_count, offset_scale, eye_extent, stats);
+  return stats;
+}
+
+double ShadowCuller::box_tiles(const cl::Buffer& planes, std::size_t plane_stride, const cl::Buffer& material_index,
+                               std::size_t slot_count, const TileLayout& layout) {
   const cl::Context& context = compute_.context;
   cl::CommandQueue& queue = compute_.queue;
   const std::size_t tiles = std::max<std::size_t>(layout.tile_count, 1);
-  const cl::Buffer boxes(context, CL_MEM_READ_WRITE, tiles * sizeof(TileBox));
+  boxes_ = cl::Buffer(context, CL_MEM_READ_WRITE, tiles * sizeof(TileBox));
   cl::KernelFunctor<cl::Buffer, cl_uint, cl::Buffer, cl_uint, TileGrid, cl::Buffer> bounds(bounds_program_, "tile_bounds");
   const cl::Event boxed = bounds(cl::EnqueueArgs(queue, cl::NDRange(layout.tile_count)), planes,
                                  static_cast<cl_uint>(plane_stride), material_index, static_cast<cl_uint>(slot_count),
-                                 layout.grid, boxes);
+                                 layout.grid, boxes_);
 
   // The coarse level's boxes, merged from the tiles'.
   const cl_uint ratio = PHONGCL_SHADOW_COARSE_RATIO;
@@ -120,16 +142,13 @@ ShadowCullingStats ShadowCuller::cull(const cl::Buffer& planes, std::size_t plan
   coarse_.grid.tile_size *= ratio;
   coarse_.grid.tiles_x = (layout.grid.tiles_x + ratio - 1) / ratio;
   coarse_.tiles = coarse_.grid.tiles_x * ((rows + ratio - 1) / ratio);
-  const cl::Buffer coarse_boxes(context, CL_MEM_READ_WRITE, coarse_.tiles * sizeof(TileBox));
+  coarse_boxes_ = cl::Buffer(context, CL_MEM_READ_WRITE, coarse_.tiles * sizeof(TileBox));
   cl::KernelFunctor<cl::Buffer, cl_uint, cl_uint, cl_uint, cl_uint, cl::Buffer> merge(cull_program_, "merge_tile_boxes");
-  const cl::Event merged = merge(cl::EnqueueArgs(queue, cl::NDRange(coarse_.tiles)), boxes, layout.grid.tiles_x,
-                                 static_cast<cl_uint>(layout.tile_count), ratio, coarse_.grid.tiles_x, coarse_boxes);
-  coarse_level(coarse_boxes, geometry, lights, light_count, offset_scale, eye_extent, stats);
-  fine_.grid = layout.grid;
-  fine_.tiles = static_cast<cl_uint>(layout.tile_count);
-  fine_level(boxes, geometry, lights, light_count, offset_scale, eye_extent, stats);
-  stats.culling_ms += event_milliseconds(boxed) + event_milliseconds(merged);
-  return stats;
+  const cl::Event merged = merge(cl::EnqueueArgs(queue, cl::NDRange(coarse_.tiles)), boxes_, layout.grid.tiles_x,
+                                 static_cast<cl_uint>(layout.tile_count), ratio, coarse_.grid.tiles_x, coarse_boxes_);
+  merged.wait();  // the in-order queue ran `boxed` first
+  boxes_for_ = layout;
+  return event_milliseconds(boxed) + event_milliseconds(merged);
 }
 
 }  // namespace phongcl

@@ -4,6 +4,7 @@
 // (tiles of PHONGCL_SHADOW_COARSE_RATIO^2 tiles walk the BVH; each tile filters its parent's list).
 // The shading kernel then tests a pixel's few candidates instead of traversing the BVH.
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -23,22 +24,19 @@ struct ShadowLists {
   std::vector<cl_uint> host_counts;  // the coarse level's, which size the tiles' room
 };
 
-struct ShadowCullingStats {
-  double culling_ms = 0.0;  // the passes' profiling events and the host's prefix sums
-  std::size_t pairs = 0, entries = 0, traversing = 0;
-  double candidates_per_pair() const { return pairs > traversing ? static_cast<double>(entries) / (pairs - traversing) : 0.0; }
-};
-
 class ShadowCuller {
  public:
   // `bounds_options` builds cull.cl's tile_bounds for the frame's storage and lanes.
   ShadowCuller(const ComputeContext& compute, ProgramCache& cache, const std::string& bounds_options);
 
   // Culls one launch's slots [0, slot_count) (packed as kernels/layout.h says) for `lights`
-  // (ShadowLight, light_count of them).
+  // (ShadowLight, light_count of them). The tiles' boxes of shaded positions depend on the pixels
+  // alone: with `pixels_unchanged` (the slots hold what they held at the previous call, as when
+  // only lights change) and the same layout, the previous call's are used again.
   ShadowCullingStats cull(const cl::Buffer& planes, std::size_t plane_stride, const cl::Buffer& material_index,
                           std::size_t slot_count, const TileLayout& layout, const ShadowGeometryBuffers& geometry,
-                          const cl::Buffer& lights, std::size_t light_count, float offset_scale, float eye_extent);
+                          const cl::Buffer& lights, std::size_t light_count, float offset_scale, float eye_extent,
+                          bool pixels_unchanged = false);
 
   const ShadowLists& lists() const { return fine_; }
 
@@ -49,10 +47,16 @@ class ShadowCuller {
   // The tiles' level in one pass, each pair given room for as many entries as its parent has.
   void fine_level(const cl::Buffer& boxes, const ShadowGeometryBuffers& geometry, const cl::Buffer& lights,
                   std::size_t light_count, float offset_scale, float eye_extent, ShadowCullingStats& stats);
+  // The tiles' boxes (cull.cl's tile_bounds) and the coarse level's, merged from them; returns the
+  // passes' milliseconds.
+  double box_tiles(const cl::Buffer& planes, std::size_t plane_stride, const cl::Buffer& material_index,
+                   std::size_t slot_count, const TileLayout& layout);
 
   ComputeContext compute_;
   cl::Program bounds_program_, cull_program_;
   ShadowLists coarse_, fine_;
+  cl::Buffer boxes_, coarse_boxes_;
+  std::optional<TileLayout> boxes_for_;  // the layout boxes_ were taken for
 };
 
 }  // namespace phongcl
