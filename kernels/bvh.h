@@ -76,9 +76,12 @@ static inline intv meets_triangle(__global const ShadowPrimitive* triangle, cons
   return LANE_MASK(size > 0 && u >= 0 && v >= 0 && u + v <= size && t > 0 && t < ray->t_max * size);
 }
 
-/* The unit sphere in u = A x + b: |u(o) + t A d| = 1 at a t t_a = -b' -+ sqrt(b'^2 - a c), with
+/* The unit sphere in u = A x + b: f(t) = |u(o) + t A d|^2 - 1 = a t^2 + 2 b' t + c, with
  * a = |A d|^2, b' = u(o).A d, c = |u(o)|^2 - 1; the ray is blocked where its segment crosses the
- * surface (a segment wholly inside, a light and a point both within a sphere, is not). */
+ * surface (a segment wholly inside, a light and a point both within a sphere, is not): where one
+ * end is inside (f < 0) and the other not, or both are outside and f's minimum, at t = -b'/a, lies
+ * between them and reaches the surface (b'^2 >= a c). The same roots as -b' -+ sqrt(b'^2 - a c)
+ * in (0, t_max), without the square root, whose latency the test waited on. */
 static inline intv meets_sphere(__global const ShadowPrimitive* sphere, const ShadowRay* ray) {
   const vec3 o = ray->origin, d = ray->direction;
   vec3 uo, ud;
@@ -89,10 +92,10 @@ static inline intv meets_sphere(__global const ShadowPrimitive* sphere, const Sh
   ud.y = sphere->row[1][0] * d.x + sphere->row[1][1] * d.y + sphere->row[1][2] * d.z;
   ud.z = sphere->row[2][0] * d.x + sphere->row[2][1] * d.y + sphere->row[2][2] * d.z;
   const realv a = dot3(ud, ud), half_b = dot3(uo, ud), c = dot3(uo, uo) - 1;
-  const realv discriminant = half_b * half_b - a * c;
-  const realv root = sqrt(BVH_MAX(discriminant, (realv)0));
-  const realv enter_at = -half_b - root, leave_at = -half_b + root, end = ray->t_max * a; /* t times a */
-  return LANE_MASK(discriminant >= 0 && ((enter_at > 0 && enter_at < end) || (leave_at > 0 && leave_at < end)));
+  const realv t_max = ray->t_max, at_end = fma(t_max, fma(a, t_max, 2 * half_b), c);
+  const intv starts_inside = LANE_MASK(c < 0), ends_inside = LANE_MASK(at_end < 0);
+  const intv dips = LANE_MASK(half_b < 0 && -half_b < t_max * a && half_b * half_b >= a * c);
+  return (starts_inside ^ ends_inside) | (~(starts_inside | ends_inside) & dips);
 }
 
 /* Unbounded planes are tested by every ray: t = (offset - n.o) / n.d in (0, t_max). */

@@ -17,9 +17,9 @@ ShadowCullingStats& ShadowCullingStats::operator+=(const ShadowCullingStats& oth
   return *this;
 }
 
-ShadowCuller::ShadowCuller(const ComputeContext& compute, ProgramCache& cache, const std::string& bounds_options)
+ShadowCuller::ShadowCuller(const ComputeContext& compute, ProgramCache& cache, const std::string& shading_options)
     : compute_(compute),
-      bounds_program_(cache.build(compute, load_kernel_source("cull.cl"), bounds_options).program),
+      bounds_program_(cache.build(compute, load_kernel_source("cull.cl"), culling_options(shading_options)).program),
       // phong_math.h as one lane of float.
       cull_program_(cache.build(compute, load_kernel_source("shadow_cull.cl"),
                                 "-cl-std=CL1.2 -DPHONGCL_LANES=1 -DPHONGCL_DOUBLE=0 -DPHONGCL_FAST=0").program) {}
@@ -130,10 +130,8 @@ double ShadowCuller::box_tiles(const cl::Buffer& planes, std::size_t plane_strid
   cl::CommandQueue& queue = compute_.queue;
   const std::size_t tiles = std::max<std::size_t>(layout.tile_count, 1);
   boxes_ = cl::Buffer(context, CL_MEM_READ_WRITE, tiles * sizeof(TileBox));
-  cl::KernelFunctor<cl::Buffer, cl_uint, cl::Buffer, cl_uint, TileGrid, cl::Buffer> bounds(bounds_program_, "tile_bounds");
-  const cl::Event boxed = bounds(cl::EnqueueArgs(queue, cl::NDRange(layout.tile_count)), planes,
-                                 static_cast<cl_uint>(plane_stride), material_index, static_cast<cl_uint>(slot_count),
-                                 layout.grid, boxes_);
+  const std::array<cl::Event, 2> boxed = enqueue_tile_boxes(queue, bounds_program_, planes, plane_stride, material_index,
+                                                            slot_count, layout, row_boxes_, boxes_);
 
   // The coarse level's boxes, merged from the tiles'.
   const cl_uint ratio = PHONGCL_SHADOW_COARSE_RATIO;
@@ -148,7 +146,7 @@ double ShadowCuller::box_tiles(const cl::Buffer& planes, std::size_t plane_strid
                                  static_cast<cl_uint>(layout.tile_count), ratio, coarse_.grid.tiles_x, coarse_boxes_);
   merged.wait();  // the in-order queue ran `boxed` first
   boxes_for_ = layout;
-  return event_milliseconds(boxed) + event_milliseconds(merged);
+  return event_milliseconds(boxed[0]) + event_milliseconds(boxed[1]) + event_milliseconds(merged);
 }
 
 }  // namespace phongcl

@@ -26,8 +26,8 @@ struct ShadowLists {
 
 class ShadowCuller {
  public:
-  // `bounds_options` builds cull.cl's tile_bounds for the frame's storage and lanes.
-  ShadowCuller(const ComputeContext& compute, ProgramCache& cache, const std::string& bounds_options);
+  // `shading_options`: the shading variant's build options, whose lanes and storage cull.cl takes.
+  ShadowCuller(const ComputeContext& compute, ProgramCache& cache, const std::string& shading_options);
 
   // Culls one launch's slots [0, slot_count) (packed as kernels/layout.h says) for `lights`
   // (ShadowLight, light_count of them). The tiles' boxes of shaded positions depend on the pixels
@@ -56,6 +56,7 @@ class ShadowCuller {
   cl::Program bounds_program_, cull_program_;
   ShadowLists coarse_, fine_;
   cl::Buffer boxes_, coarse_boxes_;
+  ReusableBuffer row_boxes_{CL_MEM_READ_WRITE};
   std::optional<TileLayout> boxes_for_;  // the layout boxes_ were taken for
 };
 

@@ -10,9 +10,10 @@ namespace phongcl {
 
 namespace {
 
-using BoundsKernel = cl::KernelFunctor<cl::Buffer, cl_uint, cl::Buffer, cl_uint, TileGrid, cl::Buffer>;
 using CountKernel = cl::KernelFunctor<cl::Buffer, cl::Buffer, cl::Buffer, cl::Buffer, cl::Buffer, cl::Buffer>;
 using FillKernel = cl::KernelFunctor<cl::Buffer, cl::Buffer, cl::Buffer, cl::Buffer, cl::Buffer, cl::Buffer, cl::Buffer>;
+
+}  // namespace
 
 // The lane count and storage type are all cull.cl shares with the shading variant.
 std::string culling_options(const std::string& shading_options) {
@@ -25,7 +26,19 @@ std::string culling_options(const std::string& shading_options) {
   return options;
 }
 
-}  // namespace
+std::array<cl::Event, 2> enqueue_tile_boxes(cl::CommandQueue& queue, const cl::Program& cull_program,
+                                            const cl::Buffer& planes, std::size_t plane_stride,
+                                            const cl::Buffer& material_index, std::size_t slot_count,
+                                            const TileLayout& layout, ReusableBuffer& rows, const cl::Buffer& boxes) {
+  const std::size_t row_count = layout.tile_count * layout.grid.tile_size;
+  const cl::Buffer& row_boxes = rows.at_least(queue.getInfo<CL_QUEUE_CONTEXT>(), row_count * sizeof(TileBox));
+  cl::KernelFunctor<cl::Buffer, cl_uint, cl::Buffer, cl_uint, TileGrid, cl::Buffer> by_row(cull_program, "row_bounds");
+  cl::KernelFunctor<cl::Buffer, TileGrid, cl::Buffer> by_tile(cull_program, "tile_bounds");
+  cl::Event first = by_row(cl::EnqueueArgs(queue, cl::NDRange(row_count)), planes, static_cast<cl_uint>(plane_stride),
+                           material_index, static_cast<cl_uint>(slot_count), layout.grid, row_boxes);
+  cl::Event second = by_tile(cl::EnqueueArgs(queue, cl::NDRange(layout.tile_count)), row_boxes, layout.grid, boxes);
+  return {first, second};
+}
 
 CullingStats& CullingStats::operator+=(const CullingStats& other) {
   tile_size = other.tile_size;
@@ -129,9 +142,7 @@ CullingStats TileCuller::cull(const cl::Buffer& planes, std::size_t plane_stride
   cl::CommandQueue& queue = compute_.queue;
   const std::size_t tiles = layout.tile_count;
   const cl::Buffer& boxes = boxes_.at_least(context, tiles * sizeof(TileBox));
-  BoundsKernel(program_, "tile_bounds")(cl::EnqueueArgs(queue, cl::NDRange(tiles)), planes,
-                                        static_cast<cl_uint>(plane_stride), material_index,
-                                        static_cast<cl_uint>(slot_count), layout.grid, boxes);
+  enqueue_tile_boxes(queue, program_, planes, plane_stride, material_index, slot_count, layout, row_boxes_, boxes);
   std::vector<TileBox> box_values(tiles);
   queue.enqueueReadBuffer(boxes, CL_TRUE, 0, tiles * sizeof(TileBox), box_values.data());
 

@@ -2,7 +2,9 @@
 // Tiled light culling on the device (kernels/cull.cl): per screen tile, the box of its shaded
 // positions, then (boxes of 8 x 8 and 2 x 2 tiles first) the list of point and spot lights whose
 // bounds reach it; phong_shade's TILED_CULLING variant loops over its tile's list only.
+#include <array>
 #include <cstddef>
+#include <string>
 #include <vector>
 
 #include "cl/program_cache.h"
@@ -18,6 +20,17 @@ struct TileLayout {
   std::size_t tile_count = 0;
 };
 TileLayout tile_layout(int width, int height, int tile_size);
+
+// cull.cl's options for a shading variant's build options: its lanes and storage.
+std::string culling_options(const std::string& shading_options);
+
+// The boxes of a launch's tiles (layout.tile_count TileBoxes into `boxes`) from its packed slots
+// [0, slot_count), by cull.cl's row_bounds and tile_bounds (`rows` holds the first pass's boxes);
+// returns both passes' events.
+std::array<cl::Event, 2> enqueue_tile_boxes(cl::CommandQueue& queue, const cl::Program& cull_program,
+                                            const cl::Buffer& planes, std::size_t plane_stride,
+                                            const cl::Buffer& material_index, std::size_t slot_count,
+                                            const TileLayout& layout, ReusableBuffer& rows, const cl::Buffer& boxes);
 
 class TileCuller {
  public:
@@ -45,7 +58,7 @@ class TileCuller {
 
   ComputeContext compute_;
   cl::Program program_;
-  ReusableBuffer boxes_{CL_MEM_READ_WRITE};
+  ReusableBuffer boxes_{CL_MEM_READ_WRITE}, row_boxes_{CL_MEM_READ_WRITE};
   cl::Buffer offsets_buffer_, counts_buffer_, lights_buffer_;
 };
 
