@@ -40,6 +40,8 @@ for target in scene gbuffer http; do
     grep -E -m 30 "ERROR|SUMMARY|runtime error|out-of-memory|malloc\(|fuzz_http:|#[0-9]+ 0x" "$log" || true
     mkdir -p "$sanitizer_dir/fuzz-findings"
     cp "$work"/crash-* "$work"/leak-* "$work"/oom-* "$work"/timeout-* "$sanitizer_dir/fuzz-findings/" 2> /dev/null || true
+    # The whole log: fuzz_http's finding prints the response it refused after its one-line reason.
+    cp "$log" "$sanitizer_dir/fuzz-findings/"
     echo "fuzz_$target: FAILED (reproducer in $sanitizer_dir/fuzz-findings/, log above)"
     exit 1
   fi
