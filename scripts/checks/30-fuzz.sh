@@ -37,10 +37,11 @@ for target in scene gbuffer http; do
   if ! (cd "$work" && "$OLDPWD/$sanitizer_dir/tests/fuzz/fuzz_$target" -max_total_time="$seconds" \
           -malloc_limit_mb=1024 -max_len=65536 -print_final_stats=1 "${options[@]}" \
           "$target" "$OLDPWD/tests/fuzz/corpus/$target") > "$log" 2>&1; then
-    grep -E -m 30 "ERROR|SUMMARY|runtime error|out-of-memory|malloc\(|fuzz_http:|#[0-9]+ 0x" "$log" || true
+    grep -E -m 30 "ERROR|SUMMARY|runtime error|out-of-memory|malloc\(|#[0-9]+ 0x" "$log" || true
+    # fuzz_http's own finding: its reason and the response it refused.
+    sed -n '/^fuzz_http: /,/^--- end ---$/p' "$log" | head -40
     mkdir -p "$sanitizer_dir/fuzz-findings"
     cp "$work"/crash-* "$work"/leak-* "$work"/oom-* "$work"/timeout-* "$sanitizer_dir/fuzz-findings/" 2> /dev/null || true
-    # The whole log: fuzz_http's finding prints the response it refused after its one-line reason.
     cp "$log" "$sanitizer_dir/fuzz-findings/"
     echo "fuzz_$target: FAILED (reproducer in $sanitizer_dir/fuzz-findings/, log above)"
     exit 1

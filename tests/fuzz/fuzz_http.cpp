@@ -5,6 +5,8 @@
 // 500: answer() and the routes turn every one into that), or a response that is not a well-formed
 // HTTP response with a JSON error body for every error status. A 503 (no frame in time, while a
 // new kernel compiles) is an answer, not a finding.
+#include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cstddef>
 #include <cstdint>
@@ -12,9 +14,12 @@
 #include <cstdlib>
 #include <memory>
 #include <string>
+#include <optional>
 #include <string_view>
 
+#include <brotli/decode.h>
 #include <nlohmann/json.hpp>
+#include <zlib.h>
 
 #include "color/color_config.h"
 #include "serve/relight_server.h"
@@ -64,9 +69,114 @@ struct Server {
   phongcl::RelightServer server;
 };
 
+std::string_view current_input;  // the input being answered, written out with a finding
+
+// libFuzzer writes no crash file here (the LLVM inside PoCL takes SIGABRT's handler over), so a
+// finding writes its input itself, where 30-fuzz.sh collects the fuzzers' crash files.
+void write_input(const char* name) {
+  if (std::FILE* file = std::fopen(name, "wb")) {
+    std::fwrite(current_input.data(), 1, current_input.size(), file);
+    std::fclose(file);
+  }
+}
+
+// The input as a C string literal would spell it, for a log that outlives the fuzzer's files.
+std::string escaped(std::string_view bytes) {
+  std::string text;
+  for (const char c : bytes.substr(0, 2000)) {
+    if (c == '\\' || c == '"') text += {'\\', c};
+    else if (c == '\r') text += "\\r";
+    else if (c == '\n') text += "\\n";
+    else if (c >= ' ' && c <= '~') text += c;
+    else {
+      char hex[5];
+      std::snprintf(hex, sizeof hex, "\\x%02x", static_cast<unsigned char>(c));
+      text += hex;
+    }
+  }
+  return text;
+}
+
 [[noreturn]] void finding(const std::string& what, const std::string& response) {
-  std::fprintf(stderr, "fuzz_http: %s\n--- response ---\n%.2000s\n", what.c_str(), response.c_str());
+  write_input("crash-fuzz_http-finding");
+  std::fprintf(stderr, "fuzz_http: %s\n--- input (also in crash-fuzz_http-finding) ---\n\"%s\"\n--- response ---\n%.2000s\n--- end ---\n",
+               what.c_str(), escaped(current_input).c_str(), response.c_str());
   std::abort();
+}
+
+// Whether the library reads the request as HEAD (no body in its answer): the request line's first
+// word, which cpp-httplib finds by splitting at spaces and trimming spaces and tabs from each piece.
+bool is_head_request(std::string_view request) {
+  std::string_view line = request.substr(0, request.find("\r\n"));
+  const auto blank = [](char c) { return c == ' ' || c == '\t'; };
+  for (std::size_t begin = 0; begin < line.size();) {
+    std::size_t end = line.find(' ', begin);
+    if (end == std::string_view::npos) end = line.size();
+    std::string_view word = line.substr(begin, end - begin);
+    while (!word.empty() && blank(word.front())) word.remove_prefix(1);
+    while (!word.empty() && blank(word.back())) word.remove_suffix(1);
+    if (!word.empty()) return word == "HEAD";
+    begin = end + 1;
+  }
+  return false;
+}
+
+// A response header's value ("Name: value" as the library writes it), empty where absent.
+std::string header_value(std::string_view head, std::string_view name) {
+  for (std::size_t begin = head.find("\r\n"); begin != std::string_view::npos && begin + 2 < head.size();) {
+    const std::size_t line = begin + 2, end = head.find("\r\n", line);
+    const std::string_view text = head.substr(line, end == std::string_view::npos ? std::string_view::npos : end - line);
+    const std::size_t colon = text.find(": ");
+    if (colon == name.size() && std::equal(name.begin(), name.end(), text.begin(), [](char a, char b) {
+          return std::tolower(static_cast<unsigned char>(a)) == std::tolower(static_cast<unsigned char>(b));
+        }))
+      return std::string(text.substr(colon + 2));
+    begin = end;
+  }
+  return "";
+}
+
+std::optional<std::string> gunzip(std::string_view bytes) {
+  z_stream stream{};
+  if (inflateInit2(&stream, 15 + 16) != Z_OK) return std::nullopt;  // 16: a gzip wrapper
+  stream.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(bytes.data()));
+  stream.avail_in = static_cast<uInt>(bytes.size());
+  std::string text;
+  int result = Z_OK;
+  while (result == Z_OK) {
+    char chunk[16384];
+    stream.next_out = reinterpret_cast<Bytef*>(chunk);
+    stream.avail_out = sizeof chunk;
+    result = inflate(&stream, Z_NO_FLUSH);
+    text.append(chunk, sizeof chunk - stream.avail_out);
+  }
+  inflateEnd(&stream);
+  return result == Z_STREAM_END ? std::optional(text) : std::nullopt;
+}
+
+std::optional<std::string> unbrotli(std::string_view bytes) {
+  BrotliDecoderState* state = BrotliDecoderCreateInstance(nullptr, nullptr, nullptr);
+  const auto* next_in = reinterpret_cast<const std::uint8_t*>(bytes.data());
+  std::size_t available_in = bytes.size();
+  std::string text;
+  BrotliDecoderResult result = BROTLI_DECODER_RESULT_NEEDS_MORE_OUTPUT;
+  while (result == BROTLI_DECODER_RESULT_NEEDS_MORE_OUTPUT) {
+    std::uint8_t chunk[16384];
+    std::uint8_t* next_out = chunk;
+    std::size_t available_out = sizeof chunk;
+    result = BrotliDecoderDecompressStream(state, &available_in, &next_in, &available_out, &next_out, nullptr);
+    text.append(reinterpret_cast<const char*>(chunk), sizeof chunk - available_out);
+  }
+  BrotliDecoderDestroyInstance(state);
+  return result == BROTLI_DECODER_RESULT_SUCCESS ? std::optional(text) : std::nullopt;
+}
+
+// The body as the routes wrote it: the library compresses JSON for a client that accepts gzip or br.
+std::optional<std::string> decoded_body(std::string_view body, const std::string& encoding) {
+  if (encoding.empty()) return std::string(body);
+  if (encoding == "gzip") return gunzip(body);
+  if (encoding == "br") return unbrotli(body);
+  return std::nullopt;
 }
 
 // One response: status line, headers, then (but to HEAD) errors carry {"error": "..."}.
@@ -76,9 +186,11 @@ void check_response(const std::string& response, bool head = false) {
   if (status < 100 || status > 599 || status == 500) finding("status " + std::to_string(status), response);
   const std::size_t head_end = response.find("\r\n\r\n");
   if (head_end == std::string::npos) finding("no end of head", response);
-  const std::string body = response.substr(head_end + 4);
   if (status >= 400 && !head) {
-    const nlohmann::json document = nlohmann::json::parse(body, nullptr, false);
+    const std::optional<std::string> body = decoded_body(
+        std::string_view(response).substr(head_end + 4), header_value(response.substr(0, head_end), "Content-Encoding"));
+    if (!body) finding("an error body that does not decode as its Content-Encoding says", response);
+    const nlohmann::json document = nlohmann::json::parse(*body, nullptr, false);
     if (document.is_discarded() || !document.contains("error") || !document["error"].is_string())
       finding("an error without a JSON {\"error\": ...} body", response);
   }
@@ -105,6 +217,7 @@ extern "C" int LLVMFuzzerInitialize(int*, char***) {
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string_view input(reinterpret_cast<const char*>(data), size);
+  current_input = input;
   const phongcl::RequestFraming framing = phongcl::frame_request(input, phongcl::HttpLimits{});
   if (framing.state == phongcl::RequestFraming::State::refused) {
     check_response(phongcl::error_response(framing.status, framing.error, true));
@@ -112,6 +225,6 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   }
   if (framing.state != phongcl::RequestFraming::State::complete) return 0;  // the room waits, then 408
   std::string bytes(input);
-  check_response(answered(phongcl::take_request(bytes, framing)).response, input.rfind("HEAD ", 0) == 0);
+  check_response(answered(phongcl::take_request(bytes, framing)).response, is_head_request(input));
   return 0;
 }
