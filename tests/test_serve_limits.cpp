@@ -213,6 +213,19 @@ TEST_F(ServeHostile, ExpectContinueGetsOneInterimAnswer) {
   EXPECT_EQ(status_of(response), 200) << response;
 }
 
+// The library URL-decodes header values: "100%2Dcontinue" drew a 100 Continue ahead of the answer
+// to a request that had nothing more to send.
+TEST_F(ServeHostile, OtherExpectationsGetNoInterimAnswer) {
+  for (const std::string expectation : {"100%2Dcontinue", "100-continue-please", "x"}) {
+    SCOPED_TRACE(expectation);
+    const std::string response =
+        round_trip(server_->port(), "GET /nowhere HTTP/1.1\r\nExpect: " + expectation + "\r\n\r\n");
+    EXPECT_EQ(status_of(response), 404) << response;
+    EXPECT_EQ(response.find("100 Continue"), std::string::npos) << response;
+    EXPECT_NE(error_of(response).find("not found: GET /nowhere"), std::string::npos) << response;
+  }
+}
+
 // The fuzzer's finding: the library cut an error's JSON body to a Range header's bytes ("{\"er"
 // for bytes=0-3), and a page's too. Every response is whole, whatever range is asked for.
 TEST_F(ServeHostile, RangeHeadersGetWholeResponses) {

@@ -84,8 +84,10 @@ RequestFraming frame_request(std::string_view input, const HttpLimits& limits) {
         form_body = starts_with_ignoring_case(value, "application/x-www-form-urlencoded") ||
                     starts_with_ignoring_case(value, "multipart/form-data");
         type = value;
-      } else if (equal_ignoring_case(name, "Expect") && equal_ignoring_case(value, "100-continue")) {
-        framing.expects_continue = true;
+      } else if (equal_ignoring_case(name, "Expect")) {
+        // The room answers 100-continue itself. The library would answer any value that URL-decodes
+        // to it ("100%2Dcontinue") with a stray interim response, so it sees no Expect at all.
+        framing.expects_continue = framing.expects_continue || equal_ignoring_case(value, "100-continue");
         framing.unread_lines.push_back({begin, line_end + 1});
       } else if (equal_ignoring_case(name, "Range") || equal_ignoring_case(name, "If-Range")) {
         framing.unread_lines.push_back({begin, line_end + 1});
