@@ -66,15 +66,8 @@ __kernel void row_bounds(__global const STORAGE* restrict planes, uint plane_str
 __kernel void tile_bounds(__global const TileBox* restrict rows, TileGrid grid, __global TileBox* restrict boxes) {
   const uint tile = get_global_id(0);
   const uint tile_x = tile % grid.tiles_x, tile_y = tile / grid.tiles_x;
-  TileBox box = {{INFINITY, INFINITY, INFINITY}, 0, {-INFINITY, -INFINITY, -INFINITY}, 0};
-  for (uint y = tile_y * grid.tile_size; y < (tile_y + 1) * grid.tile_size; ++y) {
-    const TileBox part = rows[y * grid.tiles_x + tile_x];
-    for (int axis = 0; axis < 3; ++axis) {
-      box.lo[axis] = fmin(box.lo[axis], part.lo[axis]);
-      box.hi[axis] = fmax(box.hi[axis], part.hi[axis]);
-    }
-    box.shaded += part.shaded;
-  }
+  TileBox box = empty_tile_box();
+  for (uint y = tile_y * grid.tile_size; y < (tile_y + 1) * grid.tile_size; ++y) add_to_box(&box, rows[y * grid.tiles_x + tile_x]);
   boxes[tile] = box;
 }
 

@@ -13,6 +13,7 @@
  * could drop, never the other way round. */
 #include "bvh.h"
 #include "layout.h"
+#include "tiles.h"
 
 /* The boxes of a coarser grid, each the union of the ratio x ratio tile boxes it covers (`fine`
  * holds fine_tiles_x boxes per row), so the coarse level needs no second pass over the G-buffer. */
@@ -21,18 +22,9 @@ __kernel void merge_tile_boxes(__global const TileBox* restrict fine, const uint
   const uint tile = get_global_id(0);
   const uint fine_rows = fine_tiles / fine_tiles_x;
   const uint x0 = tile % coarse_tiles_x * ratio, y0 = tile / coarse_tiles_x * ratio;
-  TileBox box = {{INFINITY, INFINITY, INFINITY}, 0, {-INFINITY, -INFINITY, -INFINITY}, 0};
-  for (uint y = y0; y < min(y0 + ratio, fine_rows); ++y) {
-    for (uint x = x0; x < min(x0 + ratio, fine_tiles_x); ++x) {
-      const TileBox part = fine[y * fine_tiles_x + x];
-      if (part.shaded == 0) continue;
-      for (int axis = 0; axis < 3; ++axis) {
-        box.lo[axis] = fmin(box.lo[axis], part.lo[axis]);
-        box.hi[axis] = fmax(box.hi[axis], part.hi[axis]);
-      }
-      box.shaded += part.shaded;
-    }
-  }
+  TileBox box = empty_tile_box();
+  for (uint y = y0; y < min(y0 + ratio, fine_rows); ++y)
+    for (uint x = x0; x < min(x0 + ratio, fine_tiles_x); ++x) add_to_box(&box, fine[y * fine_tiles_x + x]);
   coarse[tile] = box;
 }
 

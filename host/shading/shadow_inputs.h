@@ -21,8 +21,8 @@ namespace phongcl {
 
 // Geometry shadows are culled per screen tile (kernels/shadow_cull.cl) where the scene has at most
 // this many bounded shapes: on scenes of small shapes each tile's rays then test a few candidates
-// (scenes/large: 0.41x the traversal's time, culling included), while on a dense mesh a quarter of
-// the tiles outgrow their lists and traverse after paying for the culling (128k triangles: 1.15x).
+// (scenes/large: 0.51x the traversal's time, culling included), while on a dense mesh a quarter of
+// the tiles outgrow their lists and traverse after paying for the culling (128k triangles: 1.17x).
 constexpr std::size_t kShadowCullingMaxShapes = 4096;
 // The culling's tiles: 32 x 32 pixels cost least of 8, 16 and 32 on every bundled scene.
 constexpr int kShadowCullingTile = 32;
