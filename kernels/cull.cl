@@ -67,7 +67,8 @@ __kernel void tile_bounds(__global const TileBox* restrict rows, TileGrid grid, 
   const uint tile = get_global_id(0);
   const uint tile_x = tile % grid.tiles_x, tile_y = tile / grid.tiles_x;
   TileBox box = empty_tile_box();
-  for (uint y = tile_y * grid.tile_size; y < (tile_y + 1) * grid.tile_size; ++y) add_to_box(&box, rows[y * grid.tiles_x + tile_x]);
+  for (uint y = tile_y * grid.tile_size; y < (tile_y + 1) * grid.tile_size; ++y)
+    add_to_box(&box, rows[y * grid.tiles_x + tile_x]);
   boxes[tile] = box;
 }
 

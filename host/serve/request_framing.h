@@ -21,8 +21,9 @@ struct RequestFraming {
     std::size_t begin, end;  // a header line, with its line break
   };
   // Header lines the library must not see: Expect (the room answers 100-continue; the library
-  // would send a second interim 100, or one for a value it URL-decodes to that) and Range (every response is whole, as RFC 9110
-  // allows; the library would cut an error's JSON body down to the range asked for).
+  // would send a second interim 100, or one for a value it URL-decodes to that) and Range (every
+  // response is whole, as RFC 9110 allows; the library would cut an error's JSON body down to the
+  // range asked for).
   std::vector<Line> unread_lines;
   int status = 0;              // refused: 400, 411, 413, 415 or 431
   std::string error;           // refused: why, in one line
