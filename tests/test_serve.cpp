@@ -9,10 +9,13 @@
 #include <sys/socket.h>
 #include <turbojpeg.h>
 
+#include <algorithm>
+#include <bit>
 #include <chrono>
 #include <cstring>
 #include <fstream>
 #include <future>
+#include <limits>
 #include <memory>
 #include <thread>
 
@@ -371,6 +374,36 @@ TEST_F(Serve, ShadesOneFrameAheadOfWhatIsFetched) {
   const Image shown = decode_exr(client.Get("/api/image?format=exr")->body);
   EXPECT_EQ(frames_shaded(client) - frames_before, 2u) << "the frame ahead, then the fetched one, and no other";
   expect_matches_reference(shown, parse_scene(scene.dump(), kSceneFile), server_->session().gbuffer());
+}
+
+// The render loop shades into the image of a frame nobody reads any more: every value of it is
+// written again. A canvas of NaN gives exactly the image a new one does.
+TEST(ServeFrames, ACanvasIsOverwrittenWhole) {
+  if (list_devices().empty()) GTEST_SKIP() << "no OpenCL device on this machine";
+  RelightSession session(read_gbuffer(PHONGCL_SOURCE_DIR "/scenes/default/gbuffer.exr"), "");
+  const Scene scene = parse_scene(file_text(kSceneFile), kSceneFile);
+  const Image fresh = session.shade(scene, RenderSettings{}).image;
+  Image canvas = image_like(session.gbuffer());
+  std::fill(canvas.rgba.begin(), canvas.rgba.end(), std::numeric_limits<float>::quiet_NaN());
+  const float* storage = canvas.rgba.data();
+  const Image reused = session.shade(scene, RenderSettings{}, std::move(canvas)).image;
+  EXPECT_EQ(reused.rgba.data(), storage) << "the canvas was not shaded into";
+  ASSERT_EQ(reused.rgba.size(), fresh.rgba.size());
+  for (std::size_t i = 0; i < fresh.rgba.size(); ++i)
+    ASSERT_EQ(std::bit_cast<std::uint32_t>(reused.rgba[i]), std::bit_cast<std::uint32_t>(fresh.rgba[i])) << "float " << i;
+}
+
+// Frames fetched one after another reuse each other's images: each is still its own scene's.
+TEST_F(Serve, EachFetchedFrameIsItsOwnScene) {
+  auto client = server_->client();
+  json scene = default_scene();
+  const json lights = scene["lights"];
+  for (int i = 0; i < 4; ++i) {
+    scene["lights"] = i % 2 == 0 ? lights : json::array();
+    ASSERT_EQ(client.Put("/api/scene", scene.dump(), "application/json")->status, 200);
+    const Image shown = decode_exr(client.Get("/api/image?format=exr")->body);
+    expect_matches_reference(shown, parse_scene(scene.dump(), kSceneFile), server_->session().gbuffer());
+  }
 }
 
 TEST_F(Serve, SettingsChangeThePrecisionAndRejectBadInput) {

@@ -3,7 +3,9 @@
 #include <malloc.h>
 
 #include <algorithm>
+#include <atomic>
 #include <exception>
+#include <utility>
 
 #include <nlohmann/json.hpp>
 
@@ -20,6 +22,20 @@ constexpr std::size_t kLargeSceneBytes = 1u << 20;  // scenes of tens of thousan
 // The document is kept as sent (keys this program does not know survive for later readers),
 // normalised to one pretty-printed form.
 std::string normalised_json(std::string_view text) { return nlohmann::json::parse(text).dump(2) + "\n"; }
+
+// The image of a frame no request holds any more (only the render loop's pointer is left), to
+// shade the next frame into; else an empty one. Nobody can take a new reference to a frame that
+// latest_ no longer points at, so a count of 1 stays 1; the fence orders the readers' last reads
+// before the new writes.
+Image reusable_image(std::shared_ptr<RenderedFrame>& retired) {
+  Image image;
+  if (retired && retired.use_count() == 1) {
+    std::atomic_thread_fence(std::memory_order_acquire);
+    image = std::move(retired->frame.image);
+  }
+  retired.reset();
+  return image;
+}
 
 }  // namespace
 
@@ -133,6 +149,7 @@ RenderCounters LiveRelighter::counters() const {
 
 void LiveRelighter::render_loop() {
   std::uint64_t rendered = 0;
+  std::shared_ptr<RenderedFrame> shown, retired;  // latest_, and the frame before it
   for (;;) {
     auto frame = std::make_shared<RenderedFrame>();
     Scene scene;
@@ -150,7 +167,7 @@ void LiveRelighter::render_loop() {
       frame->background = scene_.background;
     }
     try {
-      frame->frame = session_.shade(scene, frame->settings);
+      frame->frame = session_.shade(scene, frame->settings, reusable_image(retired));
     } catch (const std::exception& error) {
       frame->error = error.what();
     }
@@ -161,6 +178,7 @@ void LiveRelighter::render_loop() {
     // for the request threads).
     if (large_scene) ::malloc_trim(0);
     rendered = frame->version;
+    retired = std::exchange(shown, frame);
     std::lock_guard lock(mutex_);
     latest_ = std::move(frame);
     latest_taken_ = false;

@@ -78,12 +78,19 @@ Scene soloed_and_muted(const Scene& scene, const RenderSettings& settings) {
 
 }  // namespace
 
-Frame RelightSession::shade(const Scene& scene, const RenderSettings& settings) {
+Frame RelightSession::shade(const Scene& scene, const RenderSettings& settings, Image canvas) {
   const auto start = std::chrono::steady_clock::now();
   const bool solo_or_mute = !settings.solo.empty() || !settings.muted.empty();
   Relighter& relighter = relighter_for(solo_or_mute ? soloed_and_muted(scene, settings) : scene, settings);
   Frame frame;
-  frame.image = settings.terms ? relighter.shade(frame.terms) : relighter.shade();
+  if (settings.terms) {
+    frame.image = relighter.shade(frame.terms);
+  } else if (canvas.width == gbuffer_.width && canvas.height == gbuffer_.height) {
+    relighter.shade_into(canvas.rgba.data(), canvas.rgba.size());
+    frame.image = std::move(canvas);
+  } else {
+    frame.image = relighter.shade();
+  }
   const ShadeReport report = relighter.last_report();
   const ShadeTimings& t = report.timings;
   frame.timings = {t.build_ms, t.kernel_ms, t.pack_ms + t.upload_ms + t.download_ms,

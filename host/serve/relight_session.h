@@ -58,8 +58,10 @@ class RelightSession {
   // Throws InputError (naming the G-buffer) when the scene cannot shade this G-buffer, e.g. a
   // material index beyond the scene's table: call it before accepting a scene.
   void check(const Scene& scene) const;
-  // Not thread-safe: one render thread calls it.
-  Frame shade(const Scene& scene, const RenderSettings& settings);
+  // Not thread-safe: one render thread calls it. `canvas`, an earlier frame's image that nobody
+  // reads any more, is shaded into when it has this G-buffer's size: a new 1080p image costs a
+  // 33 MB allocation whose every page faults in on first write, several times the kernel's time.
+  Frame shade(const Scene& scene, const RenderSettings& settings, Image canvas = {});
   // Throws std::out_of_range outside the image.
   SurfacePick pick(int x, int y) const;
 
