@@ -30,6 +30,7 @@ inline glm::dvec3 to_vec3(const std::array<double, 3>& a) { return {a[0], a[1], 
 
 // Light or Material objects, or dicts in the scene file's form (InputError names the bad entry).
 std::vector<Light> lights_from_python(const py::handle& lights);
+std::vector<AreaLight> area_lights_from_python(const py::handle& lights);
 std::vector<Material> materials_from_python(const py::handle& materials);
 
 // The config `--ocio WHICH` would load (color/color_config.h), loaded once per process: views

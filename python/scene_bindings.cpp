@@ -71,6 +71,10 @@ std::vector<Light> lights_from_python(const py::handle& lights) {
   }
 }
 
+std::vector<AreaLight> area_lights_from_python(const py::handle& lights) {
+  return read_area_lights(json_of(lights), "area_lights");  // dicts in the scene file's form
+}
+
 std::vector<Material> materials_from_python(const py::handle& materials) {
   try {
     return materials.cast<std::vector<Material>>();

@@ -94,6 +94,43 @@ TEST(Relighter, BadChangesAreRefusedAndTheStateKept) {
   expect_matches_reference(relighter.shade(), scene, gbuffer, "after refused changes");
 }
 
+// Area lights are updates like the others: moved, recoloured, added or removed, the frame is the
+// one a new Relighter gives for the changed scene, without packing the G-buffer again.
+TEST(Relighter, AreaLightChangesGiveTheImageOfANewRelighter) {
+  PHONGCL_REQUIRE_ANY_DEVICE();
+  auto [scene, gbuffer] = random_scene({}, 1204);
+  AreaLight rect;
+  rect.position = {0.5, 2.0, 1.0};
+  rect.direction = {0.0, -1.0, -0.3};
+  rect.size = {1.5, 0.8};
+  scene.area_lights = {rect};
+  Relighter relighter(scene, gbuffer);
+  relighter.shade();
+  auto expect_as_new = [&](const char* step) {
+    const Image image = relighter.shade();
+    EXPECT_FALSE(relighter.last_timings().gbuffer_uploaded) << step;
+    EXPECT_EQ(image.rgba, Relighter(scene, gbuffer).shade().rgba) << step;  // the same kernel on the same inputs
+  };
+  scene.area_lights[0].position = {-0.5, 2.5, 0.5};
+  scene.area_lights[0].color = {2.0, 1.5, 1.0};
+  relighter.set_area_lights(scene.area_lights);
+  expect_as_new("moved and recoloured");
+  EXPECT_FALSE(relighter.last_timings().rebuilt);
+  AreaLight disk = rect;
+  disk.shape = AreaShape::disk;
+  disk.position = {1.0, 1.0, 2.0};
+  scene.area_lights.push_back(disk);
+  relighter.set_area_lights(scene.area_lights);
+  expect_as_new("a disk added");
+  scene.area_lights.clear();
+  relighter.set_area_lights(scene.area_lights);
+  expect_as_new("none left");
+  EXPECT_EQ(relighter.scene().area_lights.size(), 0u);
+  disk.size = {-1.0, -1.0};
+  EXPECT_THROW(relighter.set_area_lights({disk}), std::invalid_argument);
+  expect_as_new("after a refused change");
+}
+
 TEST(Relighter, TilesBeyondOneLaunchGiveTheWholeFrame) {
   PHONGCL_REQUIRE_ANY_DEVICE();
   auto [scene, gbuffer] = random_scene({}, 1205);

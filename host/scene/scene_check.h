@@ -34,5 +34,7 @@ Scene read_scene(const nlohmann::json& document, const std::filesystem::path& so
 std::vector<Light> read_lights(const nlohmann::json& document, const std::filesystem::path& source,
                                std::size_t material_count = std::numeric_limits<int>::max());
 std::vector<Material> read_materials(const nlohmann::json& document, const std::filesystem::path& source);
+// Entries of the scene file's "lights" of type "area"; any other type is refused.
+std::vector<AreaLight> read_area_lights(const nlohmann::json& document, const std::filesystem::path& source);
 
 }  // namespace phongcl

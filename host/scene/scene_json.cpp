@@ -274,8 +274,17 @@ std::vector<Light> read_lights(const nlohmann::json& document, const std::filesy
                                std::size_t material_count) {
   std::vector<Light> lights;
   for (const JsonValue& light : JsonValue(document, "lights", source).elements()) {
-    if (is_area_light(light)) light.fail("is an area light: those come from the scene file only");
+    if (is_area_light(light)) light.fail("is an area light: set_area_lights takes those");
     lights.push_back(read_light(light, material_count));
+  }
+  return lights;
+}
+
+std::vector<AreaLight> read_area_lights(const nlohmann::json& document, const std::filesystem::path& source) {
+  std::vector<AreaLight> lights;
+  for (const JsonValue& light : JsonValue(document, "area_lights", source).elements()) {
+    if (!is_area_light(light)) light.fail("is not an area light (\"type\": \"area\"): set_lights takes those");
+    lights.push_back(read_area_light(light.object()));
   }
   return lights;
 }

@@ -30,16 +30,15 @@ RelightSession::~RelightSession() = default;
 
 void RelightSession::check(const Scene& scene) const { material_check_.check(gbuffer_, scene.materials.size()); }
 
-// The Relighter keeps its precision, ambient, background, area lights, shadow settings and whether it shades the
-// terms from construction: a change of those builds a new one (which packs the G-buffer again); lights,
-// materials and the eye are updates. (Solo and mute change area lights' colours too.)
+// The Relighter keeps its precision, ambient, background, shadow settings and whether it shades the terms
+// from construction: a change of those builds a new one (which packs the G-buffer again); lights, area
+// lights, materials and the eye are updates.
 Relighter& RelightSession::relighter_for(const Scene& scene, const RenderSettings& settings) {
   const bool same = relighter_ && relighter_settings_.precision == settings.precision &&
                     relighter_settings_.specialise == settings.specialise &&
                     relighter_settings_.terms == settings.terms && relighter_settings_.shadows == settings.shadows &&
                     relighter_->scene().ambient == scene.ambient &&
-                    relighter_->scene().background == scene.background &&
-                    relighter_->scene().area_lights == scene.area_lights;
+                    relighter_->scene().background == scene.background;
   if (!same) {
     relighter_.reset();  // first: two copies of a large G-buffer need not fit on the device
     RelighterOptions options;
@@ -54,6 +53,7 @@ Relighter& RelightSession::relighter_for(const Scene& scene, const RenderSetting
   relighter_->set_camera_eye(scene.camera.eye);
   relighter_->set_materials(scene.materials);
   relighter_->set_lights(scene.lights);
+  relighter_->set_area_lights(scene.area_lights);
   return *relighter_;
 }
 

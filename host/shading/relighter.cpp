@@ -66,6 +66,15 @@ struct Relighter::State {
     return make_recipe(scene, gbuffer, device(), options);
   }
 
+  // The frame's lights or materials changed: the recipe again (their counts are compiled in),
+  // and the tables uploaded again at the next shade.
+  void replace_scene(Scene next) {
+    Frame& f = frame();
+    f.recipe = recipe_for(next, f.gbuffer);
+    f.scene = std::move(next);
+    engine.forget_uniforms();
+  }
+
   void shade_into(const FrameTargets& targets) {
     Frame& f = frame();
     last_report = engine.shade_into(f.scene, f.gbuffer, f.recipe, targets, options.max_tile_pixels);
@@ -117,9 +126,15 @@ void Relighter::set_lights(const std::vector<Light>& lights) {
   check_lights(lights, frame.scene.materials.size());
   Scene next = frame.scene;
   next.lights = lights;
-  frame.recipe = state_->recipe_for(next, frame.gbuffer);  // the light counts are compiled in
-  frame.scene = std::move(next);
-  state_->engine.forget_uniforms();
+  state_->replace_scene(std::move(next));
+}
+
+void Relighter::set_area_lights(const std::vector<AreaLight>& lights) {
+  check_area_lights(lights);
+  const std::lock_guard lock(state_->mutex);
+  Scene next = state_->frame().scene;
+  next.area_lights = lights;
+  state_->replace_scene(std::move(next));
 }
 
 void Relighter::set_materials(const std::vector<Material>& materials) {
@@ -129,9 +144,7 @@ void Relighter::set_materials(const std::vector<Material>& materials) {
   frame.material_check.check(frame.gbuffer, materials.size());
   Scene next = frame.scene;
   next.materials = materials;
-  frame.recipe = state_->recipe_for(next, frame.gbuffer);
-  frame.scene = std::move(next);
-  state_->engine.forget_uniforms();
+  state_->replace_scene(std::move(next));
 }
 
 void Relighter::set_camera_eye(const glm::dvec3& eye) {

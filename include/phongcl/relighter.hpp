@@ -62,6 +62,7 @@ class Relighter {
   // colours or shininess, a zero direction; InputError when the G-buffer uses a material index
   // the new table lacks (the previous state is kept on either).
   void set_lights(const std::vector<Light>& lights);
+  void set_area_lights(const std::vector<AreaLight>& lights);
   void set_materials(const std::vector<Material>& materials);
   void set_camera_eye(const glm::dvec3& eye);
 

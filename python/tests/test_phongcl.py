@@ -141,6 +141,28 @@ def test_bad_files_and_values_raise_the_command_lines_messages(tmp_path, scene):
 
 
 @needs_device
+def test_area_lights_are_set_in_the_scene_files_form(gbuffer):
+    document = json.loads(DEFAULT.read_text())
+    area = {"type": "area", "shape": "rect", "position": [0, 4, 2], "direction": [0, -1, -0.3], "size": [2, 1],
+            "color": [2, 2, 2]}
+    relighter = phongcl.Relighter(phongcl.Scene.from_dict(document), gbuffer)
+    without = relighter.shade()
+    relighter.set_area_lights([area])
+    lit = relighter.shade()
+    assert not relighter.last_timings["gbuffer_uploaded"], "an area light is an update, not a new frame"
+    document["lights"].append(area)
+    expected = phongcl.Relighter(phongcl.Scene.from_dict(document), gbuffer).shade()
+    np.testing.assert_array_equal(lit, expected)  # the same kernel on the same inputs
+    assert (lit[..., :3] - without[..., :3]).max() > 1e-2, "the area light added no light"
+    with pytest.raises(phongcl.InputError, match=r"area_lights\[0\].*set_lights takes those"):
+        relighter.set_area_lights([{"type": "point", "position": [0, 1, 0], "color": [1, 1, 1]}])
+    with pytest.raises(phongcl.InputError, match=r"area_lights\[0\]"):
+        relighter.set_area_lights([dict(area, size=[0, 1])])
+    with pytest.raises(phongcl.InputError, match=r"set_area_lights takes those"):
+        relighter.set_lights([area])
+
+
+@needs_device
 def test_bad_changes_are_refused(scene, gbuffer):
     relighter = phongcl.Relighter(scene, gbuffer)
     with pytest.raises(phongcl.InputError, match=r"lights\[0\]\.color\[0\] must be >= 0"):
