@@ -188,6 +188,7 @@ static inline void shadow_area_light(realv* irradiance, realv* highlight, const 
  * with SHADOWS. */
 static inline void add_area_light(LightSums* sums, const Surface* surface, const Lights* lights, int k) {
   __global const AreaLightRecord* light = &lights->area[k];
+  if (area_beyond_range_in_every_lane(light, surface->p)) return;
   const vec3 n = surface->n, v = surface->v;
   const realv two_n_dot_v = 2 * dot3(n, v);
   const vec3 r = make_vec3(fma(two_n_dot_v, n.x, -v.x), fma(two_n_dot_v, n.y, -v.y), fma(two_n_dot_v, n.z, -v.z));

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iostream>
+#include <numeric>
 #include <random>
 #include <vector>
 
@@ -236,6 +237,46 @@ TEST(AreaLights, GroupsAndShadowsCompileInOnlyWhenAsked) {
   ShadeOptions off;
   off.shadows.mode = ShadowMode::off;
   EXPECT_EQ(value("SHADOWS", off), "0");
+}
+
+// A range ends an area light exactly: beyond it the light adds no bit, and a work-item whose every
+// pixel is beyond it skips the light (a skip too eager shows against the reference). Pixels are laid out along x so that lane vectors share an x
+// and most of them are wholly in or out of range.
+TEST(AreaLights, NothingBeyondTheRange) {
+  PHONGCL_REQUIRE_DEVICE(shader);
+  std::vector<AreaLight> lights = emitters(true);
+  lights[1].position = {-2.0, 0.8, 0.0};
+  lights[1].range = 1.5;
+  AreaScene s = area_scene(lights, glm::dvec3(0.0), 1.0, 505);  // ks 0: the reference's E is exact
+  const std::size_t pixels = s.gbuffer.pixel_count();
+  std::vector<std::size_t> order(pixels);
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::sort(order.begin(), order.end(), [&](auto a, auto b) { return s.gbuffer.position[0][a] < s.gbuffer.position[0][b]; });
+  GBuffer sorted = s.gbuffer;
+  for (std::size_t i = 0; i < pixels; ++i)
+    for (int c = 0; c < 3; ++c) {
+      sorted.position[c][i] = s.gbuffer.position[c][order[i]];
+      sorted.normal[c][i] = s.gbuffer.normal[c][order[i]];
+    }
+  const Image lit = shader.shade(s.scene, sorted, {}).image;
+  Scene without = s.scene;
+  without.area_lights.pop_back();
+  const Image unlit = shader.shade(without, sorted, {}).image;
+  std::size_t beyond = 0, reached = 0;
+  for (std::size_t i = 0; i < pixels; ++i) {
+    const glm::dvec3 p(sorted.position[0][i], sorted.position[1][i], sorted.position[2][i]);
+    const double distance = glm::length(p - lights[1].position);
+    if (distance >= lights[1].range) {
+      ++beyond;
+      for (int c = 0; c < 4; ++c) ASSERT_EQ(lit.pixel(i)[c], unlit.pixel(i)[c]) << "pixel " << i << " at " << distance;
+    } else if (lit.pixel(i)[0] != unlit.pixel(i)[0]) {
+      ++reached;
+    }
+  }
+  EXPECT_GT(beyond, pixels / 2);
+  EXPECT_GT(reached, pixels / 20) << "the light reached almost nothing within its range";
+  const TermError error = term_error(lit, reference_image(s.scene, sorted));
+  EXPECT_LE(error.max_rel, 5e-5) << "pixel " << error.worst;  // the rects' bound of DiffuseMatchesTheReference
 }
 
 TEST(AreaLights, SpecularQuadratureErrorIsMeasured) {
