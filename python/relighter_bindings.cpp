@@ -155,8 +155,9 @@ void bind_relighter(py::module_& module) {
           "set_area_lights",
           [](Relighter& r, const py::object& lights) { r.set_area_lights(area_lights_from_python(lights)); },
           py::arg("lights"),
-          "New area lights, replacing every one: dicts in the scene file's form ({'type': 'area', 'shape': "
-          "'rect' or 'disk', 'position', 'direction', 'size', ...}). Raises InputError naming the entry.")
+          "New area lights, replacing every one: AreaLight objects or dicts in the scene file's form ({'type': "
+          "'area', 'shape': 'rect' or 'disk', 'position', 'direction', 'size', ...}). Raises InputError or "
+          "ValueError naming the entry.")
       .def(
           "set_materials",
           [](Relighter& r, const py::object& materials) { r.set_materials(materials_from_python(materials)); },

@@ -4,6 +4,7 @@
 
 #include "bindings.h"
 #include "color/color_conversion.h"
+#include "scene/area_light_json.h"
 #include "scene/scene.h"
 #include "scene/scene_check.h"
 
@@ -72,7 +73,13 @@ std::vector<Light> lights_from_python(const py::handle& lights) {
 }
 
 std::vector<AreaLight> area_lights_from_python(const py::handle& lights) {
-  return read_area_lights(json_of(lights), "area_lights");  // dicts in the scene file's form
+  try {
+    std::vector<AreaLight> area_lights = lights.cast<std::vector<AreaLight>>();
+    check_area_lights(area_lights);
+    return area_lights;
+  } catch (const py::cast_error&) {
+    return read_area_lights(json_of(lights), "area_lights");  // dicts in the scene file's form
+  }
 }
 
 std::vector<Material> materials_from_python(const py::handle& materials) {
@@ -115,6 +122,30 @@ void bind_scene(py::module_& module) {
   light.def_readwrite("group", &Light::group,
                       "Light group ('' for none): Relighter.shade_terms() returns each group's light apart.");
 
+  py::class_<AreaLight> area(module, "AreaLight",
+                             "A rect or disk emitter, one-sided (docs/formats.md 'Area lights'); the scene file's "
+                             "{\"type\": \"area\", ...} entries come back as these.");
+  area.def(py::init<>());
+  area.def_property(
+      "shape", [](const AreaLight& a) { return std::string(to_string(a.shape)); },
+      [](AreaLight& a, const std::string& name) {
+        a.shape = name == "rect" ? AreaShape::rect
+                  : name == "disk" ? AreaShape::disk
+                                   : throw py::value_error("area light shape must be 'rect' or 'disk', not '" + name + "'");
+      },
+      "'rect' or 'disk'.");
+  vec3_property(area, "position", &AreaLight::position, "The emitter's centre.");
+  vec3_property(area, "direction", &AreaLight::direction, "The emitting side's normal (any length but zero).");
+  vec3_property(area, "up", &AreaLight::up, "Rect: where its height runs (projected off direction).");
+  area.def_property(
+      "size", [](const AreaLight& a) { return std::array<double, 2>{a.size.x, a.size.y}; },
+      [](AreaLight& a, const std::array<double, 2>& size) { a.size = {size[0], size[1]}; },
+      "Rect: (width, height); disk: (diameter, diameter).");
+  vec3_property(area, "color", &AreaLight::color, "Radiance, RGB, >= 0.");
+  area.def_readwrite("range", &AreaLight::range, "> 0: windowed to 0 at this distance from the centre; 0: no range.")
+      .def_readwrite("shadows", &AreaLight::shadows, "Casts a hard shadow (one ray to the centre).")
+      .def_readwrite("group", &AreaLight::group, "Light group ('' for none).");
+
   py::class_<Material> material(module, "Material", "A Phong material: ka, kd, ks (RGB) and shininess.");
   material.def(py::init<>()).def_readwrite("name", &Material::name).def_readwrite("shininess", &Material::shininess);
   vec3_property(material, "ka", &Material::ka, "Ambient reflectance.");
@@ -126,7 +157,7 @@ void bind_scene(py::module_& module) {
       "'phong' (default), 'phong-normalized', 'blinn-phong' or 'blinn-phong-normalized' (docs/shading.md).");
 
   py::class_<Scene> scene(module, "Scene",
-                          "A scene: camera, ambient, background, lights, materials. Lists come out as copies: "
+                          "A scene: camera, ambient, background, lights, area lights, materials. Lists come out as copies: "
                           "assign a changed list back (scene.lights = lights).");
   scene.def(py::init<>())
       .def_static(
@@ -140,6 +171,7 @@ void bind_scene(py::module_& module) {
           "\"color_space\"; raises InputError naming the bad entry.")
       .def_readwrite("camera", &Scene::camera)
       .def_readwrite("lights", &Scene::lights)
+      .def_readwrite("area_lights", &Scene::area_lights)
       .def_readwrite("materials", &Scene::materials)
       .def_readonly("source", &Scene::source, "The scene file, or '<dict>'.");
   vec3_property(scene, "ambient", &Scene::ambient, "Ambient light La, RGB.");

@@ -160,6 +160,18 @@ def test_area_lights_are_set_in_the_scene_files_form(gbuffer):
         relighter.set_area_lights([dict(area, size=[0, 1])])
     with pytest.raises(phongcl.InputError, match=r"set_area_lights takes those"):
         relighter.set_lights([area])
+    # The scene's area lights come back as AreaLight objects, and go in as them too.
+    held = relighter.scene.area_lights
+    assert [(a.shape, a.size, a.color) for a in held] == [("rect", [2.0, 1.0], [2.0, 2.0, 2.0])]
+    held[0].shape = "disk"
+    relighter.set_area_lights(held)
+    document["lights"][-1] = dict(area, shape="disk", size=2)
+    np.testing.assert_array_equal(relighter.shade(), phongcl.Relighter(phongcl.Scene.from_dict(document), gbuffer).shade())
+    held[0].size = [-1, -1]
+    with pytest.raises(ValueError, match=r"area_lights\[0\]\.size: must be finite and > 0"):
+        relighter.set_area_lights(held)
+    with pytest.raises(ValueError, match="'rect' or 'disk'"):
+        held[0].shape = "ellipse"
 
 
 @needs_device
