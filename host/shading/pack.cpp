@@ -11,6 +11,7 @@
 
 #include "common/error.h"
 #include "shading/host_threads.h"
+#include "shading/light_order.h"
 #include "shading/pack_area.h"
 
 namespace phongcl {
@@ -87,22 +88,17 @@ UniformData pack_uniforms(const Scene& scene, const Recipe& recipe) {
     }
   }
   // Linking masks in the kernel's order: point and spot lights first, then directional ones.
-  if (recipe.link_words > 0) {
-    for (const Light& light : scene.lights)
-      if (light.type != LightType::directional) append_link_mask(light, recipe.link_words, data.links);
-    for (const Light& light : scene.lights)
-      if (light.type == LightType::directional) append_link_mask(light, recipe.link_words, data.links);
-  }
-  // Light groups in the same order, then the area lights'; a light in none gets the group count.
+  if (recipe.link_words > 0)
+    for_each_light_in_kernel_order(scene.lights, [&](const Light& light) {
+      append_link_mask(light, recipe.link_words, data.links);
+    });
+  // Light groups, the area lights' last; a light in none gets the group count.
   if (!recipe.light_groups.empty()) {
     const auto& groups = recipe.light_groups;
     auto index = [&](const std::string& group) {
       return static_cast<layout_uint>(std::find(groups.begin(), groups.end(), group) - groups.begin());
     };
-    for (const Light& light : scene.lights)
-      if (light.type != LightType::directional) data.light_groups.push_back(index(light.group));
-    for (const Light& light : scene.lights)
-      if (light.type == LightType::directional) data.light_groups.push_back(index(light.group));
+    for_each_light_in_kernel_order(scene.lights, [&](const Light& light) { data.light_groups.push_back(index(light.group)); });
     for (const AreaLight& light : scene.area_lights) data.light_groups.push_back(index(light.group));
   }
   for (const Material& material : scene.materials) {

@@ -7,6 +7,7 @@
 
 #include "geometry/device_geometry.h"
 #include "geometry/scene_bvh.h"
+#include "shading/light_order.h"
 #include "shading/screen_depth.h"
 #include "shading/shadow_buffers.h"
 
@@ -72,10 +73,10 @@ ShadowCasters shadow_casters(const Scene& scene) {
     casters.words.push_back(casts ? static_cast<cl_uint>(casters.lights.size() + 1) : 0u);
     if (casts) casters.lights.push_back(shadow_light(where, directional));
   };
-  for (const Light& light : scene.lights)
-    if (light.type != LightType::directional) add(light.shadows, light.position - eye, false);
-  for (const Light& light : scene.lights)
-    if (light.type == LightType::directional) add(light.shadows, -glm::normalize(light.direction), true);
+  for_each_light_in_kernel_order(scene.lights, [&](const Light& light) {
+    const bool directional = light.type == LightType::directional;
+    add(light.shadows, directional ? -glm::normalize(light.direction) : light.position - eye, directional);
+  });
   for (const AreaLight& light : scene.area_lights) add(light.shadows, light.position - eye, false);
   return casters;
 }
