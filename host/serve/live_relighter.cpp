@@ -149,7 +149,9 @@ RenderCounters LiveRelighter::counters() const {
 
 void LiveRelighter::render_loop() {
   std::uint64_t rendered = 0;
-  std::shared_ptr<RenderedFrame> shown, retired;  // latest_, and the frame before it
+  // latest_, and the frame before it, kept for its image: between frames one more image is held,
+  // while shading no more than before (the next frame's image is the retired one's).
+  std::shared_ptr<RenderedFrame> shown, retired;
   for (;;) {
     auto frame = std::make_shared<RenderedFrame>();
     Scene scene;
