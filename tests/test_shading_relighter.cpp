@@ -98,7 +98,9 @@ TEST(Relighter, BadChangesAreRefusedAndTheStateKept) {
 // one a new Relighter gives for the changed scene, without packing the G-buffer again.
 TEST(Relighter, AreaLightChangesGiveTheImageOfANewRelighter) {
   PHONGCL_REQUIRE_ANY_DEVICE();
-  auto [scene, gbuffer] = random_scene({}, 1204);
+  auto made = random_scene({}, 1204);  // not a structured binding: clang 14 cannot capture one
+  Scene& scene = made.first;
+  const GBuffer& gbuffer = made.second;
   AreaLight rect;
   rect.position = {0.5, 2.0, 1.0};
   rect.direction = {0.0, -1.0, -0.3};
