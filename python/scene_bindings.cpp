@@ -4,7 +4,6 @@
 
 #include "bindings.h"
 #include "color/color_conversion.h"
-#include "scene/area_light_json.h"
 #include "scene/scene.h"
 #include "scene/scene_check.h"
 
@@ -74,9 +73,7 @@ std::vector<Light> lights_from_python(const py::handle& lights) {
 
 std::vector<AreaLight> area_lights_from_python(const py::handle& lights) {
   try {
-    std::vector<AreaLight> area_lights = lights.cast<std::vector<AreaLight>>();
-    check_area_lights(area_lights);
-    return area_lights;
+    return lights.cast<std::vector<AreaLight>>();  // checked by set_area_lights, as set_lights checks Lights
   } catch (const py::cast_error&) {
     return read_area_lights(json_of(lights), "area_lights");  // dicts in the scene file's form
   }
@@ -128,11 +125,7 @@ void bind_scene(py::module_& module) {
   area.def(py::init<>());
   area.def_property(
       "shape", [](const AreaLight& a) { return std::string(to_string(a.shape)); },
-      [](AreaLight& a, const std::string& name) {
-        a.shape = name == "rect" ? AreaShape::rect
-                  : name == "disk" ? AreaShape::disk
-                                   : throw py::value_error("area light shape must be 'rect' or 'disk', not '" + name + "'");
-      },
+      [](AreaLight& a, const std::string& name) { a.shape = parse_area_shape(name); },
       "'rect' or 'disk'.");
   vec3_property(area, "position", &AreaLight::position, "The emitter's centre.");
   vec3_property(area, "direction", &AreaLight::direction, "The emitting side's normal (any length but zero).");

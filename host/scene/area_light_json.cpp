@@ -21,10 +21,11 @@ double up_sine(const AreaLight& light) {
 }
 
 AreaShape read_shape(const JsonValue& value) {
-  const std::string name = value.string();
-  for (AreaShape shape : {AreaShape::rect, AreaShape::disk})
-    if (name == to_string(shape)) return shape;
-  value.fail("'" + name + "' is not an area light shape (expected rect or disk)");
+  try {
+    return parse_area_shape(value.string());
+  } catch (const std::invalid_argument& unknown) {
+    value.fail(unknown.what());
+  }
 }
 
 double read_size(const JsonValue& value) {
@@ -36,6 +37,12 @@ double read_size(const JsonValue& value) {
 }  // namespace
 
 const char* to_string(AreaShape shape) { return shape == AreaShape::rect ? "rect" : "disk"; }
+
+AreaShape parse_area_shape(const std::string& name) {
+  for (AreaShape shape : {AreaShape::rect, AreaShape::disk})
+    if (name == to_string(shape)) return shape;
+  throw std::invalid_argument("'" + name + "' is not an area light shape (expected rect or disk)");
+}
 
 AreaLight read_area_light(const JsonObject& object) {
   object.expect_keys({"type", "shape", "position", "direction", "up", "size", "color", "range", "shadows", "group"});

@@ -74,6 +74,8 @@ struct AreaLight {
 };
 
 const char* to_string(AreaShape shape);  // "rect", "disk"
+// std::invalid_argument naming the shapes for any other name.
+AreaShape parse_area_shape(const std::string& name);
 
 struct Material {
   std::string name;

@@ -170,7 +170,7 @@ def test_area_lights_are_set_in_the_scene_files_form(gbuffer):
     held[0].size = [-1, -1]
     with pytest.raises(ValueError, match=r"area_lights\[0\]\.size: must be finite and > 0"):
         relighter.set_area_lights(held)
-    with pytest.raises(ValueError, match="'rect' or 'disk'"):
+    with pytest.raises(ValueError, match="'ellipse' is not an area light shape"):
         held[0].shape = "ellipse"
 
 
