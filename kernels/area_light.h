@@ -186,16 +186,6 @@ realv area_specular(int shape, vec3 c, vec3 u, vec3 v, vec3 n, vec3 r, realv shi
 /* Some lane / every lane of a realv comparison. */
 #define AREA_ANY_LANE(comparison) (!all_lanes(LANE_MASK(!(comparison))))
 
-/* Whether every lane is clearly beyond the light's range from its centre, |centre - p|^2 / R^2 > 1.01:
- * there the window, and so E and S, are exactly 0, so skipping the light (and its shadow ray)
- * changes no bit of the sums. Scaled by 1 / R before squaring, as beyond_range_in_every_lane
- * (light_shape.h). A light without a range (inverse_range 0) is never skipped. */
-bool area_beyond_range_in_every_lane(__global const AreaLightRecord* light, vec3 p) {
-  if (!(light->inverse_range > 0)) return false;
-  const vec3 in_ranges = scale3(sub3(area_vector(light->center), p), (realv)light->inverse_range);
-  return all_lanes(LANE_MASK(dot3(in_ranges, in_ranges) > (real)1.01));
-}
-
 /* E and (where `specular`) S of one area light, times its range window, for pixels at p (relative
  * to the eye) with unit normal n and r, the eye vector mirrored about n. */
 void area_light_terms(__global const AreaLightRecord* light, vec3 p, vec3 n, vec3 r, realv shininess, int specular,

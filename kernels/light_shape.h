@@ -71,14 +71,15 @@ realv shape_weight(UNIFORM_SPACE const LightShape* shape, vec3 toward, realv inv
   return WEIGHT_CAN_OVERFLOW ? SELECT(bounded > 0, weight, 0) : weight; /* 0 * (1/d^k = Inf) */
 }
 
-/* Whether every lane is clearly beyond the light's range, |d / R|^2 > 1.01: there the window, and so
- * the light's weight, is exactly 0, so skipping the light changes no bit of the sums. A tile's list
- * holds every light that reaches some pixel of the tile; this drops, per work-item, the ones that
- * reach none of its pixels. A light without a range (inverse_range 0) is never skipped. toward is
+/* Whether every lane is clearly beyond a light's range, |d / R|^2 > 1.01, d = |toward| (to the
+ * light, or an area light's centre): there the window, and so the light's weight, is exactly 0, so
+ * skipping the light changes no bit of the sums. A tile's list holds every light that reaches some
+ * pixel of the tile; this drops, per work-item, the ones that reach none of its pixels (area lights,
+ * in no list, are all tested). A light without a range (inverse_range 0) is never skipped. toward is
  * scaled by 1 / R before it is squared: d^2 and 1 / R^2 apart overflow float for R = 1e20 and 1e-20
  * (Inf * a tiny factor would skip lights at R / 2). */
-bool beyond_range_in_every_lane(UNIFORM_SPACE const LightShape* shape, vec3 toward) {
-  const vec3 in_ranges = scale3(toward, (realv)shape->inverse_range);
+bool beyond_range_in_every_lane(vec3 toward, realv inverse_range) {
+  const vec3 in_ranges = scale3(toward, inverse_range);
   return all_lanes(LANE_MASK(dot3(in_ranges, in_ranges) > (real)1.01));
 }
 

@@ -149,7 +149,7 @@ static inline void add_point_light(LightSums* sums, const Surface* surface, cons
   const vec3 position = make_vec3(light->position[0], light->position[1], light->position[2]);
   const vec3 rest = make_vec3(light->position_rest[0], light->position_rest[1], light->position_rest[2]);
   vec3 toward = light_offset(position, rest, surface);
-  if (TILED_CULLING && RANGE_WINDOW && beyond_range_in_every_lane(shape, toward)) return;
+  if (TILED_CULLING && RANGE_WINDOW && beyond_range_in_every_lane(toward, (realv)shape->inverse_range)) return;
   realv distance = 0, inverse_distance = 0; /* spots alone read neither */
   const realv inverse = NEEDS_DISTANCE ? distance_in_range(&toward, &distance, &inverse_distance)
                                        : inverse_length_in_range(&toward);
@@ -188,7 +188,7 @@ static inline void shadow_area_light(realv* irradiance, realv* highlight, const 
  * with SHADOWS. */
 static inline void add_area_light(LightSums* sums, const Surface* surface, const Lights* lights, int k) {
   __global const AreaLightRecord* light = &lights->area[k];
-  if (area_beyond_range_in_every_lane(light, surface->p)) return;
+  if (beyond_range_in_every_lane(sub3(area_vector(light->center), surface->p), (realv)light->inverse_range)) return;
   const vec3 n = surface->n, v = surface->v;
   const realv two_n_dot_v = 2 * dot3(n, v);
   const vec3 r = make_vec3(fma(two_n_dot_v, n.x, -v.x), fma(two_n_dot_v, n.y, -v.y), fma(two_n_dot_v, n.z, -v.z));
