@@ -15,28 +15,16 @@ times for it (X-Shade-Ms: the whole shade; X-Kernel-Ms: the kernel's profiling e
 import argparse
 import json
 import pathlib
-import re
 import statistics
-import subprocess
+import sys
 import tempfile
 import threading
 import time
 import urllib.request
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
-
-
-def start_server(phongcl, arguments, log):
-    server = subprocess.Popen([phongcl, "serve", "--port", "0", *arguments], stdout=log, stderr=subprocess.STDOUT)
-    deadline = time.time() + 120
-    while time.time() < deadline:
-        match = re.search(r"url\s+(http://\S+)", pathlib.Path(log.name).read_text())
-        if match:
-            return server, match.group(1)
-        if server.poll() is not None:
-            raise SystemExit(f"phongcl serve exited: {pathlib.Path(log.name).read_text()}")
-        time.sleep(0.05)
-    raise SystemExit("phongcl serve printed no URL")
+sys.path.insert(0, str(ROOT / "scripts" / "checks"))
+from serve_process import start_serve  # noqa: E402  the browser check's own start
 
 
 def get(url):
@@ -95,8 +83,11 @@ def main():
     args = parser.parse_args()
     query = "&".join(part for part in (f"format={args.format}", args.width and f"width={args.width}", args.query) if part)
     with tempfile.NamedTemporaryFile("w", suffix=".log") as log:
-        server, url = start_server(args.phongcl, ["--scene", args.scene, "--gbuffer", args.gbuffer,
-                                                  *args.serve_arguments], log)
+        try:
+            server, url = start_serve(args.phongcl, ["--scene", args.scene, "--gbuffer", args.gbuffer,
+                                                      *args.serve_arguments], log)
+        except RuntimeError as error:
+            raise SystemExit(f"serve_frame_rate: {error}")
         try:
             load = pathlib.Path("/proc/loadavg").read_text().split()[:3]
             r = measure(url, query, args.seconds)

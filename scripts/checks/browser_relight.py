@@ -4,10 +4,11 @@
 the displayed image against the scalar reference of the edited scene, saves the scene, takes a
 screenshot, and measures input-event-to-image-displayed rates at 640x480 and 1920x1080. On a Blender
 render it adds a spot through its controls and checks the before/after split against the beauty pass."""
-import argparse, base64, json, os, re, socket, statistics, struct, subprocess, sys, time, urllib.request, zlib
+import argparse, base64, json, os, socket, statistics, struct, subprocess, sys, time, urllib.request, zlib
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python", "tests"))
 from accuracy_bound import ERROR_FLOOR, RELATIVE_BOUND  # the product's bound, defined in tests/accuracy_bound.h
+from serve_process import start_serve  # beside this script
 
 ELEMENT = "element-6066-11e4-a52e-4f735466cecf"
 
@@ -84,16 +85,10 @@ class WebDriver:
 
 
 def start_server(phongcl, arguments, log):
-    server = subprocess.Popen([phongcl, "serve", "--port", "0", *arguments], stdout=log, stderr=subprocess.STDOUT)
-    end = time.time() + 120
-    while time.time() < end:
-        match = re.search(r"url\s+(http://\S+)", open(log.name).read())
-        if match:
-            return server, match.group(1)
-        if server.poll() is not None:
-            fail(f"phongcl serve exited: {open(log.name).read()}")
-        time.sleep(0.05)
-    fail("phongcl serve printed no URL")
+    try:
+        return start_serve(phongcl, arguments, log)
+    except RuntimeError as error:
+        fail(str(error))
 
 
 def decode_png(data):
