@@ -240,8 +240,8 @@ TEST(AreaLights, GroupsAndShadowsCompileInOnlyWhenAsked) {
 }
 
 // A range ends an area light exactly: beyond it the light adds no bit, and a work-item whose every
-// pixel is beyond it skips the light (a skip too eager shows against the reference). Pixels are laid out along x so that lane vectors share an x
-// and most of them are wholly in or out of range.
+// pixel is beyond it skips the light (a skip too eager shows against the reference). Pixels are
+// laid out along x so that lane vectors share an x and most of them are wholly in or out of range.
 TEST(AreaLights, NothingBeyondTheRange) {
   PHONGCL_REQUIRE_DEVICE(shader);
   std::vector<AreaLight> lights = emitters(true);
