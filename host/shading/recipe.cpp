@@ -148,9 +148,23 @@ void decide_lights(Recipe& recipe) {
 
 int link_words_for(const Scene& scene) { return std::max<int>(1, (static_cast<int>(scene.materials.size()) + 31) / 32); }
 
+// A spot's cosine power is compiled in only where some spot has one, in the general kernel too:
+// the kernel without it is the one from before cosine powers, bit for bit (with the power multiplied
+// in, -cl-fast-relaxed-math reorders the cone's products even where p = 0).
+void decide_spot_cosine_power(Recipe& recipe, const Scene& scene) {
+  const auto powered = std::count_if(scene.lights.begin(), scene.lights.end(), [](const Light& light) {
+    return light.type == LightType::spot && light.cosine_power != 0.0;
+  });
+  add_flag(recipe, "SPOT_COSINE_POWER", powered > 0,
+           powered > 0 ? "spot cosine power: compiled in (" + plural(static_cast<int>(powered), "spot") + " with p > 0)"
+                       : "spot cosine power: compiled out (no spot has one)",
+           powered > 0 ? "spot cosine power" : "");
+}
+
 // Falloff, range windows, spot cones and linking: compiled in for the scenes that use them, and
 // always in the general kernel.
 void decide_light_shapes(Recipe& recipe, const Scene& scene) {
+  decide_spot_cosine_power(recipe, scene);
   std::set<int> powers;
   bool any_range = false, any_link = false;
   for (const Light& light : scene.lights) {
@@ -165,7 +179,6 @@ void decide_light_shapes(Recipe& recipe, const Scene& scene) {
     add_flag(recipe, "FALLOFF_MIXED", true, "falloff: compiled in" + general, "mixed falloff");
     add_flag(recipe, "RANGE_WINDOW", true, "range window: compiled in" + general, "ranges");
     add_flag(recipe, "SPOT_LIGHTS", true, "spot cones: compiled in" + general);
-    add_flag(recipe, "SPOT_COSINE_POWER", true, "spot cosine power: compiled in" + general);
     recipe.link_words = add_count(recipe, "LIGHT_LINKING", link_words_for(scene),
                                   "light linking: compiled in" + general, "light linking");
     return;
@@ -186,13 +199,6 @@ void decide_light_shapes(Recipe& recipe, const Scene& scene) {
   add_flag(recipe, "SPOT_LIGHTS", recipe.spot_lights > 0,
            recipe.spot_lights > 0 ? "spot cones: compiled in (" + plural(recipe.spot_lights, "spot") + ")"
                                   : "spot cones: compiled out (no spots)");
-  const auto powered = std::count_if(scene.lights.begin(), scene.lights.end(), [](const Light& light) {
-    return light.type == LightType::spot && light.cosine_power != 0.0;
-  });
-  add_flag(recipe, "SPOT_COSINE_POWER", powered > 0,
-           powered > 0 ? "spot cosine power: compiled in (" + plural(static_cast<int>(powered), "spot") + " with p > 0)"
-                       : "spot cosine power: compiled out (no spot has one)",
-           powered > 0 ? "spot cosine power" : "");
   const int words = any_link ? link_words_for(scene) : 0;
   recipe.link_words = add_count(recipe, "LIGHT_LINKING", words,
                                 words > 0 ? "light linking: compiled in (" + plural(words, "mask word") + " per light)"
