@@ -6,8 +6,8 @@
  * two, and runs both once per level: boxes of 8 x 8 tiles with every light a candidate, then boxes of
  * 2 x 2 tiles and then the tiles, each with its parent box's list (shading/tile_culling.cpp). A
  * light reaches a box when its bounding sphere (LightBounds, widened on the host against rounding)
- * meets it, or when it has no range. The tile of a work-item is the tile of its first
- * pixel (tiles.h), so a tile's box covers every pixel its work-items shade.
+ * meets it, or when it has no range, and for a spot when its cone can too. The tile of a work-item
+ * is the tile of its first pixel (tiles.h), so a tile's box covers every pixel its work-items shade.
  * Options: PHONGCL_LANES and HALF_STORAGE, as phong_shade's. */
 /* The boxes are plain float whatever the shading's arithmetic. */
 #define PHONGCL_DOUBLE 0
@@ -74,14 +74,47 @@ __kernel void tile_bounds(__global const TileBox* restrict rows, TileGrid grid, 
 
 /* Whether a light's bounding sphere meets a non-empty box: the squared distance from its centre to
  * the box against its radius squared. */
-bool reaches(LightBounds light, const TileBox* box) {
-  if (light.radius < 0) return true;
+bool sphere_meets_box(LightBounds light, const TileBox* box) {
   float distance_sq = 0;
   for (int axis = 0; axis < 3; ++axis) {
     const float outside = fmax(fmax(box->lo[axis] - light.center[axis], light.center[axis] - box->hi[axis]), 0.0f);
     distance_sq += outside * outside;
   }
   return distance_sq <= light.radius * light.radius;
+}
+
+/* Whether a spot's cone can meet a non-empty box. The cone (narrower than a hemisphere) lies behind
+ * the plane through its apex across its axis, and behind the plane through its apex that touches
+ * it along the side facing the box's centre; the box is out when all of it is in front of either.
+ * The slack covers the rounding of the eye-relative floats. */
+bool cone_meets_box(LightBounds light, const TileBox* box) {
+  float half_side[3], to_center[3], along = 0, length_sq = 0, apex_sq = 0, size = 0;
+  for (int axis = 0; axis < 3; ++axis) {
+    half_side[axis] = 0.5f * (box->hi[axis] - box->lo[axis]);
+    to_center[axis] = box->lo[axis] + half_side[axis] - light.apex[axis];
+    along += to_center[axis] * light.axis[axis];
+    length_sq += to_center[axis] * to_center[axis];
+    apex_sq += light.apex[axis] * light.apex[axis];
+    size += half_side[axis];
+  }
+  const float slack = 1e-5f * (sqrt(length_sq) + sqrt(apex_sq) + size);
+  float depth_extent = 0, across_sq = 0, across[3];
+  for (int axis = 0; axis < 3; ++axis) {
+    depth_extent += fabs(light.axis[axis]) * half_side[axis];
+    across[axis] = to_center[axis] - along * light.axis[axis];
+    across_sq += across[axis] * across[axis];
+  }
+  if (along + depth_extent < -slack) return false;
+  if (across_sq == 0) return true; /* the centre is on the axis */
+  const float inverse_across = rsqrt(across_sq);
+  float side_extent = 0;
+  for (int axis = 0; axis < 3; ++axis)
+    side_extent += fabs(light.cone_cos * across[axis] * inverse_across - light.cone_sin * light.axis[axis]) * half_side[axis];
+  return light.cone_cos * sqrt(across_sq) - light.cone_sin * along <= side_extent + slack;
+}
+
+bool reaches(LightBounds light, const TileBox* box) {
+  return (light.radius < 0 || sphere_meets_box(light, box)) && (light.cone_cos <= 0 || cone_meets_box(light, box));
 }
 
 /* The candidates of tile t are candidates[candidate_first[t] ...], candidate_count[t] of them: every

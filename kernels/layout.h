@@ -64,11 +64,17 @@ typedef struct {
  * (point lights first, then directional) has LINK_WORDS words. */
 typedef unsigned int LinkWord;
 
-/* A sphere that holds everything a point or spot light can reach (its range, or for a spot the
- * cone bounded by it), for tiled culling; radius < 0: no range, the light reaches every tile. */
+/* What a point or spot light can reach, for tiled culling: a sphere that holds it (its range, or
+ * for a spot the cone bounded by it; radius < 0: no range, the light reaches every tile) and, for a
+ * spot narrower than a hemisphere, its cone: apex, unit axis, and the cosine and sine of the outer
+ * half angle, widened on the host against rounding (cone_cos <= 0: no cone to test). */
 typedef struct {
   layout_float center[3]; /* relative to the eye */
   layout_float radius;
+  layout_float apex[3]; /* relative to the eye */
+  layout_float cone_cos;
+  layout_float axis[3];
+  layout_float cone_sin;
 } LightBounds;
 
 /* The screen tiles of tiled light culling. A work-item belongs to the tile of its first pixel, and

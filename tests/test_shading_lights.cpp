@@ -262,6 +262,39 @@ TEST(Lights, TiledCullingKeepsUnrangedLightsEverywhere) {
   EXPECT_LE(exact.max_rel, kRelativeBound) << describe_worst(exact);
 }
 
+// A wide spot's bounding sphere reaches far outside its cone: a 140-degree spot 2.5 above the floor
+// of the default scene, aimed up, lights none of it, though its sphere (centred 0.34 of the range
+// above it, 0.94 of the range across) reaches the floor and the spheres; no tile may keep it. Aimed
+// down, tiles keep it where it lights and the image is the unculled one.
+TEST(Lights, TiledCullingDropsTilesOutsideASpotsCone) {
+  PHONGCL_REQUIRE_DEVICE(shader);
+  Scene scene = load_scene(std::filesystem::path(PHONGCL_SOURCE_DIR) / "scenes/default/scene.json");
+  scene.camera.width = 160;
+  scene.camera.height = 120;
+  const GBuffer gbuffer = generate_gbuffer(scene);
+  Light spot{LightType::spot, {0.0, 2.5, 0.0}, {0.0, 1.0, 0.0}, glm::dvec3(3.0)};
+  spot.cone_angle_deg = 140.0;
+  spot.range = 6.0;
+  scene.lights = {spot};
+  ShadeOptions tiled;
+  tiled.culling = Culling::tiled;
+  const ShadeResult up = shader.shade(scene, gbuffer, tiled);
+  EXPECT_GT(up.culling.shaded_tiles, 0u);
+  EXPECT_EQ(up.culling.list_entries, 0.0) << "aimed up, it reaches no tile";
+
+  scene.lights[0].direction = {0.0, -1.0, 0.0};
+  const ShadeResult down = shader.shade(scene, gbuffer, tiled);
+  EXPECT_GT(down.culling.list_entries, 0.0) << "aimed down";
+  EXPECT_LT(down.culling.list_entries, static_cast<double>(down.culling.shaded_tiles)) << "aimed down";
+  ShadeOptions unculled;
+  unculled.culling = Culling::none;
+  const std::vector<bool> mask = testing::shaded_mask(gbuffer);
+  const ErrorStats same = shading_error(down.image, shader.shade(scene, gbuffer, unculled).image, mask);
+  EXPECT_LE(same.max_rel, 1e-5) << describe_worst(same);
+  const ErrorStats exact = shading_error(down.image, reference_image(scene, gbuffer), mask);
+  EXPECT_LE(exact.max_rel, kRelativeBound) << describe_worst(exact);
+}
+
 // --- Light groups.
 
 // The diffuse + specular of `scene` lit by the lights of `group` alone (empty: the ungrouped ones),
