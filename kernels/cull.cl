@@ -1,10 +1,10 @@
 /* Tiled light culling (Andersson 2009; ISPC's examples/cpu/deferred), before phong_shade:
  *   row_bounds, tile_bounds  the box of each tile's shaded positions, in lane vectors (row by row)
- *   count_tile_lights  one work-item per tile: how many of its candidate lights can reach its box
- *   fill_tile_lights   the same test again, writing the light indices at the tile's offset
- * The host turns the counts into offsets (a prefix sum over a few thousand tiles) between the last
- * two, and runs both once per level: boxes of 8 x 8 tiles with every light a candidate, then boxes of
- * 2 x 2 tiles and then the tiles, each with its parent box's list (shading/tile_culling.cpp). A
+ *   keep_tile_lights   one work-item per box: its candidate lights that can reach it, in order
+ * The host runs the last once per level: boxes of 8 x 8 tiles with every light a candidate, then
+ * boxes of 2 x 2 tiles and then the tiles, each with its parent box's list (shading/tile_culling.cpp).
+ * Each box writes its list where the host left room for all of its candidates, so every light is
+ * tested once per level and no list is compacted: the shading reads the tiles' lists where they are. A
  * light reaches a box when its bounding sphere (LightBounds, widened on the host against rounding)
  * meets it, or when it has no range, and for a spot when its cone can too. The tile of a work-item
  * is the tile of its first pixel (tiles.h), so a tile's box covers every pixel its work-items shade.
@@ -117,31 +117,22 @@ bool reaches(LightBounds light, const TileBox* box) {
   return (light.radius < 0 || sphere_meets_box(light, box)) && (light.cone_cos <= 0 || cone_meets_box(light, box));
 }
 
-/* The candidates of tile t are candidates[candidate_first[t] ...], candidate_count[t] of them: every
- * light for the coarse tiles, the coarse tile's list for its fine tiles. */
-__kernel void count_tile_lights(__global const TileBox* restrict boxes, __global const LightBounds* restrict lights,
-                                __global const uint* restrict candidates, __global const uint* restrict candidate_first,
-                                __global const uint* restrict candidate_count, __global uint* restrict counts) {
-  const uint tile = get_global_id(0);
-  const TileBox box = boxes[tile];
-  const uint first = candidate_first[tile], end = first + candidate_count[tile];
-  uint count = 0;
-  if (box.shaded > 0)
-    for (uint j = first; j < end; ++j) count += reaches(lights[candidates[j]], &box);
-  counts[tile] = count;
-}
-
-__kernel void fill_tile_lights(__global const TileBox* restrict boxes, __global const LightBounds* restrict lights,
+/* The candidates of box t are candidates[candidate_first[t] ...], candidate_count[t] of them: every
+ * light for the coarsest boxes, the parent box's list for the others. The ones that reach the box are
+ * written in order from kept_lights[kept_first[t]], where there is room for all of them, and counted
+ * in kept_count[t]. */
+__kernel void keep_tile_lights(__global const TileBox* restrict boxes, __global const LightBounds* restrict lights,
                                __global const uint* restrict candidates, __global const uint* restrict candidate_first,
-                               __global const uint* restrict candidate_count, __global const uint* restrict offsets,
-                               __global uint* restrict tile_lights) {
+                               __global const uint* restrict candidate_count, __global const uint* restrict kept_first,
+                               __global uint* restrict kept_lights, __global uint* restrict kept_count) {
   const uint tile = get_global_id(0);
   const TileBox box = boxes[tile];
-  if (box.shaded == 0) return;
-  const uint first = candidate_first[tile], end = first + candidate_count[tile];
-  uint next = offsets[tile];
+  const uint first = candidate_first[tile], end = box.shaded > 0 ? first + candidate_count[tile] : first;
+  __global uint* const kept = kept_lights + kept_first[tile];
+  uint count = 0;
   for (uint j = first; j < end; ++j) {
     const uint k = candidates[j];
-    if (reaches(lights[k], &box)) tile_lights[next++] = k;
+    if (reaches(lights[k], &box)) kept[count++] = k;
   }
+  kept_count[tile] = count;
 }

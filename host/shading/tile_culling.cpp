@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
+#include <stdexcept>
 
 #include "cl/kernel_source.h"
 
@@ -10,8 +12,8 @@ namespace phongcl {
 
 namespace {
 
-using CountKernel = cl::KernelFunctor<cl::Buffer, cl::Buffer, cl::Buffer, cl::Buffer, cl::Buffer, cl::Buffer>;
-using FillKernel = cl::KernelFunctor<cl::Buffer, cl::Buffer, cl::Buffer, cl::Buffer, cl::Buffer, cl::Buffer, cl::Buffer>;
+using KeepKernel = cl::KernelFunctor<cl::Buffer, cl::Buffer, cl::Buffer, cl::Buffer, cl::Buffer, cl::Buffer, cl::Buffer,
+                                    cl::Buffer>;
 
 }  // namespace
 
@@ -110,27 +112,33 @@ cl::Buffer device_copy(const cl::Context& context, std::vector<T> values) {
 
 }  // namespace
 
-TileCuller::Lists TileCuller::lists(const cl::Buffer& boxes, std::size_t tiles, const cl::Buffer& light_bounds,
-                                    const cl::Buffer& candidates, const std::vector<cl_uint>& candidate_first,
+TileCuller::Lists TileCuller::lists(const cl::Buffer& boxes, const std::vector<TileBox>& host_boxes,
+                                    const cl::Buffer& light_bounds, const cl::Buffer& candidates,
+                                    const std::vector<cl_uint>& candidate_first,
                                     const std::vector<cl_uint>& candidate_count) {
   const cl::Context& context = compute_.context;
   cl::CommandQueue& queue = compute_.queue;
+  const std::size_t tiles = host_boxes.size();
   Lists lists;
-  const cl::Buffer first = device_copy(context, candidate_first), count = device_copy(context, candidate_count);
-  lists.counts = cl::Buffer(context, CL_MEM_READ_WRITE, tiles * sizeof(cl_uint));
-  CountKernel(program_, "count_tile_lights")(cl::EnqueueArgs(queue, cl::NDRange(tiles)), boxes, light_bounds, candidates,
-                                             first, count, lists.counts);
-  lists.host_counts.resize(tiles);
-  queue.enqueueReadBuffer(lists.counts, CL_TRUE, 0, tiles * sizeof(cl_uint), lists.host_counts.data());
-  // Offsets: an exclusive prefix sum of the counts, on the host (a few thousand values).
+  // Room for every candidate of each shaded box, so that one pass both tests and writes.
   lists.host_offsets.resize(tiles);
-  std::size_t total = 0;
-  for (std::size_t t = 0; t < tiles; ++t) lists.host_offsets[t] = static_cast<cl_uint>(total), total += lists.host_counts[t];
+  std::size_t room = 0;
+  for (std::size_t t = 0; t < tiles; ++t) {
+    lists.host_offsets[t] = static_cast<cl_uint>(room);
+    if (host_boxes[t].shaded > 0) room += candidate_count[t];
+  }
+  if (room > std::numeric_limits<cl_uint>::max())
+    throw std::runtime_error("tiled culling: the light lists need over 2^32 entries (lights without a range are in "
+                             "every tile's list): use a larger --tile or --culling none");
   lists.offsets = device_copy(context, lists.host_offsets);
   // OpenCL has no empty buffers: a frame that keeps no light still gets one entry.
-  lists.lights = cl::Buffer(context, CL_MEM_READ_WRITE, std::max<std::size_t>(total, 1) * sizeof(cl_uint));
-  FillKernel(program_, "fill_tile_lights")(cl::EnqueueArgs(queue, cl::NDRange(tiles)), boxes, light_bounds, candidates,
-                                           first, count, lists.offsets, lists.lights);
+  lists.lights = cl::Buffer(context, CL_MEM_READ_WRITE, std::max<std::size_t>(room, 1) * sizeof(cl_uint));
+  lists.counts = cl::Buffer(context, CL_MEM_READ_WRITE, tiles * sizeof(cl_uint));
+  KeepKernel(program_, "keep_tile_lights")(cl::EnqueueArgs(queue, cl::NDRange(tiles)), boxes, light_bounds, candidates,
+                                           device_copy(context, candidate_first), device_copy(context, candidate_count),
+                                           lists.offsets, lists.lights, lists.counts);
+  lists.host_counts.resize(tiles);
+  queue.enqueueReadBuffer(lists.counts, CL_TRUE, 0, tiles * sizeof(cl_uint), lists.host_counts.data());
   return lists;
 }
 
@@ -159,14 +167,15 @@ CullingStats TileCuller::cull(const cl::Buffer& planes, std::size_t plane_stride
   std::vector<cl_uint> every_light(light_count);
   for (std::size_t k = 0; k < light_count; ++k) every_light[k] = static_cast<cl_uint>(k);
   const std::size_t coarsest = grids.back().boxes.size();
-  Lists level = lists(device_copy(context, grids.back().boxes), coarsest, light_bounds, device_copy(context, every_light),
-                      std::vector<cl_uint>(coarsest, 0), std::vector<cl_uint>(coarsest, static_cast<cl_uint>(light_count)));
+  Lists level = lists(device_copy(context, grids.back().boxes), grids.back().boxes, light_bounds,
+                      device_copy(context, every_light), std::vector<cl_uint>(coarsest, 0),
+                      std::vector<cl_uint>(coarsest, static_cast<cl_uint>(light_count)));
   for (std::size_t g = grids.size() - 1; g-- > 0;) {
     const std::vector<cl_uint>& parent = parents[g];
     std::vector<cl_uint> first(parent.size()), count(parent.size());
     for (std::size_t t = 0; t < parent.size(); ++t) first[t] = level.host_offsets[parent[t]], count[t] = level.host_counts[parent[t]];
     const cl::Buffer finer = g == 0 ? boxes : device_copy(context, grids[g].boxes);
-    level = lists(finer, parent.size(), light_bounds, level.lights, first, count);
+    level = lists(finer, grids[g].boxes, light_bounds, level.lights, first, count);
   }
   const Lists& fine = level;
   queue.finish();

@@ -48,13 +48,16 @@ class TileCuller {
   const cl::Buffer& lights() const { return lights_buffer_; }
 
  private:
-  // One level of culling: each tile's candidates (a range of `candidates`) against its box.
+  // One level of culling: each box's candidates (a range of `candidates`) against it (`boxes` on the
+  // device, `host_boxes` the same on the host); box t's list is lights[host_offsets[t] ...],
+  // host_counts[t] of them.
   struct Lists {
     cl::Buffer offsets, counts, lights;
     std::vector<cl_uint> host_offsets, host_counts;
   };
-  Lists lists(const cl::Buffer& boxes, std::size_t tiles, const cl::Buffer& light_bounds, const cl::Buffer& candidates,
-              const std::vector<cl_uint>& candidate_first, const std::vector<cl_uint>& candidate_count);
+  Lists lists(const cl::Buffer& boxes, const std::vector<TileBox>& host_boxes, const cl::Buffer& light_bounds,
+              const cl::Buffer& candidates, const std::vector<cl_uint>& candidate_first,
+              const std::vector<cl_uint>& candidate_count);
 
   ComputeContext compute_;
   cl::Program program_;
