@@ -6,7 +6,8 @@
  * Each box writes its list where the host left room for all of its candidates, so every light is
  * tested once per level and no list is compacted: the shading reads the tiles' lists where they are. A
  * light reaches a box when its bounding sphere (LightBounds, widened on the host against rounding)
- * meets it, or when it has no range, and for a spot when its cone can too. The tile of a work-item
+ * meets it, or when it has no range, and for a spot when its cone can too, and when it spans one of
+ * the distance bins of the box's positions (layout.h). The tile of a work-item
  * is the tile of its first pixel (tiles.h), so a tile's box covers every pixel its work-items shade.
  * Options: PHONGCL_LANES and HALF_STORAGE, as phong_shade's. */
 /* The boxes are plain float whatever the shading's arithmetic. */
@@ -20,7 +21,9 @@
 
 uint round_up_lanes(uint pixel) { return (pixel + PHONGCL_LANES - 1) / PHONGCL_LANES * PHONGCL_LANES; }
 
-#define PLUS(a, b) ((a) + (b)) /* for REDUCE_LANES (phong_math.h) */
+/* for REDUCE_LANES (phong_math.h) */
+#define PLUS(a, b) ((a) + (b))
+#define BIT_OR(a, b) ((a) | (b))
 
 /* A tile's boxes are taken in two passes, so that the planes are read front to back: row_bounds,
  * one work-item per pixel row of each tile (item = image row * tiles_x + tile column: an image
@@ -38,7 +41,7 @@ __kernel void row_bounds(__global const STORAGE* restrict planes, uint plane_str
   const uint x_begin = tile_x * grid.tile_size, x_end = min(x_begin + grid.tile_size, grid.image_width);
   floatv lo[3] = {(floatv)INFINITY, (floatv)INFINITY, (floatv)INFINITY};
   floatv hi[3] = {(floatv)-INFINITY, (floatv)-INFINITY, (floatv)-INFINITY};
-  intv shaded = (intv)0;
+  intv shaded = (intv)0, distance_bins = (intv)0;
   const ulong row = (ulong)y * grid.image_width;
   const ulong begin = max((ulong)round_up_lanes(row + x_begin), (ulong)grid.first_pixel);
   const ulong end = min((ulong)round_up_lanes(row + x_end), (ulong)grid.first_pixel + slot_count);
@@ -46,11 +49,15 @@ __kernel void row_bounds(__global const STORAGE* restrict planes, uint plane_str
     const uint chunk = (uint)((pixel - grid.first_pixel) / PHONGCL_LANES);
     const intv is_shaded = VLOAD(chunk, material_index) != PHONGCL_BACKGROUND;
     shaded += select((intv)0, (intv)1, is_shaded);
+    floatv distance_sq = (floatv)0;
     for (int axis = 0; axis < 3; ++axis) {
       const floatv value = load_plane(planes, plane_stride, PLANE_PX + axis, chunk);
       lo[axis] = fmin(lo[axis], select((floatv)INFINITY, value, is_shaded));
       hi[axis] = fmax(hi[axis], select((floatv)-INFINITY, value, is_shaded));
+      distance_sq += value * value;
     }
+    const intv bin = (AS_INTV(distance_sq) >> PHONGCL_DISTANCE_BIN_SHIFT) & 31;
+    distance_bins |= select((intv)0, (intv)1 << bin, is_shaded);
   }
   TileBox box;
   for (int axis = 0; axis < 3; ++axis) {
@@ -58,7 +65,7 @@ __kernel void row_bounds(__global const STORAGE* restrict planes, uint plane_str
     box.hi[axis] = REDUCE_LANES(hi[axis], fmax);
   }
   box.shaded = (uint)REDUCE_LANES(shaded, PLUS);
-  box.padding = 0;
+  box.distance_bins = (uint)REDUCE_LANES(distance_bins, BIT_OR);
   rows[item] = box;
 }
 
@@ -114,7 +121,8 @@ bool cone_meets_box(LightBounds light, const TileBox* box) {
 }
 
 bool reaches(LightBounds light, const TileBox* box) {
-  return (light.radius < 0 || sphere_meets_box(light, box)) && (light.cone_cos <= 0 || cone_meets_box(light, box));
+  return (light.distance_bins & box->distance_bins) != 0 && (light.radius < 0 || sphere_meets_box(light, box)) &&
+         (light.cone_cos <= 0 || cone_meets_box(light, box));
 }
 
 /* The candidates of box t are candidates[candidate_first[t] ...], candidate_count[t] of them: every

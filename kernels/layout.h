@@ -75,6 +75,8 @@ typedef struct {
   layout_float cone_cos;
   layout_float axis[3];
   layout_float cone_sin;
+  unsigned int distance_bins; /* the distance bins its sphere spans; every bin without a range */
+  unsigned int padding[3];
 } LightBounds;
 
 /* The screen tiles of tiled light culling. A work-item belongs to the tile of its first pixel, and
@@ -87,13 +89,22 @@ typedef struct {
   unsigned int first_pixel; /* the frame pixel of this launch's slot 0 */
 } TileGrid;
 
-/* A culling tile's bounds: the box of its shaded positions (eye-relative, as packed) and how many
- * shaded pixels it holds; an empty tile has shaded = 0 and an empty box (lo > hi). */
+/* Distance bins, for culling in depth as well as across the screen (Harada's 2.5D culling, with bins
+ * fixed in distance rather than per tile): a distance d from the eye is in bin (the float bits of
+ * d^2 >> PHONGCL_DISTANCE_BIN_SHIFT) mod 32, four bins per doubling of d^2. A tile sets the bit of
+ * each of its shaded positions' bins, a light the bits of every distance its sphere spans (widened
+ * by a bin each way against rounding); a light whose bits miss the tile's reaches none of its
+ * pixels. Distances further apart than a factor of 16 share bins: that keeps lights, never drops one. */
+#define PHONGCL_DISTANCE_BIN_SHIFT 21
+
+/* A culling tile's bounds: the box of its shaded positions (eye-relative, as packed), the distance
+ * bins they fall in and how many shaded pixels it holds; an empty tile has shaded = 0, an empty box
+ * (lo > hi) and no bins. */
 typedef struct {
   layout_float lo[3];
   unsigned int shaded;
   layout_float hi[3];
-  unsigned int padding;
+  unsigned int distance_bins;
 } TileBox;
 
 /* A directional light. to_light is the unit vector l = -normalize(direction), computed in double. */

@@ -22,6 +22,7 @@ void add_to_box(TileBox* box, TileBox part) {
     box->hi[axis] = fmax(box->hi[axis], part.hi[axis]);
   }
   box->shaded += part.shaded;
+  box->distance_bins |= part.distance_bins;
 }
 
 #endif

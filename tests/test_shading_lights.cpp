@@ -2,6 +2,8 @@
 // double reference in every precision variant but half-storage, each specialised combination against
 // the general kernel, and what reaches the kernel's build options; light groups' layers.
 #include <functional>
+#include <numbers>
+#include <sstream>
 
 #include "peers/many_lights.h"
 #include "shading_support.h"
@@ -293,6 +295,44 @@ TEST(Lights, TiledCullingDropsTilesOutsideASpotsCone) {
   EXPECT_LE(same.max_rel, 1e-5) << describe_worst(same);
   const ErrorStats exact = shading_error(down.image, reference_image(scene, gbuffer), mask);
   EXPECT_LE(exact.max_rel, kRelativeBound) << describe_worst(exact);
+}
+
+// A tile on the silhouette of a near sphere against a far wall has a box that spans the space
+// between them. Eight lights in that gap, on the silhouette's rays halfway in depth, reach neither
+// surface (range 1, 12 from the sphere and 15 from the wall), so they are in such boxes but in none of
+// the tiles' distance bins: no tile may keep them. The check that they are in the boxes is the
+// lights per tile of the same frame with a wall at 16, where the bins span them.
+TEST(Lights, TiledCullingDropsLightsBetweenATilesDepths) {
+  PHONGCL_REQUIRE_DEVICE(shader);
+  const auto frame = [](double wall_distance) {
+    std::ostringstream json;
+    json << R"({"camera": {"eye": [0, 0, 0], "look_at": [0, 0, -1], "fov_y_deg": 30, "width": 128, "height": 128},
+                "ambient": [0, 0, 0], "lights": [], "materials": [{"name": "grey", "kd": [0.5, 0.5, 0.5]}],
+                "objects": [{"type": "sphere", "center": [0, 0, -3], "radius": 0.5, "material": 0},
+                            {"type": "plane", "normal": [0, 0, 1], "offset": )"
+         << -wall_distance << R"(, "material": 0}]})";
+    Scene scene = parse_scene(json.str(), "two depths");
+    for (int k = 0; k < 8; ++k) {
+      const double angle = k * std::numbers::pi / 4.0;
+      // On the ray through the sphere's silhouette (sin = 0.5 / 3 off its axis), 15 from the eye.
+      const glm::dvec3 toward{std::cos(angle) * 0.5 / 3.0, std::sin(angle) * 0.5 / 3.0, -1.0};
+      Light light{LightType::point, 15.0 * glm::normalize(toward), {0.0, 0.0, 1.0}, glm::dvec3(1.0)};
+      light.range = 1.0;
+      scene.lights.push_back(light);
+    }
+    return scene;
+  };
+  ShadeOptions tiled;
+  tiled.culling = Culling::tiled;
+  const Scene far_wall = frame(30.0);
+  const GBuffer far_gbuffer = generate_gbuffer(far_wall);
+  const ShadeResult between = shader.shade(far_wall, far_gbuffer, tiled);
+  EXPECT_GT(between.culling.shaded_tiles, 0u);
+  EXPECT_EQ(between.culling.list_entries, 0.0) << "the lights are between the tiles' depths";
+
+  const Scene near_wall = frame(16.0);
+  const ShadeResult lit = shader.shade(near_wall, generate_gbuffer(near_wall), tiled);
+  EXPECT_GT(lit.culling.list_entries, 0.0) << "a wall within the lights' range";
 }
 
 // --- Light groups.

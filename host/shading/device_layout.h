@@ -24,5 +24,6 @@ static_assert(offsetof(MaterialRecord, ka) == MATERIAL_KA * sizeof(float) &&
               offsetof(MaterialRecord, specular_model) == MATERIAL_SPECULAR_MODEL * sizeof(float));
 static_assert(sizeof(LightShape) == 48 && offsetof(LightShape, inverse_range) == 16 && offsetof(LightShape, falloff) == 32 &&
               offsetof(LightShape, cosine_power) == 36);
-static_assert(sizeof(LightBounds) == 48 && offsetof(LightBounds, apex) == 16 && sizeof(TileGrid) == 16 && sizeof(LinkWord) == 4);
+static_assert(sizeof(LightBounds) == 64 && offsetof(LightBounds, apex) == 16 && offsetof(LightBounds, distance_bins) == 48 &&
+              sizeof(TileGrid) == 16 && sizeof(LinkWord) == 4);
 static_assert(sizeof(TileBox) == 32 && offsetof(TileBox, hi) == 16);

@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <limits>
 #include <sstream>
 #include <thread>
@@ -143,6 +145,26 @@ LightShape light_shape(const Light& light) {
   return shape;
 }
 
+namespace {
+
+// The distance bins (layout.h) of every distance from the eye in [nearest, farthest], and one more
+// each way, which covers the rounding of the positions' float distances.
+cl_uint distance_bins(double nearest, double farthest) {
+  const auto bin = [](double distance) {
+    const float distance_sq = static_cast<float>(distance * distance);
+    cl_uint bits;
+    std::memcpy(&bits, &distance_sq, sizeof bits);
+    return static_cast<std::int64_t>(bits >> PHONGCL_DISTANCE_BIN_SHIFT);
+  };
+  const std::int64_t first = bin(std::max(nearest, 0.0)) - 1, last = bin(farthest) + 1;
+  if (last - first >= 31) return ~cl_uint{0};
+  const cl_uint span = (cl_uint{2} << (last - first)) - 1;  // last - first + 1 bits
+  const auto rotation = static_cast<unsigned>(first & 31);
+  return rotation == 0 ? span : (span << rotation) | (span >> (32 - rotation));
+}
+
+}  // namespace
+
 LightBounds light_bounds(const Light& light, const glm::dvec3& eye) {
   LightBounds bounds{};
   glm::dvec3 center = light.position - eye;
@@ -161,6 +183,8 @@ LightBounds light_bounds(const Light& light, const glm::dvec3& eye) {
   }
   for (int axis = 0; axis < 3; ++axis) bounds.center[axis] = static_cast<float>(center[axis]);
   bounds.radius = radius < 0.0 ? -1.0f : static_cast<float>(radius + 1e-5 * (radius + glm::length(center)));
+  bounds.distance_bins = radius < 0.0 ? ~cl_uint{0}
+                                      : distance_bins(glm::length(center) - bounds.radius, glm::length(center) + bounds.radius);
   bounds.cone_cos = -1.0f;
   if (light.type == LightType::spot) {
     // The kernel's cone test rounds its cosine to about 1e-6, an angle of up to 1.5e-3 radians at

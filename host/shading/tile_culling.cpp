@@ -87,7 +87,7 @@ BoxGrid merge_boxes(const BoxGrid& grid, std::size_t factor, std::vector<cl_uint
   merged.boxes.resize(merged.columns * ((rows + factor - 1) / factor));
   for (TileBox& box : merged.boxes) {
     for (int axis = 0; axis < 3; ++axis) box.lo[axis] = INFINITY, box.hi[axis] = -INFINITY;
-    box.shaded = box.padding = 0;
+    box.shaded = box.distance_bins = 0;
   }
   parent.resize(grid.boxes.size());
   for (std::size_t t = 0; t < grid.boxes.size(); ++t) {
@@ -100,6 +100,7 @@ BoxGrid merge_boxes(const BoxGrid& grid, std::size_t factor, std::vector<cl_uint
       merged.boxes[m].hi[axis] = std::max(merged.boxes[m].hi[axis], box.hi[axis]);
     }
     merged.boxes[m].shaded += box.shaded;
+    merged.boxes[m].distance_bins |= box.distance_bins;
   }
   return merged;
 }
