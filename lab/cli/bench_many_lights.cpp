@@ -29,6 +29,11 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 constexpr int kTileSize = 16;
+
+// How many lights reach an average shaded pixel, and a shaded pixel of its tile.
+struct Reach {
+  double pixel = 0.0, tile = 0.0;
+};
 constexpr double kSingleRunMs = 10000.0;      // a run longer than this is timed once
 constexpr double kReferencePixelLights = 3e6;  // the double reference's sample of rows (a few seconds here)
 constexpr int kUnculledRateLights = 16;        // the unculled kernel's pixel-lights/s is quoted here
@@ -92,7 +97,7 @@ class ManyLightsBench {
     for (std::size_t i = 0; i < gbuffer.pixel_count(); ++i) shaded_ += classify_pixel(gbuffer, i) == PixelClass::shaded;
   }
 
-  void opencl(const Scene& scene, bool tiled, double reach, const ReferenceRows* reference) {
+  void opencl(const Scene& scene, bool tiled, Reach reach, const ReferenceRows* reference) {
     ShadeOptions options;
     options.culling = tiled ? Culling::tiled : Culling::none;
     options.tile_size = kTileSize;
@@ -116,7 +121,7 @@ class ManyLightsBench {
     finish(r, pairs, reach, reference ? std::optional(reference->error_of(last.image)) : std::nullopt);
   }
 
-  void cpp_tiled(const Scene& scene, double reach, const ReferenceRows& reference) {
+  void cpp_tiled(const Scene& scene, Reach reach, const ReferenceRows& reference) {
     const PackedFrame frame = pack_frame(gbuffer_, scene);
     const PackedScene packed = pack_scene(scene);
     Image image = image_like(gbuffer_);
@@ -139,9 +144,10 @@ class ManyLightsBench {
   const std::vector<ManyLightsResult>& results() const { return results_; }
 
  private:
-  void finish(ManyLightsResult& r, double pairs, double reach, std::optional<double> error) {
+  void finish(ManyLightsResult& r, double pairs, Reach reach, std::optional<double> error) {
     r.mean_lights_per_pixel = shaded_ ? pairs / static_cast<double>(shaded_) : 0.0;
-    r.mean_lights_reaching = reach;
+    r.mean_lights_reaching = reach.pixel;
+    r.mean_lights_reaching_tile = reach.tile;
     r.effective_mpix_lights_per_s = pairs / (r.time.median_ms * 1e-3) / 1e6;
     r.max_rel_err = error;
     std::cout << "    " << r.impl << ": " << r.time.median_ms << " ms (" << r.time.runs << " runs"
@@ -182,13 +188,13 @@ void run_many_lights_bench(const BenchArguments& args) {
     // The unculled kernel's pixel-lights/s at 16 lights: what culling's effective rate is held to.
     const Scene sixteen = with_many_lights(scene, gbuffer, kUnculledRateLights);
     std::cout << "  lights     " << kUnculledRateLights << " (the unculled rate)\n";
-    bench.opencl(sixteen, false, mean_lights_reaching(sixteen, gbuffer, 97), nullptr);
+    bench.opencl(sixteen, false, {mean_lights_reaching(sixteen, gbuffer, 97), 0.0}, nullptr);
   }
   for (const Scene& lit : scenes) {
     const auto start = Clock::now();
-    const double reach = mean_lights_reaching(lit, gbuffer, 97);
-    std::cout << "  lights     " << lit.lights.size() << ": a shaded pixel is reached by " << reach
-              << " on average; reference rows..." << std::flush;
+    const Reach reach{mean_lights_reaching(lit, gbuffer, 97), mean_lights_reaching_tiles(lit, gbuffer, kTileSize)};
+    std::cout << "  lights     " << lit.lights.size() << ": a shaded pixel is reached by " << reach.pixel
+              << " on average, one of its tile's pixels by " << reach.tile << "; reference rows..." << std::flush;
     const ReferenceRows reference(lit, gbuffer);
     std::cout << " every " << reference.step << "\n";
     bench.opencl(lit, true, reach, &reference);

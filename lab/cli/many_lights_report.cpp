@@ -20,7 +20,8 @@ std::string cell(const char* pattern, double value) { return format_cell(pattern
 std::string many_lights_table(const std::vector<ManyLightsResult>& results) {
   MarkdownTable table;
   table.headers = {"impl", "lights", "median ms", "min ms", "max ms", "runs", "culling ms", "lights/tile",
-                   "lights/pixel shaded", "lights/pixel reached", "effective Mpix-lights/s", "max rel err"};
+                   "lights/pixel shaded", "lights/pixel reached", "lights/pixel tile reached", "effective Mpix-lights/s",
+                   "max rel err"};
   table.align = {ColumnAlign::left};
   table.align.resize(table.headers.size(), ColumnAlign::right);
   for (const ManyLightsResult& r : results) {
@@ -28,6 +29,7 @@ std::string many_lights_table(const std::vector<ManyLightsResult>& results) {
                           cell("%.2f", r.time.max_ms), std::to_string(r.time.runs) + (r.single_run ? " (>10 s)" : ""),
                           r.culling_ms ? cell("%.2f", *r.culling_ms) : "", r.mean_lights_per_tile > 0 ? cell("%.1f", r.mean_lights_per_tile) : "",
                           cell("%.1f", r.mean_lights_per_pixel), cell("%.1f", r.mean_lights_reaching),
+                          cell("%.1f", r.mean_lights_reaching_tile),
                           cell("%.0f", r.effective_mpix_lights_per_s), r.max_rel_err ? cell("%.2e", *r.max_rel_err) : "n/a"});
   }
   return table.render();
@@ -49,6 +51,7 @@ std::string many_lights_json(const ManyLightsMachine& machine, const std::vector
                                {"culling_ms", r.culling_ms ? nlohmann::json(*r.culling_ms) : nlohmann::json(nullptr)},
                                {"mean_lights_per_pixel", r.mean_lights_per_pixel},
                                {"mean_lights_reaching", r.mean_lights_reaching},
+                               {"mean_lights_reaching_tile", r.mean_lights_reaching_tile},
                                {"mean_lights_per_tile", r.mean_lights_per_tile},
                                {"effective_mpix_lights_per_s", r.effective_mpix_lights_per_s},
                                {"max_rel_err", r.max_rel_err ? nlohmann::json(*r.max_rel_err) : nlohmann::json(nullptr)}});

@@ -17,6 +17,7 @@ struct ManyLightsResult {
   std::optional<double> culling_ms;   // median of the culling part; tiled only
   double mean_lights_per_pixel = 0.0;  // the pairs shaded: kept by culling, or every light
   double mean_lights_reaching = 0.0;   // lights with d < range (and inside a spot's cone) per shaded pixel
+  double mean_lights_reaching_tile = 0.0;  // lights that reach a shaded pixel of the pixel's tile
   double mean_lights_per_tile = 0.0;   // tiled only
   double effective_mpix_lights_per_s = 0.0;
   std::optional<double> max_rel_err;  // against the double reference on a sample of rows

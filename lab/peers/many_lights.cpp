@@ -55,6 +55,35 @@ double mean_lights_reaching(const Scene& scene, const GBuffer& gbuffer, std::siz
   return mean_reach(scene.lights, shaded_sample(gbuffer, std::max<std::size_t>(step, 1)));
 }
 
+double mean_lights_reaching_tiles(const Scene& scene, const GBuffer& gbuffer, int tile_size) {
+  const int tiles_x = (gbuffer.width + tile_size - 1) / tile_size, tiles_y = (gbuffer.height + tile_size - 1) / tile_size;
+  double pairs = 0.0, shaded = 0.0;
+#pragma omp parallel for reduction(+ : pairs, shaded) schedule(dynamic)
+  for (int tile = 0; tile < tiles_x * tiles_y; ++tile) {
+    std::vector<glm::dvec3> points;
+    const int x0 = tile % tiles_x * tile_size, y0 = tile / tiles_x * tile_size;
+    for (int y = y0; y < std::min(y0 + tile_size, gbuffer.height); ++y)
+      for (int x = x0; x < std::min(x0 + tile_size, gbuffer.width); ++x) {
+        const std::size_t i = static_cast<std::size_t>(y) * gbuffer.width + x;
+        if (classify_pixel(gbuffer, i) == PixelClass::shaded)
+          points.emplace_back(gbuffer.position[0][i], gbuffer.position[1][i], gbuffer.position[2][i]);
+      }
+    if (points.empty()) continue;
+    glm::dvec3 lo = points.front(), hi = points.front();
+    for (const glm::dvec3& p : points) lo = glm::min(lo, p), hi = glm::max(hi, p);
+    int reaching = 0;
+    for (const Light& light : scene.lights) {
+      // Beyond its range from the tile's box, a light reaches none of the tile's points.
+      if (light.has_range() && glm::length(glm::max(glm::max(lo - light.position, light.position - hi), 0.0)) >= light.range)
+        continue;
+      reaching += std::any_of(points.begin(), points.end(), [&](const glm::dvec3& p) { return reaches(light, p); });
+    }
+    pairs += static_cast<double>(reaching) * static_cast<double>(points.size());
+    shaded += static_cast<double>(points.size());
+  }
+  return shaded > 0.0 ? pairs / shaded : 0.0;
+}
+
 Scene with_many_lights(const Scene& scene, const GBuffer& gbuffer, int count, double target_reach) {
   if (count < 1) throw std::invalid_argument("light count must be >= 1, not " + std::to_string(count));
   // A sample of about 4,000 pixels: the bisection's means to about 2%.
