@@ -29,7 +29,7 @@ std::string many_lights_table(const std::vector<ManyLightsResult>& results) {
                           cell("%.2f", r.time.max_ms), std::to_string(r.time.runs) + (r.single_run ? " (>10 s)" : ""),
                           r.culling_ms ? cell("%.2f", *r.culling_ms) : "", r.mean_lights_per_tile > 0 ? cell("%.1f", r.mean_lights_per_tile) : "",
                           cell("%.1f", r.mean_lights_per_pixel), cell("%.1f", r.mean_lights_reaching),
-                          cell("%.1f", r.mean_lights_reaching_tile),
+                          r.mean_lights_reaching_tile > 0 ? cell("%.1f", r.mean_lights_reaching_tile) : "",
                           cell("%.0f", r.effective_mpix_lights_per_s), r.max_rel_err ? cell("%.2e", *r.max_rel_err) : "n/a"});
   }
   return table.render();
@@ -86,7 +86,9 @@ void write_many_lights_report(const std::string& directory, const ManyLightsMach
         "shaded positions (`lab/peers/many_lights.h`). Times: median of the timed runs after one untimed warm-up; "
         "OpenCL from profiling events (culling passes included, and shown apart), cpp-tiled wall clock. "
         "Effective Mpix-lights/s counts only the pixel-light pairs shaded: those the culling keeps, or every light "
-        "for the unculled kernel. Errors against the double reference on a sample of rows.\n\n";
+        "for the unculled kernel. Lights reached: per shaded pixel, the lights that reach it, and the lights that reach "
+        "a shaded pixel of its tile (what one list per tile must keep at the least). Errors against the double "
+        "reference on a sample of rows.\n\n";
   md += many_lights_table(results) + "\n![frame time](frame_ms_vs_lights.svg)\n";
   write_text_file(dir / "report.md", md);
 }
