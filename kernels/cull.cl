@@ -48,7 +48,8 @@ __kernel void row_bounds(__global const STORAGE* restrict planes, uint plane_str
   for (ulong pixel = begin; pixel < end; pixel += PHONGCL_LANES) {
     const uint chunk = (uint)((pixel - grid.first_pixel) / PHONGCL_LANES);
     const intv is_shaded = VLOAD(chunk, material_index) != PHONGCL_BACKGROUND;
-    shaded += select((intv)0, (intv)1, is_shaded);
+    const intv one_if_shaded = select((intv)0, (intv)1, is_shaded);
+    shaded += one_if_shaded;
     floatv distance_sq = (floatv)0;
     for (int axis = 0; axis < 3; ++axis) {
       const floatv value = load_plane(planes, plane_stride, PLANE_PX + axis, chunk);
@@ -57,7 +58,7 @@ __kernel void row_bounds(__global const STORAGE* restrict planes, uint plane_str
       distance_sq += value * value;
     }
     const intv bin = (AS_INTV(distance_sq) >> PHONGCL_DISTANCE_BIN_SHIFT) & 31;
-    distance_bins |= select((intv)0, (intv)1 << bin, is_shaded);
+    distance_bins |= AS_INTV(AS_UINTV(one_if_shaded) << AS_UINTV(bin)); /* unsigned: bit 31 is no overflow */
   }
   TileBox box;
   for (int axis = 0; axis < 3; ++axis) {
