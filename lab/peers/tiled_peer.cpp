@@ -1,6 +1,7 @@
 // cpp-tiled: the tiled light culling of ISPC's examples/cpu/deferred in C++, on every core (OpenMP)
 // with each tile row's pixels vectorised (`omp simd`): per tile, the box of its shaded positions and
-// the list of lights whose bounding sphere meets it, then the tile's pixels shaded from that list.
+// the list of lights whose bounding sphere meets it (through boxes of 8 x 8 tiles first), then the
+// tile's pixels shaded from that list.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -17,6 +18,7 @@ namespace {
 using namespace peer_math;
 
 constexpr std::size_t kRow = 16;  // pixels per simd loop: one AVX-512 register of floats
+constexpr int kCoarse = 8;        // tiles per side of the first culling level's boxes
 
 struct Box {
   float lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
@@ -49,10 +51,11 @@ Box tile_box(const PackedFrame& f, const TileRect& r, int width, std::size_t& sh
   return box;
 }
 
-void cull(const PackedScene& s, const Box& box, std::vector<int>& list) {
+// The lights of `candidates` whose bounding sphere meets the box (every one without a range).
+void cull(const PackedScene& s, const Box& box, const std::vector<int>& candidates, std::vector<int>& list) {
   list.clear();
   if (box.empty) return;
-  for (int k = 0; k < s.point_count(); ++k) {
+  for (int k : candidates) {
     const float r = s.bound_radius[k];
     const float c[3] = {s.bound_x[k], s.bound_y[k], s.bound_z[k]};
     float d2 = 0.0f;
@@ -75,7 +78,9 @@ Shape shape_of(const PackedScene& s, int k) {
           s.versine_inner[k], s.versine_outer[k], s.inverse_cone_width[k], s.falloff_power[k]};
 }
 
-inline float saturate(float x) { return std::fmin(std::fmax(x, 0.0f), 1.0f); }
+// Clamped to [0, 1], NaN to 0, with compares: std::fmin and std::fmax (their NaN rules) kept GCC 12
+// from vectorising the point-light loop at all ("no vectype for stmt"), so it ran scalar.
+inline float saturate(float x) { return x > 0.0f ? (x < 1.0f ? x : 1.0f) : 0.0f; }
 
 // F = falloff(d) * window(d) * cone(l) for l = to_light / d, as the kernel's light_shape.h states
 // it (l = (ux, uy, uz)); the powers of 1/d as uniform selects, so the simd loop has no inner loop
@@ -151,16 +156,35 @@ TiledPeerStats shade_tiled(const PackedFrame& frame, const PackedScene& scene, i
   std::vector<std::vector<int>> lists(static_cast<std::size_t>(tiles));
   TiledPeerStats stats;
   const auto start = std::chrono::steady_clock::now();
-  // Culling and shading as two passes, so the culling time can be reported apart; dynamic
-  // schedules, since tiles differ in how many lights they keep.
+  // Culling and shading as separate passes, so the culling time can be reported apart; dynamic
+  // schedules where tiles differ in how many lights they keep. Two levels: every light against
+  // boxes of kCoarse x kCoarse tiles, then each tile against its coarse box's list.
+  std::vector<Box> boxes(static_cast<std::size_t>(tiles));
+  std::vector<std::size_t> shaded(static_cast<std::size_t>(tiles));
+#pragma omp parallel for schedule(static)
+  for (std::int64_t t = 0; t < tiles; ++t)
+    boxes[t] = tile_box(frame, tile_rect(static_cast<std::size_t>(t), tiles_x, tile_size, width, height), width, shaded[t]);
+  const int coarse_x = (tiles_x + kCoarse - 1) / kCoarse, coarse_y = (tiles_y + kCoarse - 1) / kCoarse;
+  const auto coarse_of = [&](std::int64_t t) { return t / tiles_x / kCoarse * coarse_x + t % tiles_x / kCoarse; };
+  std::vector<Box> coarse_boxes(static_cast<std::size_t>(coarse_x) * coarse_y);
+  for (std::int64_t t = 0; t < tiles; ++t) {
+    if (boxes[t].empty) continue;
+    Box& coarse = coarse_boxes[coarse_of(t)];
+    coarse.empty = false;
+    for (int a = 0; a < 3; ++a) coarse.lo[a] = std::min(coarse.lo[a], boxes[t].lo[a]), coarse.hi[a] = std::max(coarse.hi[a], boxes[t].hi[a]);
+  }
+  std::vector<int> every_light(static_cast<std::size_t>(scene.point_count()));
+  for (int k = 0; k < scene.point_count(); ++k) every_light[k] = k;
+  std::vector<std::vector<int>> coarse_lists(coarse_boxes.size());
+#pragma omp parallel for schedule(dynamic, 1)
+  for (std::int64_t c = 0; c < static_cast<std::int64_t>(coarse_boxes.size()); ++c)
+    cull(scene, coarse_boxes[c], every_light, coarse_lists[c]);
   double kept_pairs = 0.0;
 #pragma omp parallel for schedule(dynamic, 16) reduction(+ : kept_pairs)
   for (std::int64_t t = 0; t < tiles; ++t) {
-    const TileRect r = tile_rect(static_cast<std::size_t>(t), tiles_x, tile_size, width, height);
-    std::size_t shaded = 0;
     std::vector<int>& list = lists[static_cast<std::size_t>(t)];
-    cull(scene, tile_box(frame, r, width, shaded), list);
-    kept_pairs += static_cast<double>(shaded) * static_cast<double>(list.size());
+    cull(scene, boxes[t], coarse_lists[coarse_of(t)], list);
+    kept_pairs += static_cast<double>(shaded[t]) * static_cast<double>(list.size());
   }
   stats.kept_pairs = kept_pairs;
   stats.culling_ms = since(start);
