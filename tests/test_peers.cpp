@@ -2,11 +2,14 @@
 // and the sweep helpers (generated lights, resampling, row sampling).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <filesystem>
 
 #include "common/error.h"
 #include "peers/float_math.h"
 #include "peers/light_sweep.h"
+#include "peers/many_lights.h"
 #include "peers/peers.h"
 #include "shading_support.h"
 
@@ -64,6 +67,28 @@ TEST(Peers, MatchReferenceOnSizesThatNoBlockDivides) {
     const auto [scene, gbuffer] = random_scene(spec, 17u + width);
     expect_matches_reference(scene, gbuffer, std::to_string(width) + "x" + std::to_string(height));
   }
+}
+
+// cpp-tiled (tile boxes, culling through boxes of 8 x 8 tiles, each tile row's light loop
+// vectorised) against the reference, with 400 ranged point and spot lights of which a pixel is
+// reached by about 6, on a frame that tiles of 16 do not divide; and culled to a fraction of the pairs.
+TEST(Peers, TiledPeerMatchesReferenceWithManyRangedLights) {
+  Scene scene = load_scene(std::filesystem::path(PHONGCL_SOURCE_DIR) / "scenes/default/scene.json");
+  scene.camera.width = 200;
+  scene.camera.height = 130;
+  const GBuffer gbuffer = generate_gbuffer(scene);
+  const Scene lit = with_many_lights(scene, gbuffer, 400, 6.0);
+  Image image = image_like(gbuffer);
+  const TiledPeerStats stats =
+      shade_tiled(pack_frame(gbuffer, lit), pack_scene(lit), gbuffer.width, gbuffer.height, 16, image.rgba.data());
+  const std::vector<bool> mask = testing::shaded_mask(gbuffer);
+  const ErrorStats error = shading_error(image, reference_image(lit, gbuffer), mask);
+  EXPECT_LE(error.max_rel, kRelativeBound) << testing::describe_worst(error);
+  EXPECT_EQ(error.nonfinite_mismatches, 0u);
+  testing::expect_background_exact(image, lit, gbuffer);
+  const auto shaded = static_cast<double>(std::count(mask.begin(), mask.end(), true));
+  EXPECT_LT(stats.kept_pairs, 0.1 * shaded * 400) << "the lists keep a few of the 400 lights";
+  EXPECT_GE(stats.kept_pairs, mean_lights_reaching(lit, gbuffer) * shaded) << "every light that reaches a pixel";
 }
 
 TEST(Peers, ShininessZeroGivesFullHighlightEvenFacingAway) {
