@@ -15,17 +15,11 @@
 #include "shading/host_threads.h"
 #include "shading/light_order.h"
 #include "shading/pack_area.h"
+#include "shading/store3.h"
 
 namespace phongcl {
 
 namespace {
-
-void store3(layout_float* out, const glm::dvec3& value) {
-  out[0] = static_cast<float>(value.x);
-  out[1] = static_cast<float>(value.y);
-  out[2] = static_cast<float>(value.z);
-  out[3] = 0.0f;
-}
 
 // What rounding `value` to float loses.
 float rest_of(double value) { return static_cast<float>(value - static_cast<double>(static_cast<float>(value))); }
@@ -181,7 +175,7 @@ LightBounds light_bounds(const Light& light, const glm::dvec3& eye) {
       radius = light.range * std::sin(half_angle);
     }
   }
-  for (int axis = 0; axis < 3; ++axis) bounds.center[axis] = static_cast<float>(center[axis]);
+  store3(bounds.center, center);
   bounds.radius = radius < 0.0 ? -1.0f : static_cast<float>(radius + 1e-5 * (radius + glm::length(center)));
   bounds.distance_bins = radius < 0.0 ? ~cl_uint{0}
                                       : distance_bins(glm::length(center) - bounds.radius, glm::length(center) + bounds.radius);

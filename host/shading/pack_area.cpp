@@ -3,16 +3,13 @@
 #include <algorithm>
 #include <cmath>
 
+#include "shading/store3.h"
+
 namespace phongcl {
 
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-
-void store3(layout_float* out, const glm::dvec3& value) {
-  for (int i = 0; i < 3; ++i) out[i] = static_cast<float>(value[i]);
-  out[3] = 0.0f;
-}
 
 // Any unit vector orthogonal to `normal`: a disk's orientation does not matter.
 glm::dvec3 any_orthogonal(const glm::dvec3& normal) {

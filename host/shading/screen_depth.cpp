@@ -6,6 +6,7 @@
 #include <string>
 
 #include "common/error.h"
+#include "shading/store3.h"
 
 namespace phongcl {
 namespace {
@@ -13,11 +14,6 @@ namespace {
 // Every this many shaded pixels one is projected back onto the image, to check the camera.
 constexpr std::size_t kCheckEvery = 97;
 constexpr double kMostPixelsOff = 1.5;
-
-void store(float target[4], const glm::dvec3& v) {
-  for (int axis = 0; axis < 3; ++axis) target[axis] = static_cast<float>(v[axis]);
-  target[3] = 0.0f;
-}
 
 }  // namespace
 
@@ -32,9 +28,9 @@ ScreenDepth screen_depth(const Camera& camera, const GBuffer& gbuffer, int steps
 
   ScreenDepth result;
   ScreenMarch& march = result.march;
-  store(march.forward, forward);
-  store(march.right, right);
-  store(march.up, up);
+  store3(march.forward, forward);
+  store3(march.right, right);
+  store3(march.up, up);
   march.scale_x = march.scale_y = static_cast<float>(scale);
   march.centre_x = static_cast<float>(centre_x);
   march.centre_y = static_cast<float>(centre_y);
