@@ -161,11 +161,14 @@ cl_uint distance_bins(double nearest, double farthest) {
 
 LightBounds light_bounds(const Light& light, const glm::dvec3& eye) {
   LightBounds bounds{};
-  glm::dvec3 center = light.position - eye;
+  const glm::dvec3 position = light.position - eye;
+  const bool spot = light.type == LightType::spot;
+  // A spot's outer half angle (the cone and its penumbra) and its axis.
+  const double half_angle = spot ? (light.cone_angle_deg / 2.0 + light.penumbra_angle_deg) * kPi / 180.0 : 0.0;
+  const glm::dvec3 axis = spot ? glm::normalize(light.direction) : glm::dvec3(0.0);
+  glm::dvec3 center = position;
   double radius = light.has_range() ? light.range : -1.0;
-  if (light.type == LightType::spot && light.has_range()) {
-    const double half_angle = (light.cone_angle_deg / 2.0 + light.penumbra_angle_deg) * kPi / 180.0;
-    const glm::dvec3 axis = glm::normalize(light.direction);
+  if (spot && light.has_range()) {
     const double narrow = light.range / (2.0 * std::cos(half_angle));
     if (half_angle <= kPi / 4.0) {
       center += narrow * axis;
@@ -176,20 +179,18 @@ LightBounds light_bounds(const Light& light, const glm::dvec3& eye) {
     }
   }
   store3(bounds.center, center);
-  bounds.radius = radius < 0.0 ? -1.0f : static_cast<float>(radius + 1e-5 * (radius + glm::length(center)));
-  bounds.distance_bins = radius < 0.0 ? ~cl_uint{0}
-                                      : distance_bins(glm::length(center) - bounds.radius, glm::length(center) + bounds.radius);
+  const double distance = glm::length(center);
+  bounds.radius = radius < 0.0 ? -1.0f : static_cast<float>(radius + 1e-5 * (radius + distance));
+  bounds.distance_bins = radius < 0.0 ? ~cl_uint{0} : distance_bins(distance - bounds.radius, distance + bounds.radius);
   bounds.cone_cos = -1.0f;
-  if (light.type == LightType::spot) {
-    // The kernel's cone test rounds its cosine to about 1e-6, an angle of up to 1.5e-3 radians at
-    // the axis: the culling cone is 2e-3 wider, and nothing is tested past 89 degrees.
-    const double half_angle = (light.cone_angle_deg / 2.0 + light.penumbra_angle_deg) * kPi / 180.0 + 2e-3;
-    if (half_angle < 89.0 * kPi / 180.0) {
-      store3(bounds.apex, light.position - eye);
-      store3(bounds.axis, glm::normalize(light.direction));
-      bounds.cone_cos = static_cast<float>(std::cos(half_angle));
-      bounds.cone_sin = static_cast<float>(std::sin(half_angle));
-    }
+  // The kernel's cone test rounds its cosine to about 1e-6, an angle of up to 1.5e-3 radians at the
+  // axis: the culling cone is 2e-3 wider, and nothing is tested past 89 degrees.
+  const double culling_half_angle = half_angle + 2e-3;
+  if (spot && culling_half_angle < 89.0 * kPi / 180.0) {
+    store3(bounds.apex, position);
+    store3(bounds.axis, axis);
+    bounds.cone_cos = static_cast<float>(std::cos(culling_half_angle));
+    bounds.cone_sin = static_cast<float>(std::sin(culling_half_angle));
   }
   return bounds;
 }
