@@ -1,10 +1,12 @@
 /* Tiled light culling (Andersson 2009; ISPC's examples/cpu/deferred), before phong_shade:
  *   row_bounds, tile_bounds  the box of each tile's shaded positions, in lane vectors (row by row)
- *   keep_tile_lights   one work-item per box: its candidate lights that can reach it, in order
+ *   keep_box_lights    one work-item per 2 x 2 block of boxes: its candidate lights that can reach
+ *                      each box, in order
  * The host runs the last once per level: boxes of 8 x 8 tiles with every light a candidate, then
- * boxes of 2 x 2 tiles and then the tiles, each with its parent box's list (shading/tile_culling.cpp).
- * Each box writes its list where the host left room for all of its candidates, so every light is
- * tested once per level and no list is compacted: the shading reads the tiles' lists where they are. A
+ * boxes of 4 x 4 and 2 x 2 tiles and then the tiles, each with its parent box's list (the parent
+ * being the box one level up that the block makes; shading/tile_culling.cpp). Each box writes its
+ * list where the host left room for all of its candidates, so every light is tested once per level
+ * and no list is compacted: the shading reads the tiles' lists where they are. A
  * light reaches a box when its bounding sphere (LightBounds, widened on the host against rounding)
  * meets it, or when it has no range, and for a spot when its cone can too, and when it spans one of
  * the distance bins of the box's positions (layout.h). The tile of a work-item
@@ -80,68 +82,117 @@ __kernel void tile_bounds(__global const TileBox* restrict rows, TileGrid grid, 
   boxes[tile] = box;
 }
 
-/* Whether a light's bounding sphere meets a non-empty box: the squared distance from its centre to
- * the box against its radius squared. */
-bool sphere_meets_box(LightBounds light, const TileBox* box) {
-  float distance_sq = 0;
+/* Four boxes side by side, tested together against one light: a 2 x 2 block of one level's grid
+ * (tile_culling.cpp), so that each candidate light is read once per block and tested in float4s. A
+ * slot with no box holds an empty one (nothing shaded: it keeps nothing). */
+typedef struct {
+  float4 lo[3], hi[3];
+  uint4 distance_bins;
+  int4 shaded; /* -1 where the box has a shaded pixel, 0 elsewhere */
+} BoxBlock;
+
+BoxBlock box_block(__global const TileBox* boxes, uint4 index) {
+  const uint slots[4] = {index.s0, index.s1, index.s2, index.s3};
+  TileBox box[4];
+  for (int s = 0; s < 4; ++s) box[s] = slots[s] == UINT_MAX ? empty_tile_box() : boxes[slots[s]];
+  BoxBlock block;
   for (int axis = 0; axis < 3; ++axis) {
-    const float outside = fmax(fmax(box->lo[axis] - light.center[axis], light.center[axis] - box->hi[axis]), 0.0f);
+    block.lo[axis] = (float4)(box[0].lo[axis], box[1].lo[axis], box[2].lo[axis], box[3].lo[axis]);
+    block.hi[axis] = (float4)(box[0].hi[axis], box[1].hi[axis], box[2].hi[axis], box[3].hi[axis]);
+  }
+  block.distance_bins = (uint4)(box[0].distance_bins, box[1].distance_bins, box[2].distance_bins, box[3].distance_bins);
+  block.shaded = (uint4)(box[0].shaded, box[1].shaded, box[2].shaded, box[3].shaded) > 0;
+  return block;
+}
+
+int any_box(int4 mask) { return (mask.s0 | mask.s1 | mask.s2 | mask.s3) != 0; }
+
+/* Where a light's bounding sphere meets the boxes: the squared distance from its centre to each box
+ * against its radius squared. */
+int4 sphere_meets_boxes(LightBounds light, const BoxBlock* block) {
+  float4 distance_sq = 0;
+  for (int axis = 0; axis < 3; ++axis) {
+    const float4 outside =
+        fmax(fmax(block->lo[axis] - light.center[axis], light.center[axis] - block->hi[axis]), 0.0f);
     distance_sq += outside * outside;
   }
   return distance_sq <= light.radius * light.radius;
 }
 
-/* Whether a spot's cone can meet a non-empty box. The cone (narrower than a hemisphere) lies behind
- * the plane through its apex across its axis, and behind the plane through its apex that touches
- * it along the side facing the box's centre; the box is out when all of it is in front of either.
- * The slack covers the rounding of the eye-relative floats. */
-bool cone_meets_box(LightBounds light, const TileBox* box) {
-  float half_side[3], to_center[3], along = 0, length_sq = 0, apex_sq = 0, size = 0;
+/* Where a spot's cone can meet the boxes. The cone (narrower than a hemisphere) lies behind the
+ * plane through its apex across its axis, and behind the plane through its apex that touches it
+ * along the side facing a box's centre; a box is out when all of it is in front of either. The slack
+ * covers the rounding of the eye-relative floats. */
+int4 cone_meets_boxes(LightBounds light, const BoxBlock* block) {
+  float4 half_side[3], to_center[3], along = 0, length_sq = 0, size = 0;
+  float apex_sq = 0;
   for (int axis = 0; axis < 3; ++axis) {
-    half_side[axis] = 0.5f * (box->hi[axis] - box->lo[axis]);
-    to_center[axis] = box->lo[axis] + half_side[axis] - light.apex[axis];
+    half_side[axis] = 0.5f * (block->hi[axis] - block->lo[axis]);
+    to_center[axis] = block->lo[axis] + half_side[axis] - light.apex[axis];
     along += to_center[axis] * light.axis[axis];
     length_sq += to_center[axis] * to_center[axis];
     apex_sq += light.apex[axis] * light.apex[axis];
     size += half_side[axis];
   }
-  const float slack = 1e-5f * (sqrt(length_sq) + sqrt(apex_sq) + size);
-  float depth_extent = 0, across_sq = 0, across[3];
+  const float4 slack = 1e-5f * (sqrt(length_sq) + sqrt(apex_sq) + size);
+  float4 depth_extent = 0, across_sq = 0, across[3];
   for (int axis = 0; axis < 3; ++axis) {
     depth_extent += fabs(light.axis[axis]) * half_side[axis];
     across[axis] = to_center[axis] - along * light.axis[axis];
     across_sq += across[axis] * across[axis];
   }
-  if (along + depth_extent < -slack) return false;
-  if (across_sq == 0) return true; /* the centre is on the axis */
-  const float inverse_across = rsqrt(across_sq);
-  float side_extent = 0;
+  const float4 inverse_across = rsqrt(across_sq);
+  float4 side_extent = 0;
   for (int axis = 0; axis < 3; ++axis)
-    side_extent += fabs(light.cone_cos * across[axis] * inverse_across - light.cone_sin * light.axis[axis]) * half_side[axis];
-  return light.cone_cos * sqrt(across_sq) - light.cone_sin * along <= side_extent + slack;
+    side_extent +=
+        fabs(light.cone_cos * across[axis] * inverse_across - light.cone_sin * light.axis[axis]) * half_side[axis];
+  const int4 off_axis_meets = light.cone_cos * sqrt(across_sq) - light.cone_sin * along <= side_extent + slack;
+  /* a centre on the axis (across_sq = 0) meets the cone whenever it is not in front of the apex */
+  return (along + depth_extent >= -slack) & (off_axis_meets | (across_sq == 0));
 }
 
-bool reaches(LightBounds light, const TileBox* box) {
-  return (light.distance_bins & box->distance_bins) != 0 && (light.radius < 0 || sphere_meets_box(light, box)) &&
-         (light.cone_cos <= 0 || cone_meets_box(light, box));
+/* Where a light can reach the boxes: a shaded box sharing one of its distance bins, met by its
+ * sphere (or it has no range), and for a spot met by its cone. Each test runs only while a box is
+ * left. */
+int4 reaches_boxes(LightBounds light, const BoxBlock* block) {
+  int4 mask = block->shaded & ((light.distance_bins & block->distance_bins) != 0);
+  if (light.radius >= 0 && any_box(mask)) mask &= sphere_meets_boxes(light, block);
+  if (light.cone_cos > 0 && any_box(mask)) mask &= cone_meets_boxes(light, block);
+  return mask;
 }
 
-/* The candidates of box t are candidates[candidate_first[t] ...], candidate_count[t] of them: every
- * light for the coarsest boxes, the parent box's list for the others. The ones that reach the box are
- * written in order from kept_lights[kept_first[t]], where there is room for all of them, and counted
- * in kept_count[t]. */
-__kernel void keep_tile_lights(__global const TileBox* restrict boxes, __global const LightBounds* restrict lights,
-                               __global const uint* restrict candidates, __global const uint* restrict candidate_first,
-                               __global const uint* restrict candidate_count, __global const uint* restrict kept_first,
-                               __global uint* restrict kept_lights, __global uint* restrict kept_count) {
-  const uint tile = get_global_id(0);
-  const TileBox box = boxes[tile];
-  const uint first = candidate_first[tile], end = box.shaded > 0 ? first + candidate_count[tile] : first;
-  __global uint* const kept = kept_lights + kept_first[tile];
-  uint count = 0;
+/* Appends light k to the list of the block's slot when its lane of `mask` is set. */
+void keep_where(int lane, uint k, __global uint* list, uint* count) {
+  if (lane) list[(*count)++] = k;
+}
+
+/* One work-item per block of four boxes (block_boxes[b]: their indices, UINT_MAX for none). Its
+ * candidates are candidates[candidate_first[b] ...], candidate_count[b] of them: every light for the
+ * coarsest level, the list of the box one level up (whose 2 x 2 block this is) for the others. The
+ * ones that reach box t are written in order from kept_lights[kept_first[t]], where there is room for
+ * all of them, and counted in kept_count[t]. */
+__kernel void keep_box_lights(__global const TileBox* restrict boxes, __global const LightBounds* restrict lights,
+                              __global const uint4* restrict block_boxes, __global const uint* restrict candidates,
+                              __global const uint* restrict candidate_first,
+                              __global const uint* restrict candidate_count, __global const uint* restrict kept_first,
+                              __global uint* restrict kept_lights, __global uint* restrict kept_count) {
+  const uint b = get_global_id(0);
+  const uint4 index = block_boxes[b];
+  const BoxBlock block = box_block(boxes, index);
+  const uint slots[4] = {index.s0, index.s1, index.s2, index.s3};
+  __global uint* kept[4];
+  for (int s = 0; s < 4; ++s) kept[s] = kept_lights + (slots[s] == UINT_MAX ? 0 : kept_first[slots[s]]);
+  uint count[4] = {0, 0, 0, 0};
+  const uint first = candidate_first[b], end = any_box(block.shaded) ? first + candidate_count[b] : first;
   for (uint j = first; j < end; ++j) {
     const uint k = candidates[j];
-    if (reaches(lights[k], &box)) kept[count++] = k;
+    const int4 mask = reaches_boxes(lights[k], &block);
+    if (!any_box(mask)) continue;
+    keep_where(mask.s0, k, kept[0], &count[0]);
+    keep_where(mask.s1, k, kept[1], &count[1]);
+    keep_where(mask.s2, k, kept[2], &count[2]);
+    keep_where(mask.s3, k, kept[3], &count[3]);
   }
-  kept_count[tile] = count;
+  for (int s = 0; s < 4; ++s)
+    if (slots[s] != UINT_MAX) kept_count[slots[s]] = count[s];
 }

@@ -13,7 +13,7 @@ namespace phongcl {
 namespace {
 
 using KeepKernel = cl::KernelFunctor<cl::Buffer, cl::Buffer, cl::Buffer, cl::Buffer, cl::Buffer, cl::Buffer, cl::Buffer,
-                                    cl::Buffer>;
+                                    cl::Buffer, cl::Buffer>;
 
 }  // namespace
 
@@ -66,33 +66,36 @@ TileLayout tile_layout(int width, int height, int tile_size) {
 TileCuller::TileCuller(const ComputeContext& compute, ProgramCache& cache, const std::string& build_options)
     : compute_(compute), program_(cache.build(compute, load_kernel_source("cull.cl"), culling_options(build_options)).program) {}
 
-namespace {
+// The culling levels above the tiles are boxes of 2 x 2, 4 x 4 and 8 x 8 tiles: every light is tested
+// against the coarsest boxes, and each finer box against its parent's survivors.
+constexpr std::size_t kCoarsestSpan = 8;
 
-// The culling levels above the tiles, coarsest first, in tiles per side of their boxes: every light
-// is tested against one box per 8 x 8 tiles, the survivors against one per 2 x 2, and theirs against
-// each tile.
-constexpr std::size_t kLevelSpans[] = {8, 2};
-
-// A grid of boxes, each the union of the tile boxes it spans.
+// A grid of boxes, each the union of the tile boxes it spans, and its 2 x 2 blocks: block b holds
+// the indices of the boxes the parent box b (one level up) is made of, kNoBox where the grid ends.
+constexpr cl_uint kNoBox = std::numeric_limits<cl_uint>::max();
 struct BoxGrid {
   std::size_t columns = 0;
   std::vector<TileBox> boxes;
+  std::vector<cl_uint4> blocks;
 };
 
-// The boxes of `grid` merged `factor` x `factor`; parent[i] is the merged box that holds grid box i.
-BoxGrid merge_boxes(const BoxGrid& grid, std::size_t factor, std::vector<cl_uint>& parent) {
+namespace {
+
+// The boxes of `grid` merged 2 x 2 (and grid.blocks filled: the merged box m is made of block m).
+BoxGrid merge_blocks(BoxGrid& grid) {
   const std::size_t rows = grid.boxes.size() / grid.columns;
   BoxGrid merged;
-  merged.columns = (grid.columns + factor - 1) / factor;
-  merged.boxes.resize(merged.columns * ((rows + factor - 1) / factor));
+  merged.columns = (grid.columns + 1) / 2;
+  merged.boxes.resize(merged.columns * ((rows + 1) / 2));
   for (TileBox& box : merged.boxes) {
     for (int axis = 0; axis < 3; ++axis) box.lo[axis] = INFINITY, box.hi[axis] = -INFINITY;
     box.shaded = box.distance_bins = 0;
   }
-  parent.resize(grid.boxes.size());
+  grid.blocks.assign(merged.boxes.size(), cl_uint4{{kNoBox, kNoBox, kNoBox, kNoBox}});
   for (std::size_t t = 0; t < grid.boxes.size(); ++t) {
-    const std::size_t m = (t / grid.columns / factor) * merged.columns + (t % grid.columns) / factor;
-    parent[t] = static_cast<cl_uint>(m);
+    const std::size_t column = t % grid.columns, row = t / grid.columns;
+    const std::size_t m = row / 2 * merged.columns + column / 2;
+    grid.blocks[m].s[row % 2 * 2 + column % 2] = static_cast<cl_uint>(t);
     const TileBox& box = grid.boxes[t];
     if (box.shaded == 0) continue;
     for (int axis = 0; axis < 3; ++axis) {
@@ -113,33 +116,35 @@ cl::Buffer device_copy(const cl::Context& context, std::vector<T> values) {
 
 }  // namespace
 
-TileCuller::Lists TileCuller::lists(const cl::Buffer& boxes, const std::vector<TileBox>& host_boxes,
-                                    const cl::Buffer& light_bounds, const cl::Buffer& candidates,
-                                    const std::vector<cl_uint>& candidate_first,
+TileCuller::Lists TileCuller::lists(const cl::Buffer& boxes, const BoxGrid& grid, const cl::Buffer& light_bounds,
+                                    const cl::Buffer& candidates, const std::vector<cl_uint>& candidate_first,
                                     const std::vector<cl_uint>& candidate_count) {
   const cl::Context& context = compute_.context;
   cl::CommandQueue& queue = compute_.queue;
-  const std::size_t tiles = host_boxes.size();
+  const std::size_t box_count = grid.boxes.size();
   Lists lists;
   // Room for every candidate of each shaded box, so that one pass both tests and writes.
-  lists.host_offsets.resize(tiles);
+  lists.host_offsets.assign(box_count, 0);
   std::size_t room = 0;
-  for (std::size_t t = 0; t < tiles; ++t) {
-    lists.host_offsets[t] = static_cast<cl_uint>(room);
-    if (host_boxes[t].shaded > 0) room += candidate_count[t];
-  }
+  for (std::size_t b = 0; b < grid.blocks.size(); ++b)
+    for (cl_uint t : grid.blocks[b].s) {
+      if (t == kNoBox) continue;
+      lists.host_offsets[t] = static_cast<cl_uint>(room);
+      if (grid.boxes[t].shaded > 0) room += candidate_count[b];
+    }
   if (room > std::numeric_limits<cl_uint>::max())
     throw std::runtime_error("tiled culling: the light lists need over 2^32 entries (lights without a range are in "
                              "every tile's list): use a larger --tile or --culling none");
   lists.offsets = device_copy(context, lists.host_offsets);
   // OpenCL has no empty buffers: a frame that keeps no light still gets one entry.
   lists.lights = cl::Buffer(context, CL_MEM_READ_WRITE, std::max<std::size_t>(room, 1) * sizeof(cl_uint));
-  lists.counts = cl::Buffer(context, CL_MEM_READ_WRITE, tiles * sizeof(cl_uint));
-  KeepKernel(program_, "keep_tile_lights")(cl::EnqueueArgs(queue, cl::NDRange(tiles)), boxes, light_bounds, candidates,
-                                           device_copy(context, candidate_first), device_copy(context, candidate_count),
-                                           lists.offsets, lists.lights, lists.counts);
-  lists.host_counts.resize(tiles);
-  queue.enqueueReadBuffer(lists.counts, CL_TRUE, 0, tiles * sizeof(cl_uint), lists.host_counts.data());
+  lists.counts = cl::Buffer(context, CL_MEM_READ_WRITE, box_count * sizeof(cl_uint));
+  KeepKernel(program_, "keep_box_lights")(cl::EnqueueArgs(queue, cl::NDRange(grid.blocks.size())), boxes, light_bounds,
+                                          device_copy(context, grid.blocks), candidates,
+                                          device_copy(context, candidate_first), device_copy(context, candidate_count),
+                                          lists.offsets, lists.lights, lists.counts);
+  lists.host_counts.resize(box_count);
+  queue.enqueueReadBuffer(lists.counts, CL_TRUE, 0, box_count * sizeof(cl_uint), lists.host_counts.data());
   return lists;
 }
 
@@ -155,28 +160,21 @@ CullingStats TileCuller::cull(const cl::Buffer& planes, std::size_t plane_stride
   std::vector<TileBox> box_values(tiles);
   queue.enqueueReadBuffer(boxes, CL_TRUE, 0, tiles * sizeof(TileBox), box_values.data());
 
-  // The levels' box grids, finest (the tiles) first; parents[k] maps grid k's boxes into grid k + 1's.
-  std::vector<BoxGrid> grids{{layout.grid.tiles_x, std::move(box_values)}};
-  std::vector<std::vector<cl_uint>> parents;
-  std::size_t span = 1;
-  for (auto level = std::rbegin(kLevelSpans); level != std::rend(kLevelSpans); ++level) {
-    parents.emplace_back();
-    grids.push_back(merge_boxes(grids.back(), *level / span, parents.back()));
-    span = *level;
-  }
-  // The coarsest level tests every light; each finer one its parent box's survivors.
+  // The levels' box grids, finest (the tiles) first, each with its 2 x 2 blocks; the coarsest's
+  // blocks are the boxes of a grid not culled against.
+  std::vector<BoxGrid> grids{{layout.grid.tiles_x, std::move(box_values), {}}};
+  for (std::size_t span = 1; span < kCoarsestSpan; span *= 2) grids.push_back(merge_blocks(grids.back()));
+  merge_blocks(grids.back());
+  // The coarsest level tests every light; each finer box its parent box's survivors.
   std::vector<cl_uint> every_light(light_count);
   for (std::size_t k = 0; k < light_count; ++k) every_light[k] = static_cast<cl_uint>(k);
-  const std::size_t coarsest = grids.back().boxes.size();
-  Lists level = lists(device_copy(context, grids.back().boxes), grids.back().boxes, light_bounds,
-                      device_copy(context, every_light), std::vector<cl_uint>(coarsest, 0),
-                      std::vector<cl_uint>(coarsest, static_cast<cl_uint>(light_count)));
+  const std::size_t coarsest_blocks = grids.back().blocks.size();
+  Lists level = lists(device_copy(context, grids.back().boxes), grids.back(), light_bounds,
+                      device_copy(context, every_light), std::vector<cl_uint>(coarsest_blocks, 0),
+                      std::vector<cl_uint>(coarsest_blocks, static_cast<cl_uint>(light_count)));
   for (std::size_t g = grids.size() - 1; g-- > 0;) {
-    const std::vector<cl_uint>& parent = parents[g];
-    std::vector<cl_uint> first(parent.size()), count(parent.size());
-    for (std::size_t t = 0; t < parent.size(); ++t) first[t] = level.host_offsets[parent[t]], count[t] = level.host_counts[parent[t]];
     const cl::Buffer finer = g == 0 ? boxes : device_copy(context, grids[g].boxes);
-    level = lists(finer, grids[g].boxes, light_bounds, level.lights, first, count);
+    level = lists(finer, grids[g], light_bounds, level.lights, level.host_offsets, level.host_counts);
   }
   const Lists& fine = level;
   queue.finish();

@@ -1,6 +1,6 @@
 #pragma once
 // Tiled light culling on the device (kernels/cull.cl): per screen tile, the box of its shaded
-// positions, then (boxes of 8 x 8 and 2 x 2 tiles first) the list of point and spot lights whose
+// positions, then (boxes of 8 x 8, 4 x 4 and 2 x 2 tiles first) the list of point and spot lights whose
 // bounds reach it; phong_shade's TILED_CULLING variant loops over its tile's list only.
 #include <array>
 #include <cstddef>
@@ -32,6 +32,8 @@ std::array<cl::Event, 2> enqueue_tile_boxes(cl::CommandQueue& queue, const cl::P
                                             const cl::Buffer& material_index, std::size_t slot_count,
                                             const TileLayout& layout, ReusableBuffer& rows, const cl::Buffer& boxes);
 
+struct BoxGrid;  // one culling level's boxes (tile_culling.cpp)
+
 class TileCuller {
  public:
   // `build_options` carries the shading recipe's PHONGCL_LANES and HALF_STORAGE.
@@ -48,14 +50,14 @@ class TileCuller {
   const cl::Buffer& lights() const { return lights_buffer_; }
 
  private:
-  // One level of culling: each box's candidates (a range of `candidates`) against it (`boxes` on the
-  // device, `host_boxes` the same on the host); box t's list is lights[host_offsets[t] ...],
-  // host_counts[t] of them.
+  // One level of culling: each 2 x 2 block's candidates (a range of `candidates`: block b's from
+  // candidate_first[b], candidate_count[b] of them) against its boxes (`boxes` on the device,
+  // grid.boxes the same on the host); box t's list is lights[host_offsets[t] ...], host_counts[t] of them.
   struct Lists {
     cl::Buffer offsets, counts, lights;
     std::vector<cl_uint> host_offsets, host_counts;
   };
-  Lists lists(const cl::Buffer& boxes, const std::vector<TileBox>& host_boxes, const cl::Buffer& light_bounds,
+  Lists lists(const cl::Buffer& boxes, const BoxGrid& grid, const cl::Buffer& light_bounds,
               const cl::Buffer& candidates, const std::vector<cl_uint>& candidate_first,
               const std::vector<cl_uint>& candidate_count);
 

@@ -9,7 +9,7 @@
 # reference (shadowed frames: of PoCL's image of the same kernel, as `phongcl reference` has no
 # shadows).
 # The tiled runs leave out --uninitialized: Oclgrind 21.10's checker stops on the `freeze` LLVM puts
-# between a / and a % (tile_bounds), and then takes the tile lists keep_tile_lights wrote for
+# between a / and a % (tile_bounds), and then takes the tile lists keep_box_lights wrote for
 # uninitialized (its own memory checker finds every read in bounds, and the image matches).
 # Lanes > 1 are not run: Oclgrind 21.10 crashes under --uninitialized on the shuffle with an
 # undefined mask that all_lanes() compiles to (at lanes 1 it is `return mask`).
