@@ -14,6 +14,7 @@ struct BenchArguments {
   std::string report_dir;   // report.md, report.json, chart
   bool throughput = false;
   bool many_lights = false;  // tiled culling against unculled and cpp-tiled
+  bool peer_schedules = false;  // --many-lights: cpp-tiled at every schedule of a grid, its best reported
   std::string lights;       // --throughput: light counts to sweep, e.g. "0,1,4,16,64,256"
   std::string sizes;        // --throughput: image sizes to sweep, e.g. "256x256,1920x1080"
   std::string json_file;    // --throughput, --sequence: results as JSON

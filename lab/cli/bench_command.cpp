@@ -17,6 +17,9 @@ void add_bench_command(CLI::App& app) {
   command->add_flag("--throughput", args->throughput, "Compare throughput with C++ peers and the machine's limits");
   command->add_flag("--many-lights", args->many_lights,
                     "Tiled light culling against the unculled kernel and a tiled C++ peer, many ranged lights");
+  command->add_flag("--peer-schedules", args->peer_schedules,
+                    "--many-lights: also time cpp-tiled at every schedule of a grid (tiles of 8, 16, 32; coarse boxes "
+                    "of 4, 8, 16 tiles; 1, 4, 16 tiles per task) and report its best");
   command->add_option("--lights", args->lights,
                       "--throughput: light counts to sweep (e.g. 0,1,4,16,64,256); --many-lights: generated lights "
                       "replacing the scene's (e.g. 64,256,1024,4096,10000)");
@@ -44,6 +47,8 @@ void add_bench_command(CLI::App& app) {
     if (args->throughput + args->many_lights + args->sequence + args->shadows + args->display + args->groups > 1)
       throw CLI::ValidationError(
           "--throughput, --sequence, --many-lights, --shadows, --display and --groups are separate benchmarks: pick one");
+    if (args->peer_schedules && !args->many_lights)
+      throw CLI::ValidationError("--peer-schedules is an option of --many-lights");
     if (args->groups) return run_groups_bench(*args);
     if (args->shadows) return run_shadows_bench(*args);
     if (args->sequence) return run_sequence_bench(*args);

@@ -118,41 +118,88 @@ class ManyLightsBench {
       r.culling_ms = summarize(culling).median_ms;
       r.mean_lights_per_tile = last.culling.mean_lights_per_tile();
     }
-    finish(r, pairs, reach, reference ? std::optional(reference->error_of(last.image)) : std::nullopt);
+    describe(r, pairs, reach, reference ? std::optional(reference->error_of(last.image)) : std::nullopt);
+    finish(r);
   }
 
-  void cpp_tiled(const Scene& scene, Reach reach, const ReferenceRows& reference) {
+  // cpp-tiled at its default schedule and, with `sweep`, at every schedule of a grid, the fastest
+  // reported as "cpp-tiled-best". The schedules take turns, one run each per round after a warm-up
+  // each, so that the machine's drift (10-20% over a minute here) lands on all of them alike.
+  void cpp_tiled(const Scene& scene, Reach reach, const ReferenceRows& reference, bool sweep) {
     const PackedFrame frame = pack_frame(gbuffer_, scene);
     const PackedScene packed = pack_scene(scene);
+    std::vector<PeerTiming> timings{{TiledPeerSchedule{}}};
+    if (sweep)
+      for (int tile_size : {8, 16, 32})
+        for (int coarse_tiles : {4, 8, 16})
+          for (int tiles_per_task : {1, 4, 16}) timings.push_back({{tile_size, coarse_tiles, tiles_per_task}});
     Image image = image_like(gbuffer_);
-    std::vector<double> culling;
-    TiledPeerStats stats;
-    ManyLightsResult r;
-    const std::vector<double> times = time_runs(runs_, [&] {
-      stats = shade_tiled(frame, packed, gbuffer_.width, gbuffer_.height, kTileSize, image.pixel(0));
-      culling.push_back(stats.culling_ms);
-      return stats.culling_ms + stats.shading_ms;
-    }, r.single_run);
-    if (!r.single_run) culling.erase(culling.begin());
-    r.impl = "cpp-tiled";
-    r.lights = static_cast<int>(scene.lights.size());
-    r.time = summarize(times);
-    r.culling_ms = summarize(culling).median_ms;
-    finish(r, stats.kept_pairs, reach, reference.error_of(image));
+    const auto run = [&](PeerTiming& timing) {
+      const TiledPeerStats stats = shade_tiled(frame, packed, gbuffer_.width, gbuffer_.height, timing.schedule, image.pixel(0));
+      timing.kept_pairs = stats.kept_pairs;
+      return std::pair{stats.culling_ms + stats.shading_ms, stats.culling_ms};
+    };
+    for (PeerTiming& timing : timings) timing.single_run = run(timing).first > kSingleRunMs;
+    for (int round = 0; round < runs_; ++round)
+      for (PeerTiming& timing : timings) {
+        if (timing.single_run && !timing.times.empty()) continue;
+        const auto [ms, culling_ms] = run(timing);
+        timing.times.push_back(ms);
+        timing.culling.push_back(culling_ms);
+        if (round + 1 == runs_ || timing.single_run) timing.max_rel_err = reference.error_of(image);
+      }
+    const auto lights = static_cast<int>(scene.lights.size());
+    finish(peer_result(timings.front(), "cpp-tiled", lights, reach));
+    if (!sweep) return;
+    for (const PeerTiming& timing : timings)
+      std::cout << "      " << schedule_text(timing.schedule) << ": " << summarize(timing.times).median_ms << " ms\n";
+    const auto fastest = std::min_element(timings.begin(), timings.end(), [](const PeerTiming& a, const PeerTiming& b) {
+      return summarize(a.times).median_ms < summarize(b.times).median_ms;
+    });
+    finish(peer_result(*fastest, "cpp-tiled-best", lights, reach));
   }
 
   const std::vector<ManyLightsResult>& results() const { return results_; }
 
  private:
-  void finish(ManyLightsResult& r, double pairs, Reach reach, std::optional<double> error) {
+  struct PeerTiming {
+    TiledPeerSchedule schedule;
+    std::vector<double> times, culling;
+    double kept_pairs = 0.0;
+    std::optional<double> max_rel_err;
+    bool single_run = false;
+  };
+
+  static std::string schedule_text(TiledPeerSchedule schedule) {
+    return "tiles " + std::to_string(schedule.tile_size) + ", coarse " + std::to_string(schedule.coarse_tiles) + ", " +
+           std::to_string(schedule.tiles_per_task) + " tiles/task";
+  }
+
+  ManyLightsResult peer_result(const PeerTiming& timing, const std::string& impl, int lights, Reach reach) const {
+    ManyLightsResult r;
+    r.impl = impl;
+    r.schedule = schedule_text(timing.schedule);
+    r.lights = lights;
+    r.single_run = timing.single_run;
+    r.time = summarize(timing.times);
+    r.culling_ms = summarize(timing.culling).median_ms;
+    describe(r, timing.kept_pairs, reach, timing.max_rel_err);
+    return r;
+  }
+
+  void describe(ManyLightsResult& r, double pairs, Reach reach, std::optional<double> error) const {
     r.mean_lights_per_pixel = shaded_ ? pairs / static_cast<double>(shaded_) : 0.0;
     r.mean_lights_reaching = reach.pixel;
     r.mean_lights_reaching_tile = reach.tile;
     r.effective_mpix_lights_per_s = pairs / (r.time.median_ms * 1e-3) / 1e6;
     r.max_rel_err = error;
+  }
+
+  void finish(const ManyLightsResult& r) {
     std::cout << "    " << r.impl << ": " << r.time.median_ms << " ms (" << r.time.runs << " runs"
               << (r.single_run ? ", one run: over 10 s" : "") << "), " << r.mean_lights_per_pixel << " lights/pixel, "
-              << r.effective_mpix_lights_per_s << " effective Mpix-lights/s\n";
+              << r.effective_mpix_lights_per_s << " effective Mpix-lights/s"
+              << (r.schedule.empty() ? "" : "; " + r.schedule) << "\n";
     results_.push_back(r);
   }
 
@@ -199,7 +246,7 @@ void run_many_lights_bench(const BenchArguments& args) {
     std::cout << " every " << reference.step << "\n";
     bench.opencl(lit, true, reach, &reference);
     bench.opencl(lit, false, reach, &reference);
-    bench.cpp_tiled(lit, reach, reference);
+    bench.cpp_tiled(lit, reach, reference, args.peer_schedules);
     std::cout << "    (" << static_cast<int>(elapsed_ms(start) / 1000) << " s)\n";
   }
   std::cout << "\n" << many_lights_table(bench.results());

@@ -54,7 +54,8 @@ std::string many_lights_json(const ManyLightsMachine& machine, const std::vector
                                {"mean_lights_reaching_tile", r.mean_lights_reaching_tile},
                                {"mean_lights_per_tile", r.mean_lights_per_tile},
                                {"effective_mpix_lights_per_s", r.effective_mpix_lights_per_s},
-                               {"max_rel_err", r.max_rel_err ? nlohmann::json(*r.max_rel_err) : nlohmann::json(nullptr)}});
+                               {"max_rel_err", r.max_rel_err ? nlohmann::json(*r.max_rel_err) : nlohmann::json(nullptr)},
+                               {"schedule", r.schedule.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.schedule)}});
   }
   return json.dump(2) + "\n";
 }
@@ -84,12 +85,16 @@ void write_many_lights_report(const std::string& directory, const ManyLightsMach
   md += "- Load average at the start: " + machine.loadavg + "\n\n";
   md += "Lights: point and spot alternately, quadratic falloff, one range for all, spread through the box of the "
         "shaded positions (`lab/peers/many_lights.h`). Times: median of the timed runs after one untimed warm-up; "
-        "OpenCL from profiling events (culling passes included, and shown apart), cpp-tiled wall clock. "
+        "OpenCL from profiling events (culling passes included, and shown apart), cpp-tiled wall clock "
+        "(cpp-tiled-best: the fastest of its schedules, with --peer-schedules). "
         "Effective Mpix-lights/s counts only the pixel-light pairs shaded: those the culling keeps, or every light "
         "for the unculled kernel. Lights reached: per shaded pixel, the lights that reach it, and the lights that reach "
         "a shaded pixel of its tile (what one list per tile must keep at the least). Errors against the double "
         "reference on a sample of rows.\n\n";
-  md += many_lights_table(results) + "\n![frame time](frame_ms_vs_lights.svg)\n";
+  md += many_lights_table(results) + "\n";
+  for (const ManyLightsResult& r : results)
+    if (!r.schedule.empty()) md += "- " + r.impl + " at " + std::to_string(r.lights) + " lights: " + r.schedule + "\n";
+  md += "\n![frame time](frame_ms_vs_lights.svg)\n";
   write_text_file(dir / "report.md", md);
 }
 

@@ -11,7 +11,8 @@
 namespace phongcl::cli {
 
 struct ManyLightsResult {
-  std::string impl;  // "opencl-tiled" | "opencl-unculled" | "cpp-tiled"
+  std::string impl;  // "opencl-tiled" | "opencl-unculled" | "cpp-tiled" | "cpp-tiled-best"
+  std::string schedule;  // cpp-tiled's (TiledPeerSchedule), e.g. "tiles 16, coarse 8, 4 tiles/task"
   int lights = 0;
   RunStats time;                      // ms per frame: opencl kernel time (culling included), cpp wall clock
   std::optional<double> culling_ms;   // median of the culling part; tiled only

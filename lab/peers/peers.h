@@ -19,7 +19,13 @@ struct TiledPeerStats {
   double culling_ms = 0.0, shading_ms = 0.0;  // wall clock of the two passes
   double kept_pairs = 0.0;                     // shaded pixel-light pairs the culling kept
 };
-TiledPeerStats shade_tiled(const PackedFrame& frame, const PackedScene& scene, int width, int height, int tile_size,
-                           float* rgba);
+// Its schedule: the defaults are the best of bench --many-lights --peer-schedules on scenes/large.
+struct TiledPeerSchedule {
+  int tile_size = 16;      // pixels per side of a culling tile
+  int coarse_tiles = 8;    // tiles per side of the first culling level's boxes
+  int tiles_per_task = 4;  // tiles a thread takes at a time while shading (OpenMP's dynamic chunk)
+};
+TiledPeerStats shade_tiled(const PackedFrame& frame, const PackedScene& scene, int width, int height,
+                           TiledPeerSchedule schedule, float* rgba);
 
 }  // namespace phongcl

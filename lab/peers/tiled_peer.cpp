@@ -1,7 +1,8 @@
 // cpp-tiled: the tiled light culling of ISPC's examples/cpu/deferred in C++, on every core (OpenMP)
 // with each tile row's pixels vectorised (`omp simd`): per tile, the box of its shaded positions and
-// the list of lights whose bounding sphere meets it (through boxes of 8 x 8 tiles first), then the
-// tile's pixels shaded from that list.
+// the list of lights whose bounding sphere meets it (through boxes of coarse_tiles x coarse_tiles
+// tiles first), then the tile's pixels shaded from that list, each row skipping the listed lights
+// whose range misses all of its pixels, as the kernel's work-items do.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -18,7 +19,6 @@ namespace {
 using namespace peer_math;
 
 constexpr std::size_t kRow = 16;  // pixels per simd loop: one AVX-512 register of floats
-constexpr int kCoarse = 8;        // tiles per side of the first culling level's boxes
 
 struct Box {
   float lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
@@ -98,7 +98,23 @@ inline float light_weight(Shape shape, float d, float inverse_d, float ux, float
   return bounded > 0.0f ? weight : 0.0f;
 }
 
-// One row of up to kRow pixels of a tile, lit by the tile's list and every directional light.
+// Whether light k's range (1.01 times it, as the kernel's skip) holds any of the row's first
+// `count` positions; true for a light without a range.
+bool row_in_range(const PackedScene& s, int k, const float* px, const float* py, const float* pz, std::size_t count) {
+  const float inverse_range = s.inverse_range[k];
+  if (inverse_range <= 0.0f) return true;
+  const float lx = s.point_x[k], ly = s.point_y[k], lz = s.point_z[k];
+  float nearest_sq = INFINITY;
+#pragma omp simd reduction(min : nearest_sq)
+  for (std::size_t j = 0; j < count; ++j) {
+    const float tx = lx - px[j], ty = ly - py[j], tz = lz - pz[j];
+    nearest_sq = std::min(nearest_sq, tx * tx + ty * ty + tz * tz);
+  }
+  return nearest_sq * (inverse_range * inverse_range) <= 1.01f;
+}
+
+// One row of up to kRow pixels of a tile, lit by the tile's list and every directional light. A
+// listed light whose range misses every pixel of the row adds exactly 0 and is skipped.
 void shade_row(const FrameView& f, const SceneView& view, const PackedScene& s, const std::vector<int>& list,
                std::size_t first, std::size_t count, float* rgba) {
   alignas(64) float px[kRow] = {}, py[kRow] = {}, pz[kRow] = {}, nx[kRow] = {}, ny[kRow] = {}, nz[kRow] = {};
@@ -112,6 +128,7 @@ void shade_row(const FrameView& f, const SceneView& view, const PackedScene& s, 
     q[j] = view.shininess[f.material[i]];
   }
   for (int k : list) {
+    if (!row_in_range(s, k, px, py, pz, count)) continue;
     const float lx = s.point_x[k], ly = s.point_y[k], lz = s.point_z[k];
     const float cr = s.point_r[k], cg = s.point_g[k], cb = s.point_b[k];
     const Shape shape = shape_of(s, k);
@@ -147,8 +164,9 @@ double since(std::chrono::steady_clock::time_point start) {
 
 }  // namespace
 
-TiledPeerStats shade_tiled(const PackedFrame& frame, const PackedScene& scene, int width, int height, int tile_size,
-                           float* rgba) {
+TiledPeerStats shade_tiled(const PackedFrame& frame, const PackedScene& scene, int width, int height,
+                           TiledPeerSchedule schedule, float* rgba) {
+  const int tile_size = schedule.tile_size, coarse_tiles = schedule.coarse_tiles, tiles_per_task = schedule.tiles_per_task;
   const FrameView f = view_of(frame);
   const SceneView view = view_of(scene);
   const int tiles_x = (width + tile_size - 1) / tile_size, tiles_y = (height + tile_size - 1) / tile_size;
@@ -158,14 +176,16 @@ TiledPeerStats shade_tiled(const PackedFrame& frame, const PackedScene& scene, i
   const auto start = std::chrono::steady_clock::now();
   // Culling and shading as separate passes, so the culling time can be reported apart; dynamic
   // schedules where tiles differ in how many lights they keep. Two levels: every light against
-  // boxes of kCoarse x kCoarse tiles, then each tile against its coarse box's list.
+  // boxes of coarse_tiles x coarse_tiles tiles, then each tile against its coarse box's list.
   std::vector<Box> boxes(static_cast<std::size_t>(tiles));
   std::vector<std::size_t> shaded(static_cast<std::size_t>(tiles));
 #pragma omp parallel for schedule(static)
   for (std::int64_t t = 0; t < tiles; ++t)
     boxes[t] = tile_box(frame, tile_rect(static_cast<std::size_t>(t), tiles_x, tile_size, width, height), width, shaded[t]);
-  const int coarse_x = (tiles_x + kCoarse - 1) / kCoarse, coarse_y = (tiles_y + kCoarse - 1) / kCoarse;
-  const auto coarse_of = [&](std::int64_t t) { return t / tiles_x / kCoarse * coarse_x + t % tiles_x / kCoarse; };
+  const int coarse_x = (tiles_x + coarse_tiles - 1) / coarse_tiles, coarse_y = (tiles_y + coarse_tiles - 1) / coarse_tiles;
+  const auto coarse_of = [&](std::int64_t t) {
+    return t / tiles_x / coarse_tiles * coarse_x + t % tiles_x / coarse_tiles;
+  };
   std::vector<Box> coarse_boxes(static_cast<std::size_t>(coarse_x) * coarse_y);
   for (std::int64_t t = 0; t < tiles; ++t) {
     if (boxes[t].empty) continue;
@@ -189,7 +209,7 @@ TiledPeerStats shade_tiled(const PackedFrame& frame, const PackedScene& scene, i
   stats.kept_pairs = kept_pairs;
   stats.culling_ms = since(start);
   const auto shading = std::chrono::steady_clock::now();
-#pragma omp parallel for schedule(dynamic, 4)
+#pragma omp parallel for schedule(dynamic, tiles_per_task)
   for (std::int64_t t = 0; t < tiles; ++t) {
     const TileRect r = tile_rect(static_cast<std::size_t>(t), tiles_x, tile_size, width, height);
     for (int y = r.y0; y < r.y1; ++y) {
