@@ -132,7 +132,9 @@ class ManyLightsBench {
     if (sweep)
       for (int tile_size : {8, 16, 32})
         for (int coarse_tiles : {4, 8, 16})
-          for (int tiles_per_task : {1, 4, 16}) timings.push_back({{tile_size, coarse_tiles, tiles_per_task}});
+          for (int tiles_per_task : {1, 4, 16})
+            if (TiledPeerSchedule schedule{tile_size, coarse_tiles, tiles_per_task}; !(schedule == timings.front().schedule))
+              timings.push_back({schedule});
     Image image = image_like(gbuffer_);
     const auto run = [&](PeerTiming& timing) {
       const TiledPeerStats stats = shade_tiled(frame, packed, gbuffer_.width, gbuffer_.height, timing.schedule, image.pixel(0));

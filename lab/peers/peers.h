@@ -23,7 +23,8 @@ struct TiledPeerStats {
 struct TiledPeerSchedule {
   int tile_size = 16;      // pixels per side of a culling tile
   int coarse_tiles = 8;    // tiles per side of the first culling level's boxes
-  int tiles_per_task = 4;  // tiles a thread takes at a time while shading (OpenMP's dynamic chunk)
+  int tiles_per_task = 16;  // tiles a thread takes at a time while shading (OpenMP's dynamic chunk)
+  bool operator==(const TiledPeerSchedule&) const = default;
 };
 TiledPeerStats shade_tiled(const PackedFrame& frame, const PackedScene& scene, int width, int height,
                            TiledPeerSchedule schedule, float* rgba);
