@@ -1,5 +1,5 @@
 /* Tiled light culling (Andersson 2009; ISPC's examples/cpu/deferred), before phong_shade:
- *   row_bounds, tile_bounds  the box of each tile's shaded positions, in lane vectors (row by row)
+ *   row_bounds, tile_bounds  the box of each tile's shaded positions, in lane vectors (band by band)
  *   keep_box_lights    one work-item per 2 x 2 block of boxes: its candidate lights that can reach
  *                      each box, in order
  * The host runs the last once per level: boxes of 8 x 8 tiles with every light a candidate, then
@@ -28,39 +28,44 @@ uint round_up_lanes(uint pixel) { return (pixel + PHONGCL_LANES - 1) / PHONGCL_L
 #define BIT_OR(a, b) ((a) | (b))
 
 /* A tile's boxes are taken in two passes, so that the planes are read front to back: row_bounds,
- * one work-item per pixel row of each tile (item = image row * tiles_x + tile column: an image
- * row's work-items are consecutive), then tile_bounds merges each tile's rows. One work-item per
- * tile read 32 strided rows of 128 bytes per plane, and took 10 ms for a 1080p frame on 2 cores. */
+ * one work-item per band of rows_per_item pixel rows of each tile (item = band * tiles_x + tile
+ * column: a band's work-items are consecutive), then tile_bounds merges each tile's bands. One
+ * work-item per tile read 32 strided rows of 128 bytes per plane, and took 10 ms for a 1080p frame
+ * on 2 cores; one per row spent most of its time reducing its lanes (rows_per_item divides the tile
+ * size: 4 where it can). */
 
 /* The box of the shaded positions the work-items whose first pixel is in [row + x_begin,
- * row + x_end) shade; those slots begin and end at multiples of PHONGCL_LANES (so does first_pixel),
- * so the box is taken over whole lane vectors, background lanes left out by selects. */
+ * row + x_end) shade, for each row of the band; those slots begin and end at multiples of
+ * PHONGCL_LANES (so does first_pixel), so the box is taken over whole lane vectors, background lanes
+ * left out by selects, and the lanes reduced once per band. */
 __kernel void row_bounds(__global const STORAGE* restrict planes, uint plane_stride,
                          __global const int* restrict material_index, uint slot_count, TileGrid grid,
-                         __global TileBox* restrict rows) {
+                         uint rows_per_item, __global TileBox* restrict rows) {
   const uint item = get_global_id(0);
-  const uint tile_x = item % grid.tiles_x, y = item / grid.tiles_x;
+  const uint tile_x = item % grid.tiles_x, band = item / grid.tiles_x;
   const uint x_begin = tile_x * grid.tile_size, x_end = min(x_begin + grid.tile_size, grid.image_width);
   floatv lo[3] = {(floatv)INFINITY, (floatv)INFINITY, (floatv)INFINITY};
   floatv hi[3] = {(floatv)-INFINITY, (floatv)-INFINITY, (floatv)-INFINITY};
   intv shaded = (intv)0, distance_bins = (intv)0;
-  const ulong row = (ulong)y * grid.image_width;
-  const ulong begin = max((ulong)round_up_lanes(row + x_begin), (ulong)grid.first_pixel);
-  const ulong end = min((ulong)round_up_lanes(row + x_end), (ulong)grid.first_pixel + slot_count);
-  for (ulong pixel = begin; pixel < end; pixel += PHONGCL_LANES) {
-    const uint chunk = (uint)((pixel - grid.first_pixel) / PHONGCL_LANES);
-    const intv is_shaded = VLOAD(chunk, material_index) != PHONGCL_BACKGROUND;
-    const intv one_if_shaded = select((intv)0, (intv)1, is_shaded);
-    shaded += one_if_shaded;
-    floatv distance_sq = (floatv)0;
-    for (int axis = 0; axis < 3; ++axis) {
-      const floatv value = load_plane(planes, plane_stride, PLANE_PX + axis, chunk);
-      lo[axis] = fmin(lo[axis], select((floatv)INFINITY, value, is_shaded));
-      hi[axis] = fmax(hi[axis], select((floatv)-INFINITY, value, is_shaded));
-      distance_sq += value * value;
+  for (uint y = band * rows_per_item; y < (band + 1) * rows_per_item; ++y) {
+    const ulong row = (ulong)y * grid.image_width;
+    const ulong begin = max((ulong)round_up_lanes(row + x_begin), (ulong)grid.first_pixel);
+    const ulong end = min((ulong)round_up_lanes(row + x_end), (ulong)grid.first_pixel + slot_count);
+    for (ulong pixel = begin; pixel < end; pixel += PHONGCL_LANES) {
+      const uint chunk = (uint)((pixel - grid.first_pixel) / PHONGCL_LANES);
+      const intv is_shaded = VLOAD(chunk, material_index) != PHONGCL_BACKGROUND;
+      const intv one_if_shaded = select((intv)0, (intv)1, is_shaded);
+      shaded += one_if_shaded;
+      floatv distance_sq = (floatv)0;
+      for (int axis = 0; axis < 3; ++axis) {
+        const floatv value = load_plane(planes, plane_stride, PLANE_PX + axis, chunk);
+        lo[axis] = fmin(lo[axis], select((floatv)INFINITY, value, is_shaded));
+        hi[axis] = fmax(hi[axis], select((floatv)-INFINITY, value, is_shaded));
+        distance_sq += value * value;
+      }
+      const intv bin = (AS_INTV(distance_sq) >> PHONGCL_DISTANCE_BIN_SHIFT) & 31;
+      distance_bins |= AS_INTV(AS_UINTV(one_if_shaded) << AS_UINTV(bin)); /* unsigned: bit 31 is no overflow */
     }
-    const intv bin = (AS_INTV(distance_sq) >> PHONGCL_DISTANCE_BIN_SHIFT) & 31;
-    distance_bins |= AS_INTV(AS_UINTV(one_if_shaded) << AS_UINTV(bin)); /* unsigned: bit 31 is no overflow */
   }
   TileBox box;
   for (int axis = 0; axis < 3; ++axis) {
@@ -72,13 +77,13 @@ __kernel void row_bounds(__global const STORAGE* restrict planes, uint plane_str
   rows[item] = box;
 }
 
-/* A tile's box, the union of its rows' (row_bounds: tile_size rows per tile). */
-__kernel void tile_bounds(__global const TileBox* restrict rows, TileGrid grid, __global TileBox* restrict boxes) {
+/* A tile's box, the union of its bands' (row_bounds: tile_size / rows_per_item bands per tile). */
+__kernel void tile_bounds(__global const TileBox* restrict rows, TileGrid grid, uint rows_per_item,
+                          __global TileBox* restrict boxes) {
   const uint tile = get_global_id(0);
-  const uint tile_x = tile % grid.tiles_x, tile_y = tile / grid.tiles_x;
+  const uint tile_x = tile % grid.tiles_x, tile_y = tile / grid.tiles_x, bands = grid.tile_size / rows_per_item;
   TileBox box = empty_tile_box();
-  for (uint y = tile_y * grid.tile_size; y < (tile_y + 1) * grid.tile_size; ++y)
-    add_to_box(&box, rows[y * grid.tiles_x + tile_x]);
+  for (uint band = tile_y * bands; band < (tile_y + 1) * bands; ++band) add_to_box(&box, rows[band * grid.tiles_x + tile_x]);
   boxes[tile] = box;
 }
 

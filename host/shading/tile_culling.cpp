@@ -32,13 +32,18 @@ std::array<cl::Event, 2> enqueue_tile_boxes(cl::CommandQueue& queue, const cl::P
                                             const cl::Buffer& planes, std::size_t plane_stride,
                                             const cl::Buffer& material_index, std::size_t slot_count,
                                             const TileLayout& layout, ReusableBuffer& rows, const cl::Buffer& boxes) {
-  const std::size_t row_count = layout.tile_count * layout.grid.tile_size;
-  const cl::Buffer& row_boxes = rows.at_least(queue.getInfo<CL_QUEUE_CONTEXT>(), row_count * sizeof(TileBox));
-  cl::KernelFunctor<cl::Buffer, cl_uint, cl::Buffer, cl_uint, TileGrid, cl::Buffer> by_row(cull_program, "row_bounds");
-  cl::KernelFunctor<cl::Buffer, TileGrid, cl::Buffer> by_tile(cull_program, "tile_bounds");
-  cl::Event first = by_row(cl::EnqueueArgs(queue, cl::NDRange(row_count)), planes, static_cast<cl_uint>(plane_stride),
-                           material_index, static_cast<cl_uint>(slot_count), layout.grid, row_boxes);
-  cl::Event second = by_tile(cl::EnqueueArgs(queue, cl::NDRange(layout.tile_count)), row_boxes, layout.grid, boxes);
+  // Bands of 4 rows where the tile size allows: each of row_bounds' work-items reduces its lanes once.
+  const cl_uint tile_size = layout.grid.tile_size;
+  const cl_uint rows_per_item = tile_size % 4 == 0 ? 4 : tile_size % 2 == 0 ? 2 : 1;
+  const std::size_t band_count = layout.tile_count * (tile_size / rows_per_item);
+  const cl::Buffer& band_boxes = rows.at_least(queue.getInfo<CL_QUEUE_CONTEXT>(), band_count * sizeof(TileBox));
+  cl::KernelFunctor<cl::Buffer, cl_uint, cl::Buffer, cl_uint, TileGrid, cl_uint, cl::Buffer> by_band(cull_program,
+                                                                                                   "row_bounds");
+  cl::KernelFunctor<cl::Buffer, TileGrid, cl_uint, cl::Buffer> by_tile(cull_program, "tile_bounds");
+  cl::Event first = by_band(cl::EnqueueArgs(queue, cl::NDRange(band_count)), planes, static_cast<cl_uint>(plane_stride),
+                            material_index, static_cast<cl_uint>(slot_count), layout.grid, rows_per_item, band_boxes);
+  cl::Event second =
+      by_tile(cl::EnqueueArgs(queue, cl::NDRange(layout.tile_count)), band_boxes, layout.grid, rows_per_item, boxes);
   return {first, second};
 }
 

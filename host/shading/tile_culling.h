@@ -25,8 +25,8 @@ TileLayout tile_layout(int width, int height, int tile_size);
 std::string culling_options(const std::string& shading_options);
 
 // The boxes of a launch's tiles (layout.tile_count TileBoxes into `boxes`) from its packed slots
-// [0, slot_count), by cull.cl's row_bounds and tile_bounds (`rows` holds the first pass's boxes);
-// returns both passes' events.
+// [0, slot_count), by cull.cl's row_bounds and tile_bounds (`rows` holds the first pass's boxes, one
+// per band of rows); returns both passes' events.
 std::array<cl::Event, 2> enqueue_tile_boxes(cl::CommandQueue& queue, const cl::Program& cull_program,
                                             const cl::Buffer& planes, std::size_t plane_stride,
                                             const cl::Buffer& material_index, std::size_t slot_count,
