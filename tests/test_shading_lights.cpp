@@ -208,7 +208,8 @@ std::pair<Scene, GBuffer> default_scene_with_many_lights(int width, int height, 
 // The default scene at 203 x 97 (a width no tile size or lane count divides) with 300 ranged lights:
 // tiled culling must give the unculled image to float rounding (a culled light adds exactly 0;
 // only the grouping of the compensated sum differs) and match the reference, for lanes 1 and 16,
-// tiles of 16 and of 5 (work-items reaching into the next tile), and launches split into pieces.
+// tiles of 16, 6 and 5 (their boxes taken in bands of 4, 2 and 1 rows; work-items reaching into the
+// next tile), and launches split into pieces.
 TEST(Lights, TiledCullingEqualsUnculledAndReference) {
   PHONGCL_REQUIRE_DEVICE(shader);
   auto [scene, gbuffer] = default_scene_with_many_lights(203, 97, 300, 12.0);
@@ -221,7 +222,7 @@ TEST(Lights, TiledCullingEqualsUnculledAndReference) {
     unculled.culling = Culling::none;
     const ShadeResult all = shader.shade(scene, gbuffer, unculled);
     EXPECT_EQ(all.recipe.value("TILED_CULLING"), "0");
-    for (int tile : {16, 5}) {
+    for (int tile : {16, 6, 5}) {
       for (std::size_t pieces : {std::size_t{0}, std::size_t{4001}}) {
         ShadeOptions tiled = unculled;
         tiled.culling = Culling::automatic;  // 300 lights with a range: automatic chooses tiles
