@@ -83,7 +83,8 @@ __kernel void tile_bounds(__global const TileBox* restrict rows, TileGrid grid, 
   const uint tile = get_global_id(0);
   const uint tile_x = tile % grid.tiles_x, tile_y = tile / grid.tiles_x, bands = grid.tile_size / rows_per_item;
   TileBox box = empty_tile_box();
-  for (uint band = tile_y * bands; band < (tile_y + 1) * bands; ++band) add_to_box(&box, rows[band * grid.tiles_x + tile_x]);
+  for (uint band = tile_y * bands; band < (tile_y + 1) * bands; ++band)
+    add_to_box(&box, rows[band * grid.tiles_x + tile_x]);
   boxes[tile] = box;
 }
 
@@ -96,10 +97,9 @@ typedef struct {
   int4 shaded; /* -1 where the box has a shaded pixel, 0 elsewhere */
 } BoxBlock;
 
-BoxBlock box_block(__global const TileBox* boxes, uint4 index) {
-  const uint slots[4] = {index.s0, index.s1, index.s2, index.s3};
+BoxBlock box_block(__global const TileBox* boxes, const uint slots[4]) {
   TileBox box[4];
-  for (int s = 0; s < 4; ++s) box[s] = slots[s] == UINT_MAX ? empty_tile_box() : boxes[slots[s]];
+  for (int s = 0; s < 4; ++s) box[s] = slots[s] == PHONGCL_NO_BOX ? empty_tile_box() : boxes[slots[s]];
   BoxBlock block;
   for (int axis = 0; axis < 3; ++axis) {
     block.lo[axis] = (float4)(box[0].lo[axis], box[1].lo[axis], box[2].lo[axis], box[3].lo[axis]);
@@ -171,11 +171,11 @@ void keep_where(int lane, uint k, __global uint* list, uint* count) {
   if (lane) list[(*count)++] = k;
 }
 
-/* One work-item per block of four boxes (block_boxes[b]: their indices, UINT_MAX for none). Its
- * candidates are candidates[candidate_first[b] ...], candidate_count[b] of them: every light for the
- * coarsest level, the list of the box one level up (whose 2 x 2 block this is) for the others. The
- * ones that reach box t are written in order from kept_lights[kept_first[t]], where there is room for
- * all of them, and counted in kept_count[t]. */
+/* One work-item per block of four boxes (block_boxes[b]: their indices, PHONGCL_NO_BOX for none).
+ * Its candidates are candidates[candidate_first[b] ...], candidate_count[b] of them: every light for
+ * the coarsest level, the list of the box one level up (whose 2 x 2 block this is) for the others.
+ * The ones that reach box t are written in order from kept_lights[kept_first[t]], where there is room
+ * for all of them, and counted in kept_count[t]. */
 __kernel void keep_box_lights(__global const TileBox* restrict boxes, __global const LightBounds* restrict lights,
                               __global const uint4* restrict block_boxes, __global const uint* restrict candidates,
                               __global const uint* restrict candidate_first,
@@ -183,10 +183,10 @@ __kernel void keep_box_lights(__global const TileBox* restrict boxes, __global c
                               __global uint* restrict kept_lights, __global uint* restrict kept_count) {
   const uint b = get_global_id(0);
   const uint4 index = block_boxes[b];
-  const BoxBlock block = box_block(boxes, index);
   const uint slots[4] = {index.s0, index.s1, index.s2, index.s3};
+  const BoxBlock block = box_block(boxes, slots);
   __global uint* kept[4];
-  for (int s = 0; s < 4; ++s) kept[s] = kept_lights + (slots[s] == UINT_MAX ? 0 : kept_first[slots[s]]);
+  for (int s = 0; s < 4; ++s) kept[s] = kept_lights + (slots[s] == PHONGCL_NO_BOX ? 0 : kept_first[slots[s]]);
   uint count[4] = {0, 0, 0, 0};
   const uint first = candidate_first[b], end = any_box(block.shaded) ? first + candidate_count[b] : first;
   for (uint j = first; j < end; ++j) {
@@ -199,5 +199,5 @@ __kernel void keep_box_lights(__global const TileBox* restrict boxes, __global c
     keep_where(mask.s3, k, kept[3], &count[3]);
   }
   for (int s = 0; s < 4; ++s)
-    if (slots[s] != UINT_MAX) kept_count[slots[s]] = count[s];
+    if (slots[s] != PHONGCL_NO_BOX) kept_count[slots[s]] = count[s];
 }

@@ -107,6 +107,10 @@ typedef struct {
   unsigned int distance_bins;
 } TileBox;
 
+/* The culling tests a 2 x 2 block of boxes at once (cull.cl's keep_box_lights), given as four box
+ * indices; a block at the grid's edge has PHONGCL_NO_BOX in the slots past it. */
+#define PHONGCL_NO_BOX 0xffffffffu
+
 /* A directional light. to_light is the unit vector l = -normalize(direction), computed in double. */
 typedef struct {
   layout_float to_light[4]; /* xyz, w unused */

@@ -76,8 +76,8 @@ TileCuller::TileCuller(const ComputeContext& compute, ProgramCache& cache, const
 constexpr std::size_t kCoarsestSpan = 8;
 
 // A grid of boxes, each the union of the tile boxes it spans, and its 2 x 2 blocks: block b holds
-// the indices of the boxes the parent box b (one level up) is made of, kNoBox where the grid ends.
-constexpr cl_uint kNoBox = std::numeric_limits<cl_uint>::max();
+// the indices of the boxes the parent box b (one level up) is made of, PHONGCL_NO_BOX where the grid
+// ends.
 struct BoxGrid {
   std::size_t columns = 0;
   std::vector<TileBox> boxes;
@@ -96,7 +96,7 @@ BoxGrid merge_blocks(BoxGrid& grid) {
     for (int axis = 0; axis < 3; ++axis) box.lo[axis] = INFINITY, box.hi[axis] = -INFINITY;
     box.shaded = box.distance_bins = 0;
   }
-  grid.blocks.assign(merged.boxes.size(), cl_uint4{{kNoBox, kNoBox, kNoBox, kNoBox}});
+  grid.blocks.assign(merged.boxes.size(), cl_uint4{{PHONGCL_NO_BOX, PHONGCL_NO_BOX, PHONGCL_NO_BOX, PHONGCL_NO_BOX}});
   for (std::size_t t = 0; t < grid.boxes.size(); ++t) {
     const std::size_t column = t % grid.columns, row = t / grid.columns;
     const std::size_t m = row / 2 * merged.columns + column / 2;
@@ -133,7 +133,7 @@ TileCuller::Lists TileCuller::lists(const cl::Buffer& boxes, const BoxGrid& grid
   std::size_t room = 0;
   for (std::size_t b = 0; b < grid.blocks.size(); ++b)
     for (cl_uint t : grid.blocks[b].s) {
-      if (t == kNoBox) continue;
+      if (t == PHONGCL_NO_BOX) continue;
       lists.host_offsets[t] = static_cast<cl_uint>(room);
       if (grid.boxes[t].shaded > 0) room += candidate_count[b];
     }
