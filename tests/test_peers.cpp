@@ -84,7 +84,7 @@ TEST(Peers, TiledPeerMatchesReferenceWithManyRangedLights) {
   const std::vector<bool> mask = testing::shaded_mask(gbuffer);
   const auto shaded = static_cast<double>(std::count(mask.begin(), mask.end(), true));
   for (TiledPeerSchedule schedule : {TiledPeerSchedule{}, TiledPeerSchedule{8, 4, 1}, TiledPeerSchedule{32, 16, 16}}) {
-    SCOPED_TRACE("tiles " + std::to_string(schedule.tile_size) + ", coarse " + std::to_string(schedule.coarse_tiles));
+    SCOPED_TRACE(describe(schedule));
     Image image = image_like(gbuffer);
     const TiledPeerStats stats =
         shade_tiled(pack_frame(gbuffer, lit), pack_scene(lit), gbuffer.width, gbuffer.height, schedule, image.rgba.data());

@@ -118,7 +118,7 @@ class ManyLightsBench {
       r.culling_ms = summarize(culling).median_ms;
       r.mean_lights_per_tile = last.culling.mean_lights_per_tile();
     }
-    describe(r, pairs, reach, reference ? std::optional(reference->error_of(last.image)) : std::nullopt);
+    set_figures(r, pairs, reach, reference ? std::optional(reference->error_of(last.image)) : std::nullopt);
     finish(r);
   }
 
@@ -133,28 +133,30 @@ class ManyLightsBench {
       for (int tile_size : {8, 16, 32})
         for (int coarse_tiles : {4, 8, 16})
           for (int tiles_per_task : {1, 4, 16})
-            if (TiledPeerSchedule schedule{tile_size, coarse_tiles, tiles_per_task}; !(schedule == timings.front().schedule))
+            if (TiledPeerSchedule schedule{tile_size, coarse_tiles, tiles_per_task}; schedule != timings.front().schedule)
               timings.push_back({schedule});
     Image image = image_like(gbuffer_);
     const auto run = [&](PeerTiming& timing) {
       const TiledPeerStats stats = shade_tiled(frame, packed, gbuffer_.width, gbuffer_.height, timing.schedule, image.pixel(0));
+      timing.times.push_back(stats.culling_ms + stats.shading_ms);
+      timing.culling.push_back(stats.culling_ms);
       timing.kept_pairs = stats.kept_pairs;
-      return std::pair{stats.culling_ms + stats.shading_ms, stats.culling_ms};
+      timing.max_rel_err = reference.error_of(image);
     };
-    for (PeerTiming& timing : timings) timing.single_run = run(timing).first > kSingleRunMs;
+    // The warm-ups, each kept as its schedule's one timed run where it took over 10 s (as time_runs).
+    for (PeerTiming& timing : timings) {
+      run(timing);
+      timing.single_run = timing.times.back() > kSingleRunMs;
+      if (!timing.single_run) timing.times.clear(), timing.culling.clear();
+    }
     for (int round = 0; round < runs_; ++round)
-      for (PeerTiming& timing : timings) {
-        if (timing.single_run && !timing.times.empty()) continue;
-        const auto [ms, culling_ms] = run(timing);
-        timing.times.push_back(ms);
-        timing.culling.push_back(culling_ms);
-        if (round + 1 == runs_ || timing.single_run) timing.max_rel_err = reference.error_of(image);
-      }
+      for (PeerTiming& timing : timings)
+        if (!timing.single_run) run(timing);
     const auto lights = static_cast<int>(scene.lights.size());
     finish(peer_result(timings.front(), "cpp-tiled", lights, reach));
     if (!sweep) return;
     for (const PeerTiming& timing : timings)
-      std::cout << "      " << schedule_text(timing.schedule) << ": " << summarize(timing.times).median_ms << " ms\n";
+      std::cout << "      " << describe(timing.schedule) << ": " << summarize(timing.times).median_ms << " ms\n";
     const auto fastest = std::min_element(timings.begin(), timings.end(), [](const PeerTiming& a, const PeerTiming& b) {
       return summarize(a.times).median_ms < summarize(b.times).median_ms;
     });
@@ -172,24 +174,19 @@ class ManyLightsBench {
     bool single_run = false;
   };
 
-  static std::string schedule_text(TiledPeerSchedule schedule) {
-    return "tiles " + std::to_string(schedule.tile_size) + ", coarse " + std::to_string(schedule.coarse_tiles) + ", " +
-           std::to_string(schedule.tiles_per_task) + " tiles/task";
-  }
-
   ManyLightsResult peer_result(const PeerTiming& timing, const std::string& impl, int lights, Reach reach) const {
     ManyLightsResult r;
     r.impl = impl;
-    r.schedule = schedule_text(timing.schedule);
+    r.schedule = describe(timing.schedule);
     r.lights = lights;
     r.single_run = timing.single_run;
     r.time = summarize(timing.times);
     r.culling_ms = summarize(timing.culling).median_ms;
-    describe(r, timing.kept_pairs, reach, timing.max_rel_err);
+    set_figures(r, timing.kept_pairs, reach, timing.max_rel_err);
     return r;
   }
 
-  void describe(ManyLightsResult& r, double pairs, Reach reach, std::optional<double> error) const {
+  void set_figures(ManyLightsResult& r, double pairs, Reach reach, std::optional<double> error) const {
     r.mean_lights_per_pixel = shaded_ ? pairs / static_cast<double>(shaded_) : 0.0;
     r.mean_lights_reaching = reach.pixel;
     r.mean_lights_reaching_tile = reach.tile;

@@ -1,6 +1,8 @@
 #pragma once
 // The C++ peers the OpenCL kernel is measured against (bench --throughput): the same formula in float on the
 // same packed input (peers/packed_frame.h), written to `rgba` (4 floats per pixel, as the kernel does).
+#include <string>
+
 #include "peers/packed_frame.h"
 
 namespace phongcl {
@@ -26,6 +28,8 @@ struct TiledPeerSchedule {
   int tiles_per_task = 16;  // tiles a thread takes at a time while shading (OpenMP's dynamic chunk)
   bool operator==(const TiledPeerSchedule&) const = default;
 };
+// e.g. "tiles 16, coarse 8, 16 tiles/task"
+std::string describe(TiledPeerSchedule schedule);
 TiledPeerStats shade_tiled(const PackedFrame& frame, const PackedScene& scene, int width, int height,
                            TiledPeerSchedule schedule, float* rgba);
 

@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "peers/peers.h"
@@ -163,6 +164,11 @@ double since(std::chrono::steady_clock::time_point start) {
 }
 
 }  // namespace
+
+std::string describe(TiledPeerSchedule schedule) {
+  return "tiles " + std::to_string(schedule.tile_size) + ", coarse " + std::to_string(schedule.coarse_tiles) + ", " +
+         std::to_string(schedule.tiles_per_task) + " tiles/task";
+}
 
 TiledPeerStats shade_tiled(const PackedFrame& frame, const PackedScene& scene, int width, int height,
                            TiledPeerSchedule schedule, float* rgba) {
