@@ -6,16 +6,11 @@
 #include "cli/commands.h"
 #include "color/color_config.h"
 #include "color/display.h"
+#include "common/joined.h"
 
 namespace phongcl::cli {
 
 namespace {
-
-std::string joined(const std::vector<std::string>& names) {
-  std::string text;
-  for (const auto& name : names) text += (text.empty() ? "" : ", ") + name;
-  return text;
-}
 
 std::string xy(const std::array<float, 2>& c) { return "(" + std::to_string(c[0]).substr(0, 6) + ", " + std::to_string(c[1]).substr(0, 6) + ")"; }
 

@@ -13,6 +13,7 @@
 #include "color/chromaticities.h"
 #include "color/config_impl.h"
 #include "common/error.h"
+#include "common/joined.h"
 
 namespace phongcl {
 
@@ -25,12 +26,6 @@ namespace {
 std::string one_line(std::string text) {
   std::replace(text.begin(), text.end(), '\n', ' ');
   while (!text.empty() && text.back() == ' ') text.pop_back();
-  return text;
-}
-
-std::string joined(const std::vector<std::string>& names) {
-  std::string text;
-  for (const auto& name : names) text += (text.empty() ? "" : ", ") + name;
   return text;
 }
 

@@ -16,6 +16,7 @@
 #include "color/view_pipeline.h"
 #include "common/atomic_file.h"
 #include "common/error.h"
+#include "common/joined.h"
 #include "image/image.h"  // check_exposure
 
 namespace phongcl {
@@ -26,12 +27,6 @@ namespace {
 
 constexpr std::size_t kBlockPixels = 256;  // stages run over blocks that stay in L1
 constexpr int kRowsPerTask = 16;
-
-std::string joined(const std::vector<std::string>& names) {
-  std::string text;
-  for (const auto& name : names) text += (text.empty() ? "" : ", ") + name;
-  return text;
-}
 
 std::shared_ptr<const ViewPipeline> compiled_view(const ColorConfig& config, const std::string& display,
                                                   const std::string& view, const std::string& look) {

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "common/error.h"
+#include "common/joined.h"
 #include "exr/exr_channels.h"
 #include "gbuffer/edge_policy.h"
 #include "gbuffer/gbuffer.h"
@@ -17,13 +18,6 @@
 namespace phongcl {
 
 namespace {
-
-std::string join(const std::vector<std::string>& names, const char* separator = ", ") {
-  if (names.empty()) return "none";
-  std::string joined = names.front();
-  for (std::size_t i = 1; i < names.size(); ++i) joined += separator + names[i];
-  return joined;
-}
 
 std::size_t present_count(const PassSource& source, const exr::InputExr& input) {
   return static_cast<std::size_t>(std::count_if(source.channels.begin(), source.channels.end(),
@@ -68,7 +62,7 @@ Resolution resolve(const LayoutSpec& spec, const ReadOptions& options, const exr
       if (!input.has_channel(name))
         throw InputError(file, "--channel " + std::string(pass_name(pass)) + ": no channel '" + name + "'" + found);
   const auto user_label = [](Pass pass, const std::vector<std::string>& channels) {
-    return std::string(pass_name(pass)) + "=" + join(channels, ",");
+    return std::string(pass_name(pass)) + "=" + joined(channels, ",", "none");
   };
   // A depth the user names (and no position) is a request to reconstruct positions from it.
   const bool depth_stands_in = user.count(Pass::depth) > 0 && user.count(Pass::position) == 0;
@@ -124,7 +118,7 @@ std::string describe(const LayoutSpec& spec, const Resolution& r) {
   text += " (";
   if (spec.file_output) text += "File Output node: ";
   else if (spec.layout == Layout::blender) text += "view layer '" + spec.view_layer + "': ";
-  text += join(r.labels);
+  text += joined(r.labels, ", ", "none");
   if (!r.channels.count(Pass::material)) text += "; no material pass: material 0";
   if (!r.channels.count(Pass::position)) text += "; positions from depth";
   // Where the file has colour passes, say which became kd and ks.
@@ -201,15 +195,15 @@ GBufferRead read_gbuffer(const std::filesystem::path& file, const ReadOptions& o
                               ? detect_layout(channel_names, options, file)
                               : layout_spec(options.layout, options.view_layer, channel_names, file);
   const std::string context = spec.layout == Layout::phongcl ? "" : std::string(layout_name(spec.layout)) + " layout; ";
-  const std::string found = " (" + context + "found: " + join(channel_names) + ")";
+  const std::string found = " (" + context + "found: " + joined(channel_names, ", ", "none") + ")";
 
   // Every problem with the channel list is reported before any pixel is read.
   const Resolution r = resolve(spec, options, input, file, found);
   if (!r.missing_required.empty())
     throw InputError(file, (r.missing_required.size() == 1 ? "missing channel " : "missing channels ") +
-                               join(r.missing_required) + found);
+                               joined(r.missing_required, ", ", "none") + found);
   if (!r.missing_from_partial_group.empty())
-    throw InputError(file, "incomplete per-pixel material group, missing " + join(r.missing_from_partial_group) + found);
+    throw InputError(file, "incomplete per-pixel material group, missing " + joined(r.missing_from_partial_group, ", ", "none") + found);
 
   GBufferRead read;
   read.layout = spec.layout;

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "common/error.h"
+#include "common/joined.h"
 #include "gbuffer/gbuffer_layout.h"
 
 namespace phongcl {
@@ -23,12 +24,6 @@ std::vector<std::string> with_suffixes(const std::string& base, const char* a, c
 }
 std::vector<std::string> xyz(const std::string& base) { return with_suffixes(base, ".X", ".Y", ".Z"); }
 std::vector<std::string> rgb(const std::string& base) { return with_suffixes(base, ".R", ".G", ".B"); }
-
-std::string join(const std::vector<std::string>& names) {
-  std::string joined;
-  for (const auto& name : names) joined += (joined.empty() ? "" : ", ") + name;
-  return joined.empty() ? "none" : joined;
-}
 
 // The native layout, from the table the writer uses too, so reading and writing cannot drift.
 LayoutSpec phongcl_spec() {
@@ -130,8 +125,8 @@ std::string pick_view_layer(const std::vector<std::string>& channels, const std:
   if (layers.size() == 1) return layers.front();
   if (has(layers, "ViewLayer")) return "ViewLayer";
   if (layers.empty())
-    throw InputError(file, "no Blender view layer (channels like ViewLayer.Normal.X) (found: " + join(channels) + ")");
-  throw InputError(file, "several Blender view layers (" + join(layers) + "): choose one with --view-layer");
+    throw InputError(file, "no Blender view layer (channels like ViewLayer.Normal.X) (found: " + joined(channels, ", ", "none") + ")");
+  throw InputError(file, "several Blender view layers (" + joined(layers, ", ", "none") + "): choose one with --view-layer");
 }
 
 bool looks_like_aov(const std::vector<std::string>& channels) {

@@ -10,8 +10,6 @@ namespace phongcl {
 
 namespace {
 
-bool finite(const glm::dvec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
-
 // up and direction span the rect's plane; below this sine the width axis is noise.
 constexpr double kMinimumUpSine = 1e-6;
 

@@ -7,9 +7,10 @@
 
 namespace phongcl {
 
+bool finite(const glm::dvec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
 namespace {
 
-bool finite(const glm::dvec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 bool non_negative(const glm::dvec3& v) { return finite(v) && v.x >= 0.0 && v.y >= 0.0 && v.z >= 0.0; }
 
 void require(bool ok, const std::string& entry, const char* problem) {

@@ -18,6 +18,9 @@ namespace phongcl {
 void check_lights(const std::vector<Light>& lights, std::size_t material_count);
 void check_material_table(const std::vector<Material>& materials);
 
+// Every component finite: no NaN or infinity.
+bool finite(const glm::dvec3& v);
+
 // A light group names EXR layers (group.<name>.R): letters, digits, '_' and '-', no separators.
 inline constexpr const char* kLightGroupNameRule = "must be a name of letters, digits, '_' and '-'";
 bool valid_light_group_name(const std::string& name);

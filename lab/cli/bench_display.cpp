@@ -22,6 +22,7 @@
 #include "common/error.h"
 #include "peers/machine_limits.h"  // load_average
 #include "raycast/raycast.h"
+#include "report/elapsed.h"
 #include "report/statistics.h"
 #include "scene/json_reader.h"  // format_number
 
@@ -58,8 +59,6 @@ double thread_cpu_ms() {
   clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
   return t.tv_sec * 1e3 + t.tv_nsec * 1e-6;
 }
-
-double elapsed_ms(Clock::time_point start) { return std::chrono::duration<double, std::milli>(Clock::now() - start).count(); }
 
 std::vector<Case> cases(const glm::dvec3& background) {
   const auto make = [&](const std::string& config, const std::string& view, const std::string& look, double exposure) {

@@ -19,6 +19,7 @@
 #include "peers/peers.h"
 #include "raycast/raycast.h"
 #include "reference/reference.h"
+#include "report/elapsed.h"
 #include "report/report_files.h"
 #include "shading/phong_shader.h"
 
@@ -37,15 +38,6 @@ struct Reach {
 constexpr double kSingleRunMs = 10000.0;      // a run longer than this is timed once
 constexpr double kReferencePixelLights = 3e6;  // the double reference's sample of rows (a few seconds here)
 constexpr int kUnculledRateLights = 16;        // the unculled kernel's pixel-lights/s is quoted here
-
-double elapsed_ms(Clock::time_point start) { return std::chrono::duration<double, std::milli>(Clock::now() - start).count(); }
-
-std::string load_average() {
-  std::ifstream in("/proc/loadavg");
-  std::string one, five, fifteen;
-  in >> one >> five >> fifteen;
-  return one + " " + five + " " + fifteen;
-}
 
 std::vector<int> parse_counts(const std::string& text) {
   std::vector<int> counts;

@@ -52,13 +52,6 @@ struct ModeResult {
   double fps() const { return seconds > 0 ? frames / seconds : 0.0; }
 };
 
-std::string load_average() {
-  std::ifstream in("/proc/loadavg");
-  std::string one, five, fifteen;
-  in >> one >> five >> fifteen;
-  return one + " " + five + " " + fifteen;
-}
-
 // Seconds of `stage` in a summary line ("read 1.23 s" or "read 812.4 ms"); 0 when absent.
 double stage_seconds(const std::string& line, const std::string& stage) {
   std::smatch match;

@@ -19,6 +19,7 @@
 #include "peers/opencl_shadow_rays.h"
 #include "peers/packed_frame.h"
 #include "raycast/raycast.h"
+#include "report/elapsed.h"
 #include "report/statistics.h"
 #include "common/writable_directory.h"
 #ifdef PHONGCL_HAVE_EMBREE
@@ -30,8 +31,6 @@ namespace phongcl::cli {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double elapsed_ms(Clock::time_point start) { return std::chrono::duration<double, std::milli>(Clock::now() - start).count(); }
 
 // One untimed run, then `runs` timed; the median.
 template <typename Run>

@@ -4,7 +4,6 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <functional>
 #include <iostream>
 #include <optional>
@@ -14,12 +13,14 @@
 #include "cl/compute_context.h"
 #include "cli/bench_arguments.h"
 #include "cli/throughput_report.h"
-#include "common/atomic_file.h"
 #include "peers/halide_peer.h"
 #include "peers/light_sweep.h"
+#include "peers/machine_limits.h"
 #include "peers/peers.h"
 #include "peers/work_model.h"
 #include "reference/reference.h"
+#include "report/elapsed.h"
+#include "report/report_files.h"
 #include "shading/phong_shader.h"
 
 namespace phongcl::cli {
@@ -91,8 +92,6 @@ std::vector<Case> plan_cases(const BenchArguments& args, const GBuffer& gbuffer)
   if (args.lights.empty()) for (auto [w, h] : sizes) add(w, h, kSweepSizeLights);
   return cases;
 }
-
-double elapsed_ms(Clock::time_point start) { return std::chrono::duration<double, std::milli>(Clock::now() - start).count(); }
 
 std::vector<bool> shaded_mask(const GBuffer& gbuffer) {
   std::vector<bool> mask(gbuffer.pixel_count());
@@ -259,22 +258,6 @@ class ThroughputBench {
 };
 
 // /proc/loadavg's three averages, "n/a" where there is none: every figure here depends on it.
-std::string load_average() {
-  std::ifstream in("/proc/loadavg");
-  std::string one, five, fifteen;
-  if (!(in >> one >> five >> fifteen)) return "n/a";
-  return one + " " + five + " " + fifteen;
-}
-
-void write_file(const std::filesystem::path& file, const std::string& text) {
-  if (file.has_parent_path()) std::filesystem::create_directories(file.parent_path());
-  write_atomically(file, [&](const std::filesystem::path& temp) {
-    std::ofstream out(temp, std::ios::binary);
-    out << text;
-    if (!out.flush()) throw std::runtime_error("cannot write " + temp.string());
-  });
-}
-
 }  // namespace
 
 void run_throughput_bench(const BenchArguments& args) {
@@ -306,7 +289,11 @@ void run_throughput_bench(const BenchArguments& args) {
   }
   const std::string load = "load average " + load_at_start + " at the start, " + load_average() + " at the end";
   std::cout << "\n" << markdown_table(bench.results()) << halide_note(bench.results()) << "  " << load << "\n";
-  if (!args.json_file.empty()) write_file(args.json_file, results_json(machine, bench.results(), load));
+  if (!args.json_file.empty()) {
+    const std::filesystem::path json_file = args.json_file;
+    if (json_file.has_parent_path()) std::filesystem::create_directories(json_file.parent_path());
+    write_text_file(json_file, results_json(machine, bench.results(), load));
+  }
   if (!args.report_dir.empty()) {
     const std::string inputs = "`" + scene.source.string() + "` + `" + gbuffer.source.string() + "`";
     write_throughput_report(args.report_dir, machine, device, inputs, load, bench.results());

@@ -1,13 +1,12 @@
 // phongcl stability: the stability catalogue and the accuracy bars on a device, as a table and,
 // with --report, stability.md and stability.json.
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <memory>
 
 #include "cl/compute_context.h"
 #include "cli/lab_commands.h"
-#include "common/atomic_file.h"
+#include "report/report_files.h"
 #include "shading/phong_shader.h"
 #include "stability/catalogue.h"
 #include "stability/stability_report.h"
@@ -20,14 +19,6 @@ struct StabilityArguments {
   std::string device;
   std::string report_directory;
 };
-
-void write_text(const std::filesystem::path& file, const std::string& text) {
-  write_atomically(file, [&text](const std::filesystem::path& temp) {
-    std::ofstream out(temp, std::ios::binary);
-    out << text;
-    if (!out.flush()) throw std::runtime_error(temp.string() + ": cannot write");
-  });
-}
 
 void run_stability(const StabilityArguments& args) {
   ProgramCache cache(ProgramCache::default_directory());
@@ -46,8 +37,8 @@ void run_stability(const StabilityArguments& args) {
   if (!args.report_directory.empty()) {
     const std::filesystem::path directory(args.report_directory);
     std::filesystem::create_directories(directory);
-    write_text(directory / "stability.md", stability_markdown(run, bars));
-    write_text(directory / "stability.json", stability_json(run, bars));
+    write_text_file(directory / "stability.md", stability_markdown(run, bars));
+    write_text_file(directory / "stability.json", stability_json(run, bars));
     std::cout << "wrote " << (directory / "stability.md").string() << " and stability.json\n";
   }
   if (run.failures() > 0 || failed_bars > 0) {

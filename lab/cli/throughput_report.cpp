@@ -4,13 +4,12 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <map>
 
 #include <nlohmann/json.hpp>
 
-#include "common/atomic_file.h"
 #include "report/markdown_table.h"
+#include "report/report_files.h"
 #include "report/svg_chart.h"
 
 namespace phongcl::cli {
@@ -30,14 +29,6 @@ std::string significant(double value) {
 }
 
 std::string size_of(const ThroughputResult& r) { return std::to_string(r.width) + "x" + std::to_string(r.height); }
-
-void write_text(const std::filesystem::path& file, const std::string& text) {
-  write_atomically(file, [&](const std::filesystem::path& temp) {
-    std::ofstream out(temp, std::ios::binary);
-    out << text;
-    if (!out.flush()) throw std::runtime_error("cannot write " + temp.string());
-  });
-}
 
 // The scalar peer's time for the same case, which every speed-up is quoted against.
 std::map<std::string, double> scalar_medians(const std::vector<ThroughputResult>& results) {
@@ -165,7 +156,7 @@ void write_throughput_report(const std::string& directory, const MachineLimits& 
     chart.series[it->second].points.push_back({static_cast<double>(r.lights), r.mpix_lights_per_s, ""});
   }
   chart.title += " (" + sweep_size + ")";
-  if (!chart.series.empty()) write_text(dir / "mpix_lights_vs_lights.svg", render_svg(chart));
+  if (!chart.series.empty()) write_text_file(dir / "mpix_lights_vs_lights.svg", render_svg(chart));
 
   std::string md = "# Throughput: OpenCL kernel against C++ peers\n\n";
   md += "Measured with `phongcl bench --throughput` on " + inputs + ".\n\n";
@@ -195,8 +186,8 @@ void write_throughput_report(const std::string& directory, const MachineLimits& 
         "  n-th row where the reference would be too slow on the whole frame (\"rows 1/n\").\n\n";
   md += "## Results\n\n" + markdown_table(results) + "\n" + halide_note(results) + "\n";
   if (!chart.series.empty()) md += "![Mpixel-lights/s against lights](mpix_lights_vs_lights.svg)\n";
-  write_text(dir / "report.md", md);
-  write_text(dir / "results.json", results_json(machine, results, load));
+  write_text_file(dir / "report.md", md);
+  write_text_file(dir / "results.json", results_json(machine, results, load));
 }
 
 }  // namespace phongcl::cli

@@ -74,7 +74,7 @@ double measure_fma_peak(int repetitions) {
 std::string load_average() {
   std::ifstream in("/proc/loadavg");
   std::string one, five, fifteen;
-  in >> one >> five >> fifteen;
+  if (!(in >> one >> five >> fifteen)) return "n/a";
   return one + " " + five + " " + fifteen;
 }
 

@@ -22,7 +22,8 @@ double measure_triad_bandwidth(std::size_t elements, int repetitions);
 double measure_fma_peak(int repetitions);
 
 std::string cpu_model_name();
-// /proc/loadavg's 1, 5 and 15 minute averages, "7.21 8.30 10.87": what else the machine was doing.
+// /proc/loadavg's 1, 5 and 15 minute averages, "7.21 8.30 10.87": what else the machine was doing
+// ("n/a" where there is no /proc/loadavg).
 std::string load_average();
 
 // Both measurements with sizes for this kind of machine (3 x 256 MB arrays; about a second in all).

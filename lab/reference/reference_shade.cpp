@@ -1,5 +1,6 @@
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include "reference/reference.h"
 #include "reference/reference_area.h"
@@ -18,7 +19,6 @@ glm::dvec3 robust_normalize(const glm::dvec3& x) {
   return scaled / std::sqrt(glm::dot(scaled, scaled));
 }
 
-constexpr double kPi = 3.14159265358979323846;
 
 // falloff(d) * window(d) * cone(l) (docs/shading.md "The formula"), straight from the formula.
 double light_factor(const Light& light, const glm::dvec3& position, const glm::dvec3& l) {
@@ -32,9 +32,9 @@ double light_factor(const Light& light, const glm::dvec3& position, const glm::d
   double cone = 1.0;
   if (light.type == LightType::spot) {
     const double c = glm::dot(-l, glm::normalize(light.direction));
-    const double half_angle = light.cone_angle_deg / 2.0 * kPi / 180.0;
+    const double half_angle = light.cone_angle_deg / 2.0 * std::numbers::pi / 180.0;
     const double ci = std::cos(half_angle);
-    const double co = std::cos(half_angle + light.penumbra_angle_deg * kPi / 180.0);
+    const double co = std::cos(half_angle + light.penumbra_angle_deg * std::numbers::pi / 180.0);
     if (light.penumbra_angle_deg == 0.0) {
       cone = c >= ci ? 1.0 : 0.0;
     } else {

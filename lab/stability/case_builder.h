@@ -1,12 +1,17 @@
 #pragma once
 // What the catalogue's files share: a starting scene, the way a case is completed (oracle values,
 // absolute floor) and the tolerances, each justified once here.
+#include <limits>
 #include <string>
 
 #include "stability/gbuffer_builder.h"
 #include "stability/stability_case.h"
 
 namespace phongcl {
+
+// The G-buffer values the catalogue's hostile cases write.
+inline constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+inline constexpr float kInf = std::numeric_limits<float>::infinity();
 
 // Eye at the origin, so rebasing positions on the host is exact and the kernel sees exactly the
 // floats the case wrote; no ambient, no lights; material 0 is (ka, kd, ks, q).

@@ -1,6 +1,5 @@
 // Grazing and back-facing light, degenerate vectors, scenes far from the origin, lights near surfaces.
 #include <cmath>
-#include <limits>
 
 #include "stability/accuracy_bars.h"
 #include "stability/case_builder.h"
@@ -9,9 +8,6 @@
 namespace phongcl {
 
 namespace {
-
-constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
-constexpr float kInf = std::numeric_limits<float>::infinity();
 
 // One pixel at P with normal N under one directional light travelling along `direction`.
 StabilityCase one_pixel(std::string name, std::string group, std::string what, Scene scene, glm::vec3 position,

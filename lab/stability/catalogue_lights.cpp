@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <numbers>
 
 #include "stability/case_builder.h"
 #include "stability/catalogue.h"
@@ -12,7 +13,6 @@ namespace phongcl {
 
 namespace {
 
-constexpr long double kPi = 3.141592653589793238462643383279502884L;
 
 // Every light of these cases sits at the eye (the origin) and every pixel faces it: v = l = n, so
 // n.l = v.r = 1 exactly and a value is Li (kd + ks) F, F = falloff(d) * window(d) * cone(l).
@@ -150,7 +150,7 @@ glm::vec3 on_sphere(long double theta) {
 
 long double angle_of(const glm::vec3& p) { return std::atan2(static_cast<long double>(p.x), -static_cast<long double>(p.z)); }
 
-double degrees(long double radians) { return static_cast<double>(radians * 180 / kPi); }
+double degrees(long double radians) { return static_cast<double>(radians * 180 / std::numbers::pi_v<long double>); }
 
 StabilityCase spot_case(std::string name, std::string what, double cone_deg, double penumbra_deg,
                         const std::vector<glm::vec3>& pixels, double cosine_power = 0.0) {
@@ -175,7 +175,7 @@ StabilityCase spot_case(std::string name, std::string what, double cone_deg, dou
 std::vector<Scene> cones_moved(const Scene& scene, long double theta) {
   const long double rounding = theta * kEdgeRelative + kEdgeAbsolute;
   const Light& spot = scene.lights[0];
-  const long double inner = spot.cone_angle_deg / 2 * kPi / 180;
+  const long double inner = spot.cone_angle_deg / 2 * std::numbers::pi_v<long double> / 180;
   std::vector<Scene> moved(2, scene);
   moved[0].lights[0].cone_angle_deg = 2 * degrees(std::max(0.0L, inner - rounding));
   moved[1].lights[0].cone_angle_deg = 2 * degrees(inner + rounding);
@@ -188,7 +188,7 @@ std::vector<Scene> cones_moved(const Scene& scene, long double theta) {
 // but nothing between (a step); the axis, theta / 2, theta (1 -+ 2^-4) and a pixel well outside
 // must match the oracle's side.
 StabilityCase hard_spot(double cone_deg) {
-  const glm::vec3 edge = on_sphere(cone_deg / 2 * kPi / 180);
+  const glm::vec3 edge = on_sphere(cone_deg / 2 * std::numbers::pi_v<long double> / 180);
   const long double half_angle = angle_of(edge);
   const bool x_moves_more = std::fabs(edge.x) < std::fabs(edge.z);
   glm::vec3 below = edge, above = edge;
@@ -203,7 +203,7 @@ StabilityCase hard_spot(double cone_deg) {
                                          edge,
                                          above,
                                          on_sphere(half_angle * (1 + 0x1p-4L)),
-                                         on_sphere((half_angle + kPi) / 2)};
+                                         on_sphere((half_angle + std::numbers::pi_v<long double>) / 2)};
   StabilityCase c = spot_case("hard A=" + number(cone_deg), "spot of A = " + number(cone_deg) + " degrees, P = 0: "
                               "lit inside, 0 outside; the pixel on the edge and its float neighbours lit or 0, "
                               "nothing between", 2 * degrees(half_angle), 0.0, pixels);
@@ -222,10 +222,10 @@ StabilityCase hard_spot(double cone_deg) {
 // a value passes between the oracle's values for the cone moved by that rounding (a continuous
 // edge), then within the variant's bound for d's rounding times the window's amplification.
 StabilityCase soft_spot(double cone_deg, double penumbra_deg) {
-  const long double inner = cone_deg / 2 * kPi / 180, outer = inner + penumbra_deg * kPi / 180;
+  const long double inner = cone_deg / 2 * std::numbers::pi_v<long double> / 180, outer = inner + penumbra_deg * std::numbers::pi_v<long double> / 180;
   std::vector<glm::vec3> pixels = {on_sphere(0), on_sphere(inner / 2)};
   for (long double t : {0.25L, 0.5L, 0.75L}) pixels.push_back(on_sphere(inner + t * (outer - inner)));
-  pixels.push_back(on_sphere((outer + kPi) / 2));
+  pixels.push_back(on_sphere((outer + std::numbers::pi_v<long double>) / 2));
   StabilityCase c = spot_case("soft A=" + number(cone_deg) + " P=" + number(penumbra_deg),
                               "spot of A = " + number(cone_deg) + ", P = " + number(penumbra_deg) + " degrees" +
                                   (std::fabs(cone_deg / 2 + penumbra_deg - 90) < 1e-9 ? " (A/2 + P = 90)" : "") +
@@ -236,7 +236,7 @@ StabilityCase soft_spot(double cone_deg, double penumbra_deg) {
   // Half rounds P to 2^-11: theta moves by up to ~5e-4 rad, s by that over the penumbra, and the
   // smoothstep by up to ~7 times s's error, relatively, at a quarter of the way through; d by
   // 2^-11 relative, which the window multiplies by spot_window_amplification() (29).
-  const double penumbra_rad = penumbra_deg * static_cast<double>(kPi) / 180;
+  const double penumbra_rad = penumbra_deg * static_cast<double>(std::numbers::pi_v<long double>) / 180;
   const Expectation half = penumbra_rad > 0.1 ? Expectation::within(7 * 5e-4 / penumbra_rad + 0x1p-11 * spot_window_amplification(),
                                                                     "P rounded to half: theta moves ~5e-4 rad, the smoothstep "
                                                                     "7 times that over P; d 2^-11, times the window's 29")
@@ -279,7 +279,7 @@ std::vector<StabilityCase> spot_cases() {
   // out to grazing, 0.06 degrees inside a cone of 179.8 degrees (c = 2.7e-3).
   cases.push_back(spot_power(1e4, 60.0, {0, 1e-4L, 1e-3L, 5e-3L, 1e-2L, 2e-2L, 3e-2L, 0.5L}));
   cases.push_back(spot_power(1e6, 60.0, {0, 1e-5L, 1e-4L, 5e-4L, 1e-3L, 2e-3L, 3e-3L}));
-  cases.push_back(spot_power(1.0, 179.8, {0, kPi / 4, kPi * 80 / 180, kPi * 89 / 180, kPi * 89.8L / 180, kPi * 89.84L / 180}));
+  cases.push_back(spot_power(1.0, 179.8, {0, std::numbers::pi_v<long double> / 4, std::numbers::pi_v<long double> * 80 / 180, std::numbers::pi_v<long double> * 89 / 180, std::numbers::pi_v<long double> * 89.8L / 180, std::numbers::pi_v<long double> * 89.84L / 180}));
   return cases;
 }
 

@@ -1,6 +1,5 @@
 // HDR colours, half-storage range, many lights, and non-finite input pixels.
 #include <cmath>
-#include <limits>
 #include <random>
 
 #include "stability/case_builder.h"
@@ -9,9 +8,6 @@
 namespace phongcl {
 
 namespace {
-
-constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
-constexpr float kInf = std::numeric_limits<float>::infinity();
 
 // The surface faces the eye and the light shines straight down its normal: n.l = v.r = 1, so the
 // value is sum over lights of colour * (kd + ks) + ka La; every stored value is exact in half.

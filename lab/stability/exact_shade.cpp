@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include "reference/reference.h"
 
@@ -51,7 +52,6 @@ long double specular_factor(SpecularModel model, const Vec& n, const Vec& v, con
   }
 }
 
-constexpr long double kPi = 3.141592653589793238462643383279502884L;
 
 // 1 - cos(angle) without cancellation: 2 sin^2(angle / 2).
 long double versine(long double angle) {
@@ -75,8 +75,8 @@ long double shape_factor(const Light& light, const Vec& to_light, const Vec& l) 
   if (light.type == LightType::spot) {
     const Vec off_axis = sub(scale(l, -1), unit_or_zero(widen(light.direction)));
     const long double off = dot(off_axis, off_axis) / 2;  // 1 - c
-    const long double half_angle = light.cone_angle_deg / 2 * kPi / 180;
-    const long double inner = versine(half_angle), outer = versine(half_angle + light.penumbra_angle_deg * kPi / 180);
+    const long double half_angle = light.cone_angle_deg / 2 * std::numbers::pi_v<long double> / 180;
+    const long double inner = versine(half_angle), outer = versine(half_angle + light.penumbra_angle_deg * std::numbers::pi_v<long double> / 180);
     if (light.penumbra_angle_deg == 0) {
       cone = off <= inner ? 1 : 0;
     } else {
