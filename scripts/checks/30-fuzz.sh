@@ -20,11 +20,10 @@ export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 # PoCL's kernel cache is the main suite's where scripts/test.sh set it: the same kernels, compiled
 # once (five times faster here); what the sanitizers check is phongcl's host code, not PoCL's compiler.
 export POCL_CACHE_DIR="${POCL_CACHE_DIR:-$PWD/$sanitizer_dir/pocl-cache}"
-summary=()
-for target in scene gbuffer http; do
+# fuzz TARGET: one harness for $seconds; on a finding prints it, keeps the reproducer and fails.
+fuzz() {
+  local target=$1 log="$work/$1.log" options=()
   mkdir -p "$work/$target"  # new inputs go here, so the committed seeds stay as they are
-  log="$work/$target.log"
-  options=()
   if [ "$target" = http ]; then
     # use_sigaltstack=0: as in 20-sanitizers.sh (LLVM inside PoCL replaces the alternate stack).
     export ASAN_OPTIONS=detect_leaks=0:abort_on_error=1:use_sigaltstack=0
@@ -44,9 +43,21 @@ for target in scene gbuffer http; do
     cp "$work"/crash-* "$work"/leak-* "$work"/oom-* "$work"/timeout-* "$sanitizer_dir/fuzz-findings/" 2> /dev/null || true
     cp "$log" "$sanitizer_dir/fuzz-findings/"
     echo "fuzz_$target: FAILED (reproducer in $sanitizer_dir/fuzz-findings/, log above)"
-    exit 1
+    return 1
   fi
-  runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log")
+}
+# The two readers' harnesses are single-threaded: they share the machine's two cores. fuzz_http
+# shades with PoCL's threads, so it runs alone after them.
+fuzz scene & scene=$!
+fuzz gbuffer & gbuffer=$!
+failed=0
+wait "$scene" || failed=1
+wait "$gbuffer" || failed=1
+[ "$failed" = 0 ] || exit 1
+fuzz http
+summary=()
+for target in scene gbuffer http; do
+  runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$work/$target.log")
   summary+=("fuzz_$target ${runs} runs in ${seconds} s")
 done
 echo "fuzz: no crash, leak, oversize allocation or escaped exception: ${summary[*]}"
