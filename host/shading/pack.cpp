@@ -20,6 +20,8 @@
 
 namespace phongcl {
 
+using std::numbers::pi;
+
 namespace {
 
 // What rounding `value` to float loses.
@@ -41,7 +43,6 @@ const char* plane_name(const Recipe& recipe, int plane) {
   }
   return "shininess";
 }
-
 
 void append_link_mask(const Light& light, int words, std::vector<LinkWord>& links) {
   const std::size_t first = links.size();
@@ -128,8 +129,8 @@ LightShape light_shape(const Light& light) {
     store3(shape.axis, glm::normalize(light.direction));
     // 1 - cos(t) = 2 sin^2(t / 2): no cancellation for narrow cones.
     auto versine = [](double angle) { return 2.0 * std::sin(angle / 2.0) * std::sin(angle / 2.0); };
-    const double half_angle = light.cone_angle_deg / 2.0 * std::numbers::pi / 180.0;
-    const double inner = versine(half_angle), outer = versine(half_angle + light.penumbra_angle_deg * std::numbers::pi / 180.0);
+    const double half_angle = light.cone_angle_deg / 2.0 * pi / 180.0;
+    const double inner = versine(half_angle), outer = versine(half_angle + light.penumbra_angle_deg * pi / 180.0);
     shape.versine_inner = static_cast<float>(inner);
     shape.versine_outer = light.penumbra_angle_deg > 0.0 ? static_cast<float>(outer) : shape.versine_inner;
     shape.inverse_cone_width = light.penumbra_angle_deg > 0.0 ? static_cast<float>(1.0 / (outer - inner)) : 0.0f;
@@ -164,13 +165,13 @@ LightBounds light_bounds(const Light& light, const glm::dvec3& eye) {
   const glm::dvec3 position = light.position - eye;
   const bool spot = light.type == LightType::spot;
   // A spot's outer half angle (the cone and its penumbra) and its axis.
-  const double half_angle = spot ? (light.cone_angle_deg / 2.0 + light.penumbra_angle_deg) * std::numbers::pi / 180.0 : 0.0;
+  const double half_angle = spot ? (light.cone_angle_deg / 2.0 + light.penumbra_angle_deg) * pi / 180.0 : 0.0;
   const glm::dvec3 axis = spot ? glm::normalize(light.direction) : glm::dvec3(0.0);
   glm::dvec3 center = position;
   double radius = light.has_range() ? light.range : -1.0;
   if (spot && light.has_range()) {
     const double narrow = light.range / (2.0 * std::cos(half_angle));
-    if (half_angle <= std::numbers::pi / 4.0) {
+    if (half_angle <= pi / 4.0) {
       center += narrow * axis;
       radius = narrow;
     } else {
@@ -186,7 +187,7 @@ LightBounds light_bounds(const Light& light, const glm::dvec3& eye) {
   // The kernel's cone test rounds its cosine to about 1e-6, an angle of up to 1.5e-3 radians at the
   // axis: the culling cone is 2e-3 wider, and nothing is tested past 89 degrees.
   const double culling_half_angle = half_angle + 2e-3;
-  if (spot && culling_half_angle < 89.0 * std::numbers::pi / 180.0) {
+  if (spot && culling_half_angle < 89.0 * pi / 180.0) {
     store3(bounds.apex, position);
     store3(bounds.axis, axis);
     bounds.cone_cos = static_cast<float>(std::cos(culling_half_angle));

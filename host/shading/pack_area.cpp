@@ -8,8 +8,9 @@
 
 namespace phongcl {
 
-namespace {
+using std::numbers::pi;
 
+namespace {
 
 // Any unit vector orthogonal to `normal`: a disk's orientation does not matter.
 glm::dvec3 any_orthogonal(const glm::dvec3& normal) {
@@ -42,7 +43,7 @@ std::vector<AreaLightRecord> pack_area_lights(const Scene& scene, double scale) 
     store3(record.color, light.color * scale);
     record.shape = light.shape == AreaShape::rect ? AREA_RECT : AREA_DISK;
     record.inverse_range = light.has_range() ? static_cast<float>(1.0 / light.range) : 0.0f;
-    const double area = light.shape == AreaShape::rect ? light.size.x * light.size.y : std::numbers::pi / 4.0 * light.size.x * light.size.x;
+    const double area = light.shape == AreaShape::rect ? light.size.x * light.size.y : pi / 4.0 * light.size.x * light.size.x;
     record.area = static_cast<float>(area);
     records.push_back(record);
   }

@@ -7,8 +7,9 @@
 
 namespace phongcl {
 
-namespace {
+using std::numbers::pi;
 
+namespace {
 
 // The van der Corput radical inverse of i in base b: with bases 2, 3, 5 a Halton point set, even
 // in space for any count (no clusters, no grid artefacts).
@@ -29,7 +30,7 @@ bool reaches(const Light& light, const glm::dvec3& p) {
   const double d = glm::length(to_point);
   if (light.has_range() && !(d < light.range)) return false;
   if (light.type != LightType::spot) return true;
-  const double outer = (light.cone_angle_deg / 2.0 + light.penumbra_angle_deg) * std::numbers::pi / 180.0;
+  const double outer = (light.cone_angle_deg / 2.0 + light.penumbra_angle_deg) * pi / 180.0;
   return d > 0.0 && glm::dot(to_point / d, glm::normalize(light.direction)) > std::cos(outer);
 }
 
@@ -105,7 +106,7 @@ Scene with_many_lights(const Scene& scene, const GBuffer& gbuffer, int count, do
     light.color = hue(radical_inverse(i, 7));
     light.falloff = Falloff::quadratic;
     if (light.type == LightType::spot) {
-      const double tilt = 0.5 * radical_inverse(i, 11), turn = 2.0 * std::numbers::pi * radical_inverse(i, 13);
+      const double tilt = 0.5 * radical_inverse(i, 11), turn = 2.0 * pi * radical_inverse(i, 13);
       light.direction = {tilt * std::cos(turn), -1.0, tilt * std::sin(turn)};
       light.cone_angle_deg = 60.0 + 60.0 * radical_inverse(i, 17);
       light.penumbra_angle_deg = 10.0;

@@ -9,8 +9,9 @@
 
 namespace phongcl {
 
-namespace {
+using std::numbers::pi;
 
+namespace {
 
 struct GaussRule {
   std::vector<double> nodes, weights;  // on [0, 1]
@@ -23,7 +24,7 @@ const GaussRule& gauss_rule(int order) {
   if (found != rules.end()) return found->second;
   GaussRule rule;
   for (int i = 0; i < order; ++i) {
-    double x = std::cos(std::numbers::pi * (i + 0.75) / (order + 0.5)), derivative = 0.0;
+    double x = std::cos(pi * (i + 0.75) / (order + 0.5)), derivative = 0.0;
     for (int step = 0; step < 100; ++step) {
       double p0 = 1.0, p1 = x;
       for (int k = 2; k <= order; ++k) {
@@ -170,7 +171,7 @@ AreaIntegrals reference_area_integrals(const AreaLight& light, const glm::dvec3&
   // the rim where a (gu cos + gv sin) = -base, and two edges meet at one angle.
   const double a = light.size.x / 2.0;
   std::vector<double> phi_cuts;
-  auto add_angle = [&](double phi) { phi_cuts.push_back(phi - 2.0 * std::numbers::pi * std::floor(phi / (2.0 * std::numbers::pi))); };
+  auto add_angle = [&](double phi) { phi_cuts.push_back(phi - 2.0 * pi * std::floor(phi / (2.0 * pi))); };
   for (const HalfPlane& side : sides) {
     const double along = std::hypot(side.gu, side.gv);
     if (along > 0.0 && std::abs(side.base) < a * along) {
@@ -185,7 +186,7 @@ AreaIntegrals reference_area_integrals(const AreaLight& light, const glm::dvec3&
   std::vector<double> rho_cuts;  // a point near the centre sees a peak of width h there
   for (double step = h; step < a; step *= 8.0) rho_cuts.push_back(step);
   for (bool highlight : {false, true}) {
-    const double total = integrate_pieces(0.0, 2.0 * std::numbers::pi, phi_cuts, -1.0, order, [&](double phi) {
+    const double total = integrate_pieces(0.0, 2.0 * pi, phi_cuts, -1.0, order, [&](double phi) {
       const double cosine = std::cos(phi), sine = std::sin(phi);
       std::vector<std::pair<double, double>> lines;
       for (const HalfPlane& side : sides)

@@ -7,6 +7,8 @@
 
 namespace phongcl {
 
+using std::numbers::pi;
+
 namespace {
 
 // normalize() with the degenerate-input policy the kernel also follows: the zero vector maps to
@@ -18,7 +20,6 @@ glm::dvec3 robust_normalize(const glm::dvec3& x) {
   const glm::dvec3 scaled = x / largest;
   return scaled / std::sqrt(glm::dot(scaled, scaled));
 }
-
 
 // falloff(d) * window(d) * cone(l) (docs/shading.md "The formula"), straight from the formula.
 double light_factor(const Light& light, const glm::dvec3& position, const glm::dvec3& l) {
@@ -32,9 +33,9 @@ double light_factor(const Light& light, const glm::dvec3& position, const glm::d
   double cone = 1.0;
   if (light.type == LightType::spot) {
     const double c = glm::dot(-l, glm::normalize(light.direction));
-    const double half_angle = light.cone_angle_deg / 2.0 * std::numbers::pi / 180.0;
+    const double half_angle = light.cone_angle_deg / 2.0 * pi / 180.0;
     const double ci = std::cos(half_angle);
-    const double co = std::cos(half_angle + light.penumbra_angle_deg * std::numbers::pi / 180.0);
+    const double co = std::cos(half_angle + light.penumbra_angle_deg * pi / 180.0);
     if (light.penumbra_angle_deg == 0.0) {
       cone = c >= ci ? 1.0 : 0.0;
     } else {
