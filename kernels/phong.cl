@@ -31,6 +31,7 @@ typedef struct {
   vec3 p_rest;     /* with POSITION_REST, what p's float rounding lost (p + p_rest is the host's double) */
   vec3 n, v;       /* unit normal; unit vector to the eye, normalize(-p) (zero where degenerate) */
   realv shininess; /* q */
+  realv highlight_cutoff; /* with SPECULAR, highlight_cutoff(q) */
   realv specular_model; /* the lane's model number (specular.h); read only where lanes may differ */
   intv material;   /* material index, PHONGCL_BACKGROUND in background lanes */
 } Surface;
@@ -95,8 +96,8 @@ static inline realv pixel_plane(const PixelPlanes* pixels, int plane) {
  * square root before it must: the loop is latency-bound, and waiting makes a point light's chain 50%
  * longer. n, v and q come by value, not as the Surface: with the struct's address passed this deep,
  * PoCL keeps a copy of it per work-item (4 KB each with double16, past the work-group's stack). */
-void add_lobes(LightSums* sums, vec3 n, vec3 v, realv shininess, realv model, vec3 toward, realv inverse,
-                             UNIFORM_SPACE const float* color, realv weight) {
+void add_lobes(LightSums* sums, vec3 n, vec3 v, realv shininess, realv cutoff, realv model, vec3 toward,
+               realv inverse, UNIFORM_SPACE const float* color, realv weight) {
   const realv n_dot = dot3(n, toward);
   const realv ndl = n_dot * inverse;
   const realv lit_ndl = SELECT(ndl > 0, ndl * weight, 0); /* back-facing or grazing: nothing from this light */
@@ -104,7 +105,12 @@ void add_lobes(LightSums* sums, vec3 n, vec3 v, realv shininess, realv model, ve
   sums->diffuse.y += NONNEGATIVE_TIMES(color[1], lit_ndl);
   sums->diffuse.z += NONNEGATIVE_TIMES(color[2], lit_ndl);
   if (SPECULAR) {
-    const realv spec = specular_lobe(n, v, toward, inverse, n_dot, shininess, model);
+    const LobeCosine lobe = lobe_cosine(n, v, toward, inverse, n_dot, model);
+    /* The power is half of a light's instructions and most of its dependency chain. Where every
+     * lane faces away or is below the cutoff the terms below are 0, and adding them changes no bit:
+     * skipped (half of the vectors and lights of the throughput bench's 256 lights). */
+    if (all_lanes(LANE_MASK(ndl <= 0) | no_highlight(lobe, cutoff))) return;
+    const realv spec = specular_power(lobe.cosine, lobe.one_minus_cosine, shininess);
     realv lit_spec = SELECT(ndl > 0, NONNEGATIVE_TIMES(spec, weight), 0);
     /* A normalised lobe takes the cosine: lit_ndl is F n.l, and 0 where n.l <= 0. */
     if (NORMALIZED_LOBES) lit_spec = SELECT(normalized_model(model) != 0, NONNEGATIVE_TIMES(spec, lit_ndl), lit_spec);
@@ -157,8 +163,8 @@ static inline void add_point_light(LightSums* sums, const Surface* surface, cons
   const realv gate = link_gate(link_mask, surface->material);
   realv weight = POINT_SHAPES ? shape_weight(shape, toward, inverse, distance, inverse_distance, gate) : gate;
   if (SHADOWS) weight = shadowed_weight(weight, surface, lights, position, 0, lights->point_casters[i]);
-  add_lobes(sums, surface->n, surface->v, surface->shininess, surface->specular_model, toward, inverse, light->color,
-            weight);
+  add_lobes(sums, surface->n, surface->v, surface->shininess, surface->highlight_cutoff, surface->specular_model,
+            toward, inverse, light->color, weight);
 }
 
 /* What a directional light adds; F is its linking, times its visibility with SHADOWS. */
@@ -168,7 +174,8 @@ static inline void add_directional_light(LightSums* sums, const Surface* surface
   const vec3 l = make_vec3(light->to_light[0], light->to_light[1], light->to_light[2]);
   realv weight = link_gate(link_mask, surface->material);
   if (SHADOWS) weight = shadowed_weight(weight, surface, lights, l, 1, lights->directional_casters[k]);
-  add_lobes(sums, surface->n, surface->v, surface->shininess, surface->specular_model, l, 1, light->color, weight);
+  add_lobes(sums, surface->n, surface->v, surface->shininess, surface->highlight_cutoff, surface->specular_model, l,
+            1, light->color, weight);
 }
 
 /* An area light's hard shadow: its E and S are 0 in the lanes where the one ray to the emitter's
@@ -303,6 +310,7 @@ static inline void shade_pixel(Terms* terms, const PixelPlanes* pixels, const Ma
   Surface surface;
   surface.material = materials->index;
   surface.shininess = PER_PIXEL_Q ? pixel_plane(pixels, PLANE_Q) : material_field(materials, MATERIAL_SHININESS);
+  surface.highlight_cutoff = SPECULAR ? highlight_cutoff(surface.shininess) : 0;
   surface.specular_model = MIXED_SPECULAR_MODELS ? material_field(materials, MATERIAL_SPECULAR_MODEL) : 0;
   surface.p = PIXEL_PLANE3(pixels, PLANE_PX);
   const realv zero = 0;

@@ -147,6 +147,9 @@ vec3 rescaled(vec3 v) {
   return scale3(v, AS_FLOATV((254 - exponent) << 23));
 }
 
+/* Where specular_exponent() takes the logarithm of 1 - e itself, for e below this, rather than of the cosine. */
+#define PHONGCL_NEAR_PEAK 0.29f
+
 /* q * log2(1 - e) for 0 <= e < 1, as straight-line code (PoCL's log2 is a table lookup with scalar
  * gathers, and a call that spills every vector register). Cephes logf: x = 2^k f, f in
  * [sqrt(1/2), sqrt(2)), ln f = m - m^2/2 + m^3 P(m) with m = f - 1 exact, about 1 ulp.
@@ -161,7 +164,7 @@ realv specular_exponent(realv cos_vr, realv e, realv q) {
   const intv offset_bits = AS_INTV(AS_UINTV(cos_vr * 0x1p23f) - 0x3f3504f3u);
   const intv exponent = (offset_bits >> 23) - 23;
   const realv f = AS_FLOATV((offset_bits & 0x007fffff) + 0x3f3504f3);
-  const intv near_peak = e < 0.29f;
+  const intv near_peak = e < PHONGCL_NEAR_PEAK;
   const realv m = SELECT(near_peak, -e, f - 1);
   const realv qk = SELECT(near_peak, 0, q * INT_TO_FLOATV(exponent));
   const realv q_log2e = q * M_LOG2E_F;
@@ -255,6 +258,27 @@ realv specular_power(realv cos_vr, realv one_minus_cos, realv q) {
   const realv power = exp2_nonpositive(specular_exponent(cos_vr, one_minus_cos, q));
   return SELECT(q == 0, 1, SELECT(cos_vr > 0, power, 0));
 }
+
+/* A lobe's cosine and 1 - cosine, the latter computed without cancellation: specular_power()'s arguments. */
+typedef struct {
+  realv cosine, one_minus_cosine;
+} LobeCosine;
+
+/* The cosine below which specular_power(cosine, 1 - cosine, q) is certainly 0, so that the light
+ * loop can leave the power out where no lane reaches it (no_highlight); -MAXFLOAT where q = 0 (the
+ * power is 1 everywhere). In float the power is 0 below 2^-126, and a cosine below 2^(-128 / q) takes
+ * it there with a factor of 4 to spare (the power's error is a few ulp), where the logarithm comes
+ * from the cosine (1 - cosine >= PHONGCL_NEAR_PEAK): nearer the peak it comes from 1 - cosine, whose
+ * rounding a cutoff on the cosine does not bound. Double keeps subnormals: only cosines below 0. */
+#if PHONGCL_DOUBLE
+realv highlight_cutoff(realv q) { return SELECT(q > 0, 0, -MAXFLOAT); }
+intv no_highlight(LobeCosine lobe, realv cutoff) { return LANE_MASK(lobe.cosine < cutoff); }
+#else
+realv highlight_cutoff(realv q) { return SELECT(q > 0, exp2_nonpositive(-128 / q), -MAXFLOAT); }
+intv no_highlight(LobeCosine lobe, realv cutoff) {
+  return LANE_MASK(lobe.one_minus_cosine >= PHONGCL_NEAR_PEAK) & LANE_MASK(lobe.cosine < cutoff);
+}
+#endif
 
 /* sum += value, with the rounding error carried in compensation (Kahan). Where a value can be +Inf
  * (`infinite_values`), Inf - Inf would make the compensation NaN: it is kept 0 there, and the sum +Inf. */

@@ -118,6 +118,48 @@ TEST(Specular, AGbufferWithEveryCoefficientShadesPhong) {
   EXPECT_EQ(shader.shade(scene, gbuffer, {}).image.rgba, result.image.rgba);
 }
 
+// The light loop leaves the specular power out where every lane's cosine is below
+// highlight_cutoff(q) (kernels/phong_math.h), whose power is 0 after the flush below 2^-126. Here
+// every pixel is just above that flush: n = l = +z, so r = n and v.r = v.z, which the pixels'
+// positions spread from 0.2565 to 0.30 (q = 64: powers from 2^-125.6 to 2^-111; the flush is at
+// 0.2555, the cutoff at 0.25). A light of 2^110 makes them visible, and each must be what the
+// reference says, not 0: a cutoff any higher would drop whole vectors of them.
+TEST(Specular, HighlightsJustAboveTheFlushAreShaded) {
+  PHONGCL_REQUIRE_DEVICE(shader);
+  Scene scene;
+  scene.camera.eye = {0.0, 0.0, 0.0};
+  scene.ambient = glm::dvec3(0.0);
+  scene.lights.push_back({LightType::directional, {}, {0.0, 0.0, -1.0}, glm::dvec3(std::ldexp(1.0, 110))});
+  scene.materials.push_back({"needle", glm::dvec3(0.0), glm::dvec3(0.0), glm::dvec3(1.0), 64.0});
+  GBuffer gbuffer;
+  gbuffer.width = 64;
+  gbuffer.height = 1;
+  gbuffer.data_window = gbuffer.display_window = PixelWindow{0, 0, gbuffer.width - 1, 0};
+  for (auto* planes : {&gbuffer.position, &gbuffer.normal})
+    for (Plane& plane : *planes) plane.assign(gbuffer.pixel_count(), 0.0f);
+  gbuffer.material.assign(gbuffer.pixel_count(), 0.0f);
+  for (int i = 0; i < gbuffer.width; ++i) {
+    const double cosine = 0.2565 + (0.30 - 0.2565) * i / (gbuffer.width - 1);  // v.z at P = (x, 0, -1)
+    gbuffer.position[0][i] = static_cast<float>(std::sqrt(1.0 / (cosine * cosine) - 1.0));
+    gbuffer.position[2][i] = -1.0f;
+    gbuffer.normal[2][i] = 1.0f;
+  }
+  const Image want = reference_image(scene, gbuffer);
+  for (Precision precision : {Precision::precise, Precision::fast, Precision::double_precision}) {
+    if (precision == Precision::double_precision && !shader.compute().device.info.has_fp64) continue;
+    for (int lanes : {1, 16}) {
+      ShadeOptions options;
+      options.precision = precision;
+      options.lanes = lanes;
+      const Image got = shader.shade(scene, gbuffer, options).image;
+      const ErrorStats stats = shading_error(got, want);
+      EXPECT_LE(stats.max_rel, kRelativeBound) << to_string(precision) << ", " << lanes << " lanes: "
+                                               << describe_worst(stats);
+      EXPECT_GT(got.pixel(0)[0], 0.0f) << to_string(precision) << ", " << lanes << " lanes";
+    }
+  }
+}
+
 TEST(Specular, TheRecipeCompilesInOnlyTheModelsUsed) {
   PHONGCL_REQUIRE_DEVICE(shader);
   const DeviceInfo& device = shader.compute().device.info;
