@@ -109,7 +109,7 @@ void add_lobes(LightSums* sums, vec3 n, vec3 v, realv shininess, realv cutoff, r
     /* The power is half of a light's instructions and most of its dependency chain. Where every
      * lane faces away or is below the cutoff the terms below are 0, and adding them changes no bit:
      * skipped (half of the vectors and lights of the throughput bench's 256 lights). */
-    if (all_lanes(LANE_MASK(ndl <= 0) | no_highlight(lobe, cutoff))) return;
+    if (all_lanes(LANE_MASK(ndl <= 0) | LANE_MASK(lobe.cosine < cutoff))) return;
     const realv spec = specular_power(lobe.cosine, lobe.one_minus_cosine, shininess);
     realv lit_spec = SELECT(ndl > 0, NONNEGATIVE_TIMES(spec, weight), 0);
     /* A normalised lobe takes the cosine: lit_ndl is F n.l, and 0 where n.l <= 0. */

@@ -265,19 +265,17 @@ typedef struct {
 } LobeCosine;
 
 /* The cosine below which specular_power(cosine, 1 - cosine, q) is certainly 0, so that the light
- * loop can leave the power out where no lane reaches it (no_highlight); -MAXFLOAT where q = 0 (the
- * power is 1 everywhere). In float the power is 0 below 2^-126, and a cosine below 2^(-128 / q) takes
- * it there with a factor of 4 to spare (the power's error is a few ulp), where the logarithm comes
- * from the cosine (1 - cosine >= PHONGCL_NEAR_PEAK): nearer the peak it comes from 1 - cosine, whose
- * rounding a cutoff on the cosine does not bound. Double keeps subnormals: only cosines below 0. */
+ * loop can leave the power out where no lane's cosine reaches it; -MAXFLOAT where q = 0 (the power
+ * is 1 everywhere). A cosine <= 0 gives 0 in every variant (specular_power's select), and double
+ * keeps subnormals, so that is its cutoff. In float the power is 0 below 2^-126, and a cosine below
+ * 2^(-128 / q) takes it there with a factor of 4 to spare (the power's error is a few ulp) where the
+ * logarithm comes from the cosine: below 0.7, where 1 - cosine of unit vectors is above
+ * PHONGCL_NEAR_PEAK. Nearer the peak it comes from 1 - cosine, whose rounding a cutoff on the cosine
+ * does not bound, so the cutoff is at most 0.7. */
 #if PHONGCL_DOUBLE
 realv highlight_cutoff(realv q) { return SELECT(q > 0, 0, -MAXFLOAT); }
-intv no_highlight(LobeCosine lobe, realv cutoff) { return LANE_MASK(lobe.cosine < cutoff); }
 #else
-realv highlight_cutoff(realv q) { return SELECT(q > 0, exp2_nonpositive(-128 / q), -MAXFLOAT); }
-intv no_highlight(LobeCosine lobe, realv cutoff) {
-  return LANE_MASK(lobe.one_minus_cosine >= PHONGCL_NEAR_PEAK) & LANE_MASK(lobe.cosine < cutoff);
-}
+realv highlight_cutoff(realv q) { return SELECT(q > 0, fmin(exp2_nonpositive(-128 / q), 0.7f), -MAXFLOAT); }
 #endif
 
 /* sum += value, with the rounding error carried in compensation (Kahan). Where a value can be +Inf
