@@ -30,7 +30,8 @@ static inline LobeCosine phong_cosine(vec3 n, vec3 v, vec3 toward, realv inverse
  * per component (fma), h = s / |s|, and near the peak n - h = n - s / |s| with one more (fma):
  * 1 - n.h = |n - h|^2 / 2 without cancellation. A length error d in n or h scales it by 1 + d
  * (plus d^2 / 2), so rsqrt's rounding is a relative error, not one q multiplies; s's own rounding is
- * all that q amplifies, as w's is in phong_cosine. s = 0 (v = -l, the eye behind the surface) has no half vector: n.h is taken as 0. */
+ * all that q amplifies, as w's is in phong_cosine. s = 0 (v = -l, the eye behind the surface) has
+ * no half vector: n.h is taken as 0. */
 static inline LobeCosine blinn_cosine(vec3 n, vec3 v, vec3 toward, realv inverse) {
   const vec3 s = make_vec3(fma(toward.x, inverse, v.x), fma(toward.y, inverse, v.y), fma(toward.z, inverse, v.z));
   const realv s_length_sq = dot3(s, s);
