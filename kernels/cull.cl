@@ -166,38 +166,74 @@ int4 reaches_boxes(LightBounds light, const BoxBlock* block) {
   return mask;
 }
 
-/* Appends light k to the list of the block's slot when its lane of `mask` is set. */
-void keep_where(int lane, uint k, __global uint* list, uint* count) {
-  if (lane) list[(*count)++] = k;
+/* Where a light's bounding sphere holds all of each box (its farthest corner inside; no range: every
+ * box). Such a light reaches every row of a tile, or nearly (a spot's sphere bounds its cone, not
+ * its range), so the shading leaves out its range test per row: a shortcut only, as the window is
+ * still taken per pixel. */
+int4 sphere_holds_boxes(LightBounds light, const BoxBlock* block) {
+  if (light.radius < 0) return (int4)-1;
+  float4 farthest_sq = 0;
+  for (int axis = 0; axis < 3; ++axis) {
+    const float4 farthest = fmax(fabs(block->lo[axis] - light.center[axis]), fabs(block->hi[axis] - light.center[axis]));
+    farthest_sq += farthest * farthest;
+  }
+  return farthest_sq <= light.radius * light.radius;
+}
+
+/* A box's list as it is written: the lights that hold the box lead it (with lead_holding), from the
+ * front of its room, the others from the back. */
+typedef struct {
+  __global uint* lights;
+  uint holding, partial;
+} KeptList;
+
+void keep_where(int lane, int holds, uint k, uint room, KeptList* list) {
+  if (!lane) return;
+  if (holds) list->lights[list->holding++] = k;
+  else list->lights[room - 1 - list->partial++] = k;
 }
 
 /* One work-item per block of four boxes (block_boxes[b]: their indices, PHONGCL_NO_BOX for none).
  * Its candidates are candidates[candidate_first[b] ...], candidate_count[b] of them: every light for
  * the coarsest level, the list of the box one level up (whose 2 x 2 block this is) for the others.
- * The ones that reach box t are written in order from kept_lights[kept_first[t]], where there is room
- * for all of them, and counted in kept_count[t]. */
+ * The ones that reach box t are written from kept_lights[kept_first[t]], where there is room for all
+ * of them, and counted in kept_count[t]. With lead_holding (the tiles' level) the lights whose
+ * sphere holds all of the box come first, in order, counted in kept_holding[t], and the rest follow
+ * in reverse order: the shading tests only those against its pixels' ranges. Otherwise every light
+ * is in order. */
 __kernel void keep_box_lights(__global const TileBox* restrict boxes, __global const LightBounds* restrict lights,
                               __global const uint4* restrict block_boxes, __global const uint* restrict candidates,
                               __global const uint* restrict candidate_first,
                               __global const uint* restrict candidate_count, __global const uint* restrict kept_first,
-                              __global uint* restrict kept_lights, __global uint* restrict kept_count) {
+                              __global uint* restrict kept_lights, __global uint* restrict kept_count,
+                              uint lead_holding, __global uint* restrict kept_holding) {
   const uint b = get_global_id(0);
   const uint4 index = block_boxes[b];
   const uint slots[4] = {index.s0, index.s1, index.s2, index.s3};
   const BoxBlock block = box_block(boxes, slots);
-  __global uint* kept[4];
-  for (int s = 0; s < 4; ++s) kept[s] = kept_lights + (slots[s] == PHONGCL_NO_BOX ? 0 : kept_first[slots[s]]);
-  uint count[4] = {0, 0, 0, 0};
-  const uint first = candidate_first[b], end = any_box(block.shaded) ? first + candidate_count[b] : first;
+  KeptList kept[4];
+  for (int s = 0; s < 4; ++s) {
+    kept[s].lights = kept_lights + (slots[s] == PHONGCL_NO_BOX ? 0 : kept_first[slots[s]]);
+    kept[s].holding = kept[s].partial = 0;
+  }
+  const uint room = candidate_count[b];
+  const uint first = candidate_first[b], end = any_box(block.shaded) ? first + room : first;
   for (uint j = first; j < end; ++j) {
     const uint k = candidates[j];
     const int4 mask = reaches_boxes(lights[k], &block);
     if (!any_box(mask)) continue;
-    keep_where(mask.s0, k, kept[0], &count[0]);
-    keep_where(mask.s1, k, kept[1], &count[1]);
-    keep_where(mask.s2, k, kept[2], &count[2]);
-    keep_where(mask.s3, k, kept[3], &count[3]);
+    /* Without lead_holding every light is "holding": written in order from the front. */
+    const int4 holds = lead_holding ? sphere_holds_boxes(lights[k], &block) : (int4)-1;
+    keep_where(mask.s0, holds.s0, k, room, &kept[0]);
+    keep_where(mask.s1, holds.s1, k, room, &kept[1]);
+    keep_where(mask.s2, holds.s2, k, room, &kept[2]);
+    keep_where(mask.s3, holds.s3, k, room, &kept[3]);
   }
-  for (int s = 0; s < 4; ++s)
-    if (slots[s] != PHONGCL_NO_BOX) kept_count[slots[s]] = count[s];
+  for (int s = 0; s < 4; ++s) {
+    if (slots[s] == PHONGCL_NO_BOX) continue;
+    /* The rest down to just after the holding ones: the copy never overwrites an entry before reading it. */
+    for (uint i = 0; i < kept[s].partial; ++i) kept[s].lights[kept[s].holding + i] = kept[s].lights[room - kept[s].partial + i];
+    kept_count[slots[s]] = kept[s].holding + kept[s].partial;
+    if (lead_holding) kept_holding[slots[s]] = kept[s].holding;
+  }
 }

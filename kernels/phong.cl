@@ -55,6 +55,8 @@ typedef struct {
   UNIFORM_SPACE const LinkWord* directional_links;   /* LIGHT_LINKING words per directional light */
   __global const uint* point_list;                   /* TILED_CULLING: the work-item's tile's lights */
   int point_count, directional_count;                /* lights to loop over (of point_list when culled) */
+  int point_holding;                                 /* TILED_CULLING: the first this many of point_list hold
+                                                        all of the tile in their bounds */
   __global const AreaLightRecord* area;              /* AREA_LIGHTS: rects and disks */
   int area_count;
   __global const uint* point_casters;                /* SHADOWS: where point light i casts shadows, 1 + its
@@ -133,6 +135,10 @@ static inline SHADOW_INLINE realv shadowed_weight(realv weight, const Surface* s
   return SELECT(TO_REALV(blocked) != 0, 0, weight);
 }
 
+/* A point light's position and, with POSITION_REST, its rest (layout.h). Macros, as PIXEL_PLANE3. */
+#define LIGHT_POSITION(light) make_vec3((light)->position[0], (light)->position[1], (light)->position[2])
+#define LIGHT_REST(light) make_vec3((light)->position_rest[0], (light)->position_rest[1], (light)->position_rest[2])
+
 /* L - P for a point light at `position` (+ `rest` with POSITION_REST). With the rests, the leading
  * parts' difference is exact where the light is near the surface (Sterbenz: within a factor of 2),
  * and the rests add what float positions relative to the eye lost: a light 1e-4 from a surface 1e4
@@ -146,16 +152,14 @@ static inline vec3 light_offset(vec3 position, vec3 rest, const Surface* surface
 }
 
 /* What a point or spot light adds, F from its shape and linking mask, times its visibility with
- * SHADOWS. In a tile's list a light
- * whose F is 0 in every lane is left early: that changes no bit of the sums. */
+ * SHADOWS. In a tile's list a spot whose cone leaves out every lane is left early: that changes no
+ * bit of the sums. */
 static inline void add_point_light(LightSums* sums, const Surface* surface, const Lights* lights, int i) {
   UNIFORM_SPACE const PointLight* light = &lights->point[i];
   UNIFORM_SPACE const LightShape* shape = &lights->point_shapes[i];
   UNIFORM_SPACE const LinkWord* link_mask = &lights->point_links[i * LIGHT_LINKING];
-  const vec3 position = make_vec3(light->position[0], light->position[1], light->position[2]);
-  const vec3 rest = make_vec3(light->position_rest[0], light->position_rest[1], light->position_rest[2]);
-  vec3 toward = light_offset(position, rest, surface);
-  if (TILED_CULLING && RANGE_WINDOW && beyond_range_in_every_lane(toward, (realv)shape->inverse_range)) return;
+  const vec3 position = LIGHT_POSITION(light);
+  vec3 toward = light_offset(position, LIGHT_REST(light), surface);
   realv distance = 0, inverse_distance = 0; /* spots alone read neither */
   const realv inverse = NEEDS_DISTANCE ? distance_in_range(&toward, &distance, &inverse_distance)
                                        : inverse_length_in_range(&toward);
@@ -222,6 +226,40 @@ void add_block(LightSums* sums, LightSums* compensation, const LightSums* block)
   kahan_add(&sums->specular.z, &compensation->specular.z, block->specular.z, WEIGHT_CAN_OVERFLOW);
 }
 
+/* Sums the point lights (of the tile's list with TILED_CULLING) into `sums` and `compensation`, a
+ * block at a time (sum_lights), with LIGHT_GROUPS `group`'s only. A tile's list leads with the lights
+ * whose bounds hold all of the tile (cull.cl); of the others each block first keeps those within
+ * range of some lane, counting rather than branching: a light left out changes no bit of the sums
+ * (its window is 0 in every lane), and which of a tile's lights miss a row of it follows no pattern a
+ * branch predictor learns (a mispredicted skip cost about what shading the light does). */
+static inline void sum_point_lights(LightSums* sums, LightSums* compensation, const Surface* surface,
+                                    const Lights* lights, uint group) {
+  const realv zero = 0;
+  const LightSums no_light = {{zero, zero, zero}, {zero, zero, zero}};
+  for (int first = 0; first < lights->point_count; first += PHONGCL_LIGHT_BLOCK) {
+    const int last = min(first + PHONGCL_LIGHT_BLOCK, lights->point_count);
+    LightSums block = no_light;
+    if (TILED_CULLING) {
+      int kept[PHONGCL_LIGHT_BLOCK], count = 0;
+      for (int k = first; k < last; ++k) {
+        const int i = (int)lights->point_list[k];
+        UNIFORM_SPACE const PointLight* light = &lights->point[i];
+        const bool beyond = RANGE_WINDOW && k >= lights->point_holding &&
+                            beyond_range_in_every_lane(light_offset(LIGHT_POSITION(light), LIGHT_REST(light), surface),
+                                                       (realv)lights->point_shapes[i].inverse_range);
+        const bool in_group = !LIGHT_GROUPS || lights->point_groups[i] == group;
+        kept[count] = i;
+        count += !beyond && in_group;
+      }
+      for (int k = 0; k < count; ++k) add_point_light(&block, surface, lights, kept[k]);
+    } else {
+      for (int k = first; k < last; ++k)
+        if (!LIGHT_GROUPS || lights->point_groups[k] == group) add_point_light(&block, surface, lights, k);
+    }
+    add_block(sums, compensation, &block);
+  }
+}
+
 /* The lights' sums for one vector of pixels, with LIGHT_GROUPS those of `group`'s lights only (the
  * test is uniform: every lane skips the same lights). Lights are summed in blocks of
  * PHONGCL_LIGHT_BLOCK in plain float, and the block sums compensated (Kahan): the error stays a few
@@ -232,16 +270,7 @@ static inline void sum_lights(LightSums* out, const Surface* surface, const Ligh
   const realv zero = 0;
   const LightSums no_light = {{zero, zero, zero}, {zero, zero, zero}};
   LightSums sums = no_light, compensation = no_light;
-  if (POINT_LIGHTS)
-    for (int first = 0; first < lights->point_count; first += PHONGCL_LIGHT_BLOCK) {
-      LightSums block = no_light;
-      for (int k = first; k < min(first + PHONGCL_LIGHT_BLOCK, lights->point_count); ++k) {
-        const int i = TILED_CULLING ? (int)lights->point_list[k] : k;
-        if (LIGHT_GROUPS && lights->point_groups[i] != group) continue;
-        add_point_light(&block, surface, lights, i);
-      }
-      add_block(&sums, &compensation, &block);
-    }
+  if (POINT_LIGHTS) sum_point_lights(&sums, &compensation, surface, lights, group);
   if (DIRECTIONAL_LIGHTS)
     for (int first = 0; first < lights->directional_count; first += PHONGCL_LIGHT_BLOCK) {
       LightSums block = no_light;
@@ -386,9 +415,10 @@ __kernel void phong_shade(
     __global float* restrict out_rgba, __global float* restrict out_terms,
     /* light shapes and linking masks (light_shape.h), read only when compiled in */
     UNIFORM_SPACE const LightShape* restrict point_shapes, UNIFORM_SPACE const LinkWord* restrict links,
-    /* tiled culling (cull.cl): tile t's point lights are tile_lights[tile_offsets[t] ...] */
+    /* tiled culling (cull.cl): tile t's point lights are tile_lights[tile_offsets[t] ...], tile_counts[t] of
+     * them, the first tile_holding[t] holding all of the tile in their bounds */
     __global const uint* restrict tile_offsets, __global const uint* restrict tile_counts,
-    __global const uint* restrict tile_lights, const TileGrid grid,
+    __global const uint* restrict tile_holding, __global const uint* restrict tile_lights, const TileGrid grid,
     /* shadows (shadow.h), read only with SHADOWS: a word per light (point lights', then directional
      * lights', then area lights'), 1 + its place among the casters where it casts shadows, else 0;
      * the geometry (shadow_layout.h), the screen march's depth plane and the frame's shadow scalars;
@@ -419,6 +449,7 @@ __kernel void phong_shade(
       .directional_links = links + frame.point_count * LIGHT_LINKING,
       .point_list = tile_lights + (TILED_CULLING ? tile_offsets[tile] : 0),
       .point_count = TILED_CULLING ? (int)tile_counts[tile] : POINT_COUNT > 0 ? POINT_COUNT : frame.point_count,
+      .point_holding = TILED_CULLING ? (int)tile_holding[tile] : 0,
       .directional_count = DIRECTIONAL_COUNT > 0 ? DIRECTIONAL_COUNT : frame.directional_count,
       .area = area_lights,
       .area_count = frame.area_count,

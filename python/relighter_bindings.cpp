@@ -100,6 +100,7 @@ py::dict report(const Relighter& relighter) {
     culling["tile_size"] = r.culling.tile_size;
     culling["shaded_tiles"] = r.culling.shaded_tiles;
     culling["mean_lights_per_tile"] = r.culling.mean_lights_per_tile();
+    culling["mean_holding_per_tile"] = r.culling.mean_holding_per_tile();
     culling["max_lights_per_tile"] = r.culling.max_lights_per_tile;
     d["culling"] = culling;
   }

@@ -86,6 +86,7 @@ void launch_once(const ComputeContext& compute, const Recipe& recipe, const std:
                            .links = table,
                            .tile_offsets = table,
                            .tile_counts = table,
+                           .tile_holding = table,
                            .tile_lights = table};
   arguments.frame.plane_stride = static_cast<cl_uint>(lanes);
   arguments.grid = {static_cast<cl_uint>(lanes), 16, 1, 0};

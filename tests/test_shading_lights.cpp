@@ -209,7 +209,8 @@ std::pair<Scene, GBuffer> default_scene_with_many_lights(int width, int height, 
 // tiled culling must give the unculled image to float rounding (a culled light adds exactly 0;
 // only the grouping of the compensated sum differs) and match the reference, for lanes 1 and 16,
 // tiles of 16, 6 and 5 (their boxes taken in bands of 4, 2 and 1 rows; work-items reaching into the
-// next tile), and launches split into pieces.
+// next tile), and launches split into pieces. The lists lead with lights that hold all of their tile,
+// and the rest, whose ranges the shading tests, are there too.
 TEST(Lights, TiledCullingEqualsUnculledAndReference) {
   PHONGCL_REQUIRE_DEVICE(shader);
   auto [scene, gbuffer] = default_scene_with_many_lights(203, 97, 300, 12.0);
@@ -241,6 +242,8 @@ TEST(Lights, TiledCullingEqualsUnculledAndReference) {
         EXPECT_GT(culled.culling.shaded_tiles, 0u) << where;
         EXPECT_LT(culled.culling.mean_lights_per_tile(), 150.0) << where;
         EXPECT_LT(culled.culling.kept_pairs, 0.5 * 300.0 * static_cast<double>(culled.counts.shaded)) << where;
+        EXPECT_GT(culled.culling.holding_entries, 0.0) << where;
+        EXPECT_LT(culled.culling.holding_entries, culled.culling.list_entries) << where;
       }
     }
   }
@@ -256,6 +259,7 @@ TEST(Lights, TiledCullingKeepsUnrangedLightsEverywhere) {
   tiled.culling = Culling::tiled;
   const ShadeResult culled = shader.shade(scene, gbuffer, tiled);
   EXPECT_GE(culled.culling.mean_lights_per_tile(), 1.0);
+  EXPECT_GE(culled.culling.mean_holding_per_tile(), 1.0) << "the unranged light holds every tile";
   ShadeOptions unculled;
   unculled.culling = Culling::none;
   const ErrorStats same =

@@ -123,7 +123,8 @@ void run_shade(const ShadeArguments& args) {
     const CullingStats& c = result.culling;
     std::cout << "  culling    tiles " << c.tile_size << "x" << c.tile_size << ", " << with_commas(c.shaded_tiles)
               << " with shaded pixels; lights per tile mean " << std::fixed << std::setprecision(1)
-              << c.mean_lights_per_tile() << std::defaultfloat << ", max "
+              << c.mean_lights_per_tile() << " (" << c.mean_holding_per_tile() << " holding all of it)"
+              << std::defaultfloat << ", max "
               << c.max_lights_per_tile << "; " << milliseconds(c.culling_ms) << " (inside kernel time)\n";
   }
   if (!result.shadows.empty()) std::cout << "  shadows    " << result.shadows << "\n";

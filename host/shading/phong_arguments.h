@@ -27,8 +27,9 @@ struct PhongArguments {
   cl::Buffer out_terms;  // PHONGCL_TERM_PLANES planes with WRITE_TERMS, else unused
   // light shapes (parallel to point_lights) and linking masks, read only when compiled in
   cl::Buffer point_shapes, links;
-  // tiled culling: tile t's point lights are tile_lights[tile_offsets[t] ...], tile_counts[t] of them
-  cl::Buffer tile_offsets, tile_counts, tile_lights;
+  // tiled culling: tile t's point lights are tile_lights[tile_offsets[t] ...], tile_counts[t] of them,
+  // the first tile_holding[t] of them holding all of the tile in their bounds
+  cl::Buffer tile_offsets, tile_counts, tile_holding, tile_lights;
   TileGrid grid{};
   // shadows (kernels/shadow.h), read only with SHADOWS: a caster word per light (point lights',
   // directional lights', area lights'); the geometry; the screen march's depth plane; the scalars;
@@ -60,6 +61,7 @@ void for_each_argument(Arguments& a, Visit&& visit) {
   visit("links", a.links);
   visit("tile_offsets", a.tile_offsets);
   visit("tile_counts", a.tile_counts);
+  visit("tile_holding", a.tile_holding);
   visit("tile_lights", a.tile_lights);
   visit("grid", a.grid);
   visit("shadow_casters", a.shadow_casters);

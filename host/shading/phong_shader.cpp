@@ -206,6 +206,7 @@ cl::Event PhongShader::cull_and_launch(cl::Kernel& kernel, FrameSetup& frame, co
                                  .links = uniforms.links,
                                  .tile_offsets = culler ? culler->offsets() : uniforms.no_tiles,
                                  .tile_counts = culler ? culler->counts() : uniforms.no_tiles,
+                                 .tile_holding = culler ? culler->holding() : uniforms.no_tiles,
                                  .tile_lights = culler ? culler->lights() : uniforms.no_tiles,
                                  .grid = culler ? frame.tiles.grid : TileGrid{},
                                  .shadow_casters = shadows ? shadow_casters_ : uniforms.no_tiles,

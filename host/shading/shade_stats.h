@@ -35,9 +35,11 @@ struct CullingStats {
   std::size_t tiles = 0, shaded_tiles = 0;  // shaded: tiles with at least one shaded pixel
   std::size_t max_lights_per_tile = 0;
   double list_entries = 0.0;                // sum over shaded tiles of their list lengths
+  double holding_entries = 0.0;             // of them, the lights whose bounds hold all of their tile
   double kept_pairs = 0.0;                  // sum over shaded pixels of their tile's list length
   double culling_ms = 0.0;                  // the culling passes and their prefix sums
   double mean_lights_per_tile() const { return shaded_tiles ? list_entries / static_cast<double>(shaded_tiles) : 0.0; }
+  double mean_holding_per_tile() const { return shaded_tiles ? holding_entries / static_cast<double>(shaded_tiles) : 0.0; }
   CullingStats& operator+=(const CullingStats& other);
 };
 

@@ -13,7 +13,7 @@ namespace phongcl {
 namespace {
 
 using KeepKernel = cl::KernelFunctor<cl::Buffer, cl::Buffer, cl::Buffer, cl::Buffer, cl::Buffer, cl::Buffer, cl::Buffer,
-                                    cl::Buffer, cl::Buffer>;
+                                    cl::Buffer, cl::Buffer, cl_uint, cl::Buffer>;
 
 }  // namespace
 
@@ -53,6 +53,7 @@ CullingStats& CullingStats::operator+=(const CullingStats& other) {
   shaded_tiles += other.shaded_tiles;
   max_lights_per_tile = std::max(max_lights_per_tile, other.max_lights_per_tile);
   list_entries += other.list_entries;
+  holding_entries += other.holding_entries;
   kept_pairs += other.kept_pairs;
   culling_ms += other.culling_ms;
   return *this;
@@ -123,7 +124,7 @@ cl::Buffer device_copy(const cl::Context& context, std::vector<T> values) {
 
 TileCuller::Lists TileCuller::lists(const cl::Buffer& boxes, const BoxGrid& grid, const cl::Buffer& light_bounds,
                                     const cl::Buffer& candidates, const std::vector<cl_uint>& candidate_first,
-                                    const std::vector<cl_uint>& candidate_count) {
+                                    const std::vector<cl_uint>& candidate_count, bool lead_holding) {
   const cl::Context& context = compute_.context;
   cl::CommandQueue& queue = compute_.queue;
   const std::size_t box_count = grid.boxes.size();
@@ -144,10 +145,12 @@ TileCuller::Lists TileCuller::lists(const cl::Buffer& boxes, const BoxGrid& grid
   // OpenCL has no empty buffers: a frame that keeps no light still gets one entry.
   lists.lights = cl::Buffer(context, CL_MEM_READ_WRITE, std::max<std::size_t>(room, 1) * sizeof(cl_uint));
   lists.counts = cl::Buffer(context, CL_MEM_READ_WRITE, box_count * sizeof(cl_uint));
+  lists.holding = cl::Buffer(context, CL_MEM_READ_WRITE, (lead_holding ? box_count : 1) * sizeof(cl_uint));
   KeepKernel(program_, "keep_box_lights")(cl::EnqueueArgs(queue, cl::NDRange(grid.blocks.size())), boxes, light_bounds,
                                           device_copy(context, grid.blocks), candidates,
                                           device_copy(context, candidate_first), device_copy(context, candidate_count),
-                                          lists.offsets, lists.lights, lists.counts);
+                                          lists.offsets, lists.lights, lists.counts, cl_uint{lead_holding},
+                                          lists.holding);
   lists.host_counts.resize(box_count);
   queue.enqueueReadBuffer(lists.counts, CL_TRUE, 0, box_count * sizeof(cl_uint), lists.host_counts.data());
   return lists;
@@ -176,16 +179,18 @@ CullingStats TileCuller::cull(const cl::Buffer& planes, std::size_t plane_stride
   const std::size_t coarsest_blocks = grids.back().blocks.size();
   Lists level = lists(device_copy(context, grids.back().boxes), grids.back(), light_bounds,
                       device_copy(context, every_light), std::vector<cl_uint>(coarsest_blocks, 0),
-                      std::vector<cl_uint>(coarsest_blocks, static_cast<cl_uint>(light_count)));
+                      std::vector<cl_uint>(coarsest_blocks, static_cast<cl_uint>(light_count)), false);
   for (std::size_t g = grids.size() - 1; g-- > 0;) {
     const cl::Buffer finer = g == 0 ? boxes : device_copy(context, grids[g].boxes);
-    level = lists(finer, grids[g], light_bounds, level.lights, level.host_offsets, level.host_counts);
+    level = lists(finer, grids[g], light_bounds, level.lights, level.host_offsets, level.host_counts, g == 0);
   }
   const Lists& fine = level;
-  queue.finish();
+  std::vector<cl_uint> holding(tiles);
+  queue.enqueueReadBuffer(fine.holding, CL_TRUE, 0, tiles * sizeof(cl_uint), holding.data());
   offsets_buffer_ = fine.offsets;
   counts_buffer_ = fine.counts;
   lights_buffer_ = fine.lights;
+  holding_buffer_ = fine.holding;
 
   CullingStats stats;
   stats.tile_size = static_cast<int>(layout.grid.tile_size);
@@ -196,6 +201,7 @@ CullingStats TileCuller::cull(const cl::Buffer& planes, std::size_t plane_stride
     ++stats.shaded_tiles;
     stats.max_lights_per_tile = std::max<std::size_t>(stats.max_lights_per_tile, fine.host_counts[t]);
     stats.list_entries += fine.host_counts[t];
+    stats.holding_entries += holding[t];
     stats.kept_pairs += static_cast<double>(fine.host_counts[t]) * tile_boxes[t].shaded;
   }
   stats.culling_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();

@@ -48,23 +48,26 @@ class TileCuller {
   const cl::Buffer& offsets() const { return offsets_buffer_; }
   const cl::Buffer& counts() const { return counts_buffer_; }
   const cl::Buffer& lights() const { return lights_buffer_; }
+  // How many lights lead each tile's list whose bounds hold all of the tile's box; the rest follow.
+  const cl::Buffer& holding() const { return holding_buffer_; }
 
  private:
   // One level of culling: each 2 x 2 block's candidates (a range of `candidates`: block b's from
   // candidate_first[b], candidate_count[b] of them) against its boxes (`boxes` on the device,
   // grid.boxes the same on the host); box t's list is lights[host_offsets[t] ...], host_counts[t] of them.
+  // With lead_holding (the tiles) the lights whose bounds hold all of the box come first, holding[t] of them.
   struct Lists {
-    cl::Buffer offsets, counts, lights;
+    cl::Buffer offsets, counts, lights, holding;
     std::vector<cl_uint> host_offsets, host_counts;
   };
   Lists lists(const cl::Buffer& boxes, const BoxGrid& grid, const cl::Buffer& light_bounds,
               const cl::Buffer& candidates, const std::vector<cl_uint>& candidate_first,
-              const std::vector<cl_uint>& candidate_count);
+              const std::vector<cl_uint>& candidate_count, bool lead_holding);
 
   ComputeContext compute_;
   cl::Program program_;
   ReusableBuffer boxes_{CL_MEM_READ_WRITE}, row_boxes_{CL_MEM_READ_WRITE};
-  cl::Buffer offsets_buffer_, counts_buffer_, lights_buffer_;
+  cl::Buffer offsets_buffer_, counts_buffer_, lights_buffer_, holding_buffer_;
 };
 
 }  // namespace phongcl

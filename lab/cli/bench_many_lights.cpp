@@ -109,6 +109,7 @@ class ManyLightsBench {
       if (!r.single_run) culling.erase(culling.begin());  // the warm-up's
       r.culling_ms = summarize(culling).median_ms;
       r.mean_lights_per_tile = last.culling.mean_lights_per_tile();
+      r.mean_holding_per_tile = last.culling.mean_holding_per_tile();
     }
     set_figures(r, pairs, reach, reference ? std::optional(reference->error_of(last.image)) : std::nullopt);
     finish(r);

@@ -19,7 +19,7 @@ std::string cell(const char* pattern, double value) { return format_cell(pattern
 
 std::string many_lights_table(const std::vector<ManyLightsResult>& results) {
   MarkdownTable table;
-  table.headers = {"impl", "lights", "median ms", "min ms", "max ms", "runs", "culling ms", "lights/tile",
+  table.headers = {"impl", "lights", "median ms", "min ms", "max ms", "runs", "culling ms", "lights/tile", "holding/tile",
                    "lights/pixel shaded", "lights/pixel reached", "lights/pixel tile reached", "effective Mpix-lights/s",
                    "max rel err"};
   table.align = {ColumnAlign::left};
@@ -28,6 +28,7 @@ std::string many_lights_table(const std::vector<ManyLightsResult>& results) {
     table.rows.push_back({r.impl, std::to_string(r.lights), cell("%.2f", r.time.median_ms), cell("%.2f", r.time.min_ms),
                           cell("%.2f", r.time.max_ms), std::to_string(r.time.runs) + (r.single_run ? " (>10 s)" : ""),
                           r.culling_ms ? cell("%.2f", *r.culling_ms) : "", r.mean_lights_per_tile > 0 ? cell("%.1f", r.mean_lights_per_tile) : "",
+                          r.mean_lights_per_tile > 0 ? cell("%.1f", r.mean_holding_per_tile) : "",
                           cell("%.1f", r.mean_lights_per_pixel), cell("%.1f", r.mean_lights_reaching),
                           r.mean_lights_reaching_tile > 0 ? cell("%.1f", r.mean_lights_reaching_tile) : "",
                           cell("%.0f", r.effective_mpix_lights_per_s), r.max_rel_err ? cell("%.2e", *r.max_rel_err) : "n/a"});
@@ -53,6 +54,7 @@ std::string many_lights_json(const ManyLightsMachine& machine, const std::vector
                                {"mean_lights_reaching", r.mean_lights_reaching},
                                {"mean_lights_reaching_tile", r.mean_lights_reaching_tile},
                                {"mean_lights_per_tile", r.mean_lights_per_tile},
+                               {"mean_holding_per_tile", r.mean_holding_per_tile},
                                {"effective_mpix_lights_per_s", r.effective_mpix_lights_per_s},
                                {"max_rel_err", r.max_rel_err ? nlohmann::json(*r.max_rel_err) : nlohmann::json(nullptr)},
                                {"schedule", r.schedule.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.schedule)}});

@@ -20,6 +20,7 @@ struct ManyLightsResult {
   double mean_lights_reaching = 0.0;   // lights with d < range (and inside a spot's cone) per shaded pixel
   double mean_lights_reaching_tile = 0.0;  // lights that reach a shaded pixel of the pixel's tile
   double mean_lights_per_tile = 0.0;   // tiled only
+  double mean_holding_per_tile = 0.0;  // tiled only: of them, the lights whose bounds hold all of the tile
   double effective_mpix_lights_per_s = 0.0;
   std::optional<double> max_rel_err;  // against the double reference on a sample of rows
   bool single_run = false;            // one timed run: a run took over 10 s
