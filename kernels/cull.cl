@@ -174,7 +174,8 @@ int4 sphere_holds_boxes(LightBounds light, const BoxBlock* block) {
   if (light.radius < 0) return (int4)-1;
   float4 farthest_sq = 0;
   for (int axis = 0; axis < 3; ++axis) {
-    const float4 farthest = fmax(fabs(block->lo[axis] - light.center[axis]), fabs(block->hi[axis] - light.center[axis]));
+    const float4 farthest =
+        fmax(fabs(block->lo[axis] - light.center[axis]), fabs(block->hi[axis] - light.center[axis]));
     farthest_sq += farthest * farthest;
   }
   return farthest_sq <= light.radius * light.radius;
@@ -232,7 +233,8 @@ __kernel void keep_box_lights(__global const TileBox* restrict boxes, __global c
   for (int s = 0; s < 4; ++s) {
     if (slots[s] == PHONGCL_NO_BOX) continue;
     /* The rest down to just after the holding ones: the copy never overwrites an entry before reading it. */
-    for (uint i = 0; i < kept[s].partial; ++i) kept[s].lights[kept[s].holding + i] = kept[s].lights[room - kept[s].partial + i];
+    __global uint* list = kept[s].lights;
+    for (uint i = 0; i < kept[s].partial; ++i) list[kept[s].holding + i] = list[room - kept[s].partial + i];
     kept_count[slots[s]] = kept[s].holding + kept[s].partial;
     if (lead_holding) kept_holding[slots[s]] = kept[s].holding;
   }

@@ -39,7 +39,9 @@ struct CullingStats {
   double kept_pairs = 0.0;                  // sum over shaded pixels of their tile's list length
   double culling_ms = 0.0;                  // the culling passes and their prefix sums
   double mean_lights_per_tile() const { return shaded_tiles ? list_entries / static_cast<double>(shaded_tiles) : 0.0; }
-  double mean_holding_per_tile() const { return shaded_tiles ? holding_entries / static_cast<double>(shaded_tiles) : 0.0; }
+  double mean_holding_per_tile() const {
+    return shaded_tiles ? holding_entries / static_cast<double>(shaded_tiles) : 0.0;
+  }
   CullingStats& operator+=(const CullingStats& other);
 };
 
