@@ -146,11 +146,16 @@ TileCuller::Lists TileCuller::lists(const cl::Buffer& boxes, const BoxGrid& grid
   lists.lights = cl::Buffer(context, CL_MEM_READ_WRITE, std::max<std::size_t>(room, 1) * sizeof(cl_uint));
   lists.counts = cl::Buffer(context, CL_MEM_READ_WRITE, box_count * sizeof(cl_uint));
   lists.holding = cl::Buffer(context, CL_MEM_READ_WRITE, (lead_holding ? box_count : 1) * sizeof(cl_uint));
-  KeepKernel(program_, "keep_box_lights")(cl::EnqueueArgs(queue, cl::NDRange(grid.blocks.size())), boxes, light_bounds,
-                                          device_copy(context, grid.blocks), candidates,
-                                          device_copy(context, candidate_first), device_copy(context, candidate_count),
-                                          lists.offsets, lists.lights, lists.counts, cl_uint{lead_holding},
-                                          lists.holding);
+  // On a CPU a work-group runs on one core, and PoCL's default put each level's blocks (2,040 at the
+  // tiles of a 1080p frame) in one work-group: one work-item per group spreads the blocks, whose
+  // candidate lists differ in length, over every core (at 10,000 lights the four levels took 6.1
+  // against 9.5 ms).
+  const cl::NDRange block_group = compute_.device.info.is_cpu ? cl::NDRange(1) : cl::NullRange;
+  KeepKernel(program_, "keep_box_lights")(
+      cl::EnqueueArgs(queue, cl::NDRange(grid.blocks.size()), block_group), boxes, light_bounds,
+      device_copy(context, grid.blocks), candidates, device_copy(context, candidate_first),
+      device_copy(context, candidate_count), lists.offsets, lists.lights, lists.counts, cl_uint{lead_holding},
+      lists.holding);
   lists.host_counts.resize(box_count);
   queue.enqueueReadBuffer(lists.counts, CL_TRUE, 0, box_count * sizeof(cl_uint), lists.host_counts.data());
   return lists;
