@@ -182,16 +182,23 @@ int4 sphere_holds_boxes(LightBounds light, const BoxBlock* block) {
 }
 
 /* A box's list as it is written: the lights that hold the box lead it (with lead_holding), from the
- * front of its room, the others from the back. */
+ * front of its room, the others from the back. A box with no room (none there, or nothing shaded) is
+ * never written. */
 typedef struct {
   __global uint* lights;
   uint holding, partial;
+  int has_room;
 } KeptList;
 
+/* Light k is written to both free ends of the room, and the end it belongs to, if any, is moved on:
+ * which of a block's boxes a light reaches follows no pattern a branch predictor learns. Both slots
+ * are free, as fewer entries than the room holds are written before the last candidate. */
 void keep_where(int lane, int holds, uint k, uint room, KeptList* list) {
-  if (!lane) return;
-  if (holds) list->lights[list->holding++] = k;
-  else list->lights[room - 1 - list->partial++] = k;
+  if (!list->has_room) return;
+  list->lights[list->holding] = k;
+  list->lights[room - 1 - list->partial] = k;
+  list->holding += lane && holds;
+  list->partial += lane && !holds;
 }
 
 /* One work-item per block of four boxes (block_boxes[b]: their indices, PHONGCL_NO_BOX for none).
@@ -214,6 +221,7 @@ __kernel void keep_box_lights(__global const TileBox* restrict boxes, __global c
   const BoxBlock block = box_block(boxes, slots);
   KeptList kept[4];
   for (int s = 0; s < 4; ++s) {
+    kept[s].has_room = slots[s] != PHONGCL_NO_BOX && boxes[slots[s]].shaded > 0;
     kept[s].lights = kept_lights + (slots[s] == PHONGCL_NO_BOX ? 0 : kept_first[slots[s]]);
     kept[s].holding = kept[s].partial = 0;
   }
