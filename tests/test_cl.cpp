@@ -1,4 +1,5 @@
-// The default OpenCL device: what a user wants when they name none; the program cache's bounds.
+// The default OpenCL device: what a user wants when they name none; work-group sizes; the program
+// cache's bounds.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -8,6 +9,7 @@
 #include "cl/compute_context.h"
 #include "cl/device.h"
 #include "cl/program_cache.h"
+#include "cl/work_groups.h"
 #include "temp_dir.h"
 
 namespace phongcl {
@@ -60,6 +62,18 @@ std::size_t files_in(const std::filesystem::path& directory) {
 // Each new light-count mix built and kept a new program, in memory and on disk, without end. The
 // cache now keeps the ones used last: a program dropped from memory comes back from disk, and the
 // disk keeps its newest files.
+// On a CPU, many groups for the cores to share: the largest divisor up to the bound, 1 for a prime
+// count; a GPU keeps its runtime's choice.
+TEST(WorkGroups, ACpuGetsManySmallGroupsAGpuTheRuntimesChoice) {
+  const auto local_size = [](const cl::NDRange& range) { return range.dimensions() == 0 ? 0 : range[0]; };
+  EXPECT_EQ(local_size(spread_work_groups(kPocl, 129600, 64)), 64u);  // 1080p in rows of 16 lanes
+  EXPECT_EQ(local_size(spread_work_groups(kPocl, 2040, 64)), 60u);
+  EXPECT_EQ(local_size(spread_work_groups(kPocl, 2040, 1)), 1u);
+  EXPECT_EQ(local_size(spread_work_groups(kPocl, 127, 64)), 1u);
+  EXPECT_EQ(spread_work_groups(device("Vendor", "gpu", false, true, 80), 129600, 64).dimensions(), 0u);
+  EXPECT_EQ(spread_work_groups(kPocl, 0, 64).dimensions(), 0u);
+}
+
 TEST(ProgramCache, BothCachesKeepTheProgramsUsedLast) {
   if (list_devices().empty()) GTEST_SKIP() << "no OpenCL device on this machine";
   testing::TempDir dir("program_cache");

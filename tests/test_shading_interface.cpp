@@ -90,9 +90,8 @@ void launch_once(const ComputeContext& compute, const Recipe& recipe, const std:
                            .tile_lights = table};
   arguments.frame.plane_stride = static_cast<cl_uint>(lanes);
   arguments.grid = {static_cast<cl_uint>(lanes), 16, 1, 0};
-  cl::CommandQueue queue = compute.queue;
-  launch_phong(kernel, queue, arguments, lanes, recipe.lanes);
-  queue.finish();
+  launch_phong(kernel, compute, arguments, lanes, recipe.lanes);
+  compute.queue.finish();
 }
 
 // Scenes that between them switch every recipe flag both ways: light types and counts in the code or

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "cl/compute_context.h"
+#include "cl/work_groups.h"
 #include "shading/host_threads.h"
 
 namespace phongcl {
@@ -96,12 +97,15 @@ void set_arguments(cl::Kernel& kernel, const PhongArguments& arguments) {
 
 cl::Kernel phong_kernel(const cl::Program& program) { return cl::Kernel(program, "phong_shade"); }
 
-cl::Event launch_phong(cl::Kernel& kernel, cl::CommandQueue& queue, const PhongArguments& arguments, std::size_t slots,
-                       int lanes) {
+cl::Event launch_phong(cl::Kernel& kernel, const ComputeContext& compute, const PhongArguments& arguments,
+                       std::size_t slots, int lanes) {
   set_arguments(kernel, arguments);
+  const std::size_t items = slots / static_cast<std::size_t>(lanes);
+  // Up to 64 work-items per group, against PoCL's default of 3,600 at 1080p: the frame took 0.85 of
+  // its time at 10,000 lights, 0.92 at 64 and 0.93 at 256 unculled (paired, alternated).
   cl::Event launched;
-  queue.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(slots / static_cast<std::size_t>(lanes)), cl::NullRange,
-                             nullptr, &launched);
+  compute.queue.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(items),
+                                     spread_work_groups(compute.device.info, items, 64), nullptr, &launched);
   return launched;
 }
 

@@ -4,6 +4,7 @@
 // arguments, and copying the output planes out.
 #include <cstddef>
 
+#include "cl/compute_context.h"
 #include "cl/device_info.h"
 #include "cl/opencl.h"
 #include "shading/pack.h"
@@ -55,8 +56,8 @@ DeviceUniforms upload_uniforms(const cl::Context& context, const UniformData& un
 cl::Kernel phong_kernel(const cl::Program& program);
 // Sets the kernel's arguments and enqueues it over `slots` pixels (a multiple of the recipe's lanes).
 // Setting a kernel's arguments is not thread-safe: one kernel object per thread that launches.
-cl::Event launch_phong(cl::Kernel& kernel, cl::CommandQueue& queue, const PhongArguments& arguments, std::size_t slots,
-                       int lanes);
+cl::Event launch_phong(cl::Kernel& kernel, const ComputeContext& compute, const PhongArguments& arguments,
+                       std::size_t slots, int lanes);
 
 // Interleaves the first `channels` of count pixels' planes (stride values each) into RGBA pixels,
 // on every core: the copy is part of each frame's end-to-end time.

@@ -222,7 +222,7 @@ cl::Event PhongShader::cull_and_launch(cl::Kernel& kernel, FrameSetup& frame, co
                                  .shadow_tiles = lists ? lists->tiles : 0u,
                                  .light_groups = uniforms.light_groups,
                                  .area_lights = uniforms.area_lights};
-  return launch_phong(kernel, compute_.queue, arguments, padded, recipe.lanes);
+  return launch_phong(kernel, compute_, arguments, padded, recipe.lanes);
 }
 
 void PhongShader::download(const FrameSetup& frame, const GBuffer& gbuffer, const Recipe& recipe, std::size_t first,
