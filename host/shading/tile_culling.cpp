@@ -125,7 +125,8 @@ cl::Buffer device_copy(const cl::Context& context, std::vector<T> values) {
 
 TileCuller::Lists TileCuller::lists(const cl::Buffer& boxes, const BoxGrid& grid, const cl::Buffer& light_bounds,
                                     const cl::Buffer& candidates, const std::vector<cl_uint>& candidate_first,
-                                    const std::vector<cl_uint>& candidate_count, bool lead_holding) {
+                                    const std::vector<cl_uint>& candidate_count, bool lead_holding,
+                                    LevelBuffers& buffers) {
   const cl::Context& context = compute_.context;
   cl::CommandQueue& queue = compute_.queue;
   const std::size_t box_count = grid.boxes.size();
@@ -144,9 +145,9 @@ TileCuller::Lists TileCuller::lists(const cl::Buffer& boxes, const BoxGrid& grid
                              "every tile's list): use a larger --tile or --culling none");
   lists.offsets = device_copy(context, lists.host_offsets);
   // OpenCL has no empty buffers: a frame that keeps no light still gets one entry.
-  lists.lights = cl::Buffer(context, CL_MEM_READ_WRITE, std::max<std::size_t>(room, 1) * sizeof(cl_uint));
-  lists.counts = cl::Buffer(context, CL_MEM_READ_WRITE, box_count * sizeof(cl_uint));
-  lists.holding = cl::Buffer(context, CL_MEM_READ_WRITE, (lead_holding ? box_count : 1) * sizeof(cl_uint));
+  lists.lights = buffers.lights.at_least(context, std::max<std::size_t>(room, 1) * sizeof(cl_uint));
+  lists.counts = buffers.counts.at_least(context, box_count * sizeof(cl_uint));
+  lists.holding = buffers.holding.at_least(context, (lead_holding ? box_count : 1) * sizeof(cl_uint));
   // One block per group: PoCL's default put each level's blocks (2,040 at the tiles of a 1080p frame)
   // in one group, on one core; at 10,000 lights the four levels took 6.1 against 9.5 ms.
   const std::size_t blocks = grid.blocks.size();
@@ -181,12 +182,15 @@ CullingStats TileCuller::cull(const cl::Buffer& planes, std::size_t plane_stride
   std::vector<cl_uint> every_light(light_count);
   for (std::size_t k = 0; k < light_count; ++k) every_light[k] = static_cast<cl_uint>(k);
   const std::size_t coarsest_blocks = grids.back().blocks.size();
+  level_buffers_.resize(grids.size());
   Lists level = lists(device_copy(context, grids.back().boxes), grids.back(), light_bounds,
                       device_copy(context, every_light), std::vector<cl_uint>(coarsest_blocks, 0),
-                      std::vector<cl_uint>(coarsest_blocks, static_cast<cl_uint>(light_count)), false);
+                      std::vector<cl_uint>(coarsest_blocks, static_cast<cl_uint>(light_count)), false,
+                      level_buffers_.back());
   for (std::size_t g = grids.size() - 1; g-- > 0;) {
     const cl::Buffer finer = g == 0 ? boxes : device_copy(context, grids[g].boxes);
-    level = lists(finer, grids[g], light_bounds, level.lights, level.host_offsets, level.host_counts, g == 0);
+    level = lists(finer, grids[g], light_bounds, level.lights, level.host_offsets, level.host_counts, g == 0,
+                  level_buffers_[g]);
   }
   const Lists& fine = level;
   std::vector<cl_uint> holding(tiles);
