@@ -238,6 +238,31 @@ TEST(Relighter, ManyLightsWithARangeAreCulledPerTile) {
   relighter.set_lights(scene.lights);
   expect_matches_reference(relighter.shade(), scene, gbuffer, "culled, new light");
   EXPECT_FALSE(relighter.last_timings().gbuffer_uploaded);
+  // The tiles' boxes are kept with the packed G-buffer, and taken again with it: after a new eye
+  // (far enough that the old, eye-relative boxes would meet no light), and for another frame of the
+  // same size.
+  scene.camera.eye = {40.0, -30.0, 300.0};
+  relighter.set_camera_eye(scene.camera.eye);
+  expect_matches_reference(relighter.shade(), scene, gbuffer, "culled, new eye");
+  EXPECT_TRUE(relighter.last_timings().gbuffer_uploaded);
+  auto [next_scene, next_gbuffer] = random_scene({64, 48, 0, 1, 4}, 1213);
+  testing::add_shaped_lights(next_scene, {kAutoCullingLights}, 1213);
+  relighter.set_frame(next_scene, GBuffer(next_gbuffer));
+  expect_matches_reference(relighter.shade(), next_scene, next_gbuffer, "culled, next frame");
+  EXPECT_TRUE(relighter.last_report().culled);
+  // A frame shaded without culling packs the planes too: the culling after it takes its boxes again.
+  auto [third_scene, third_gbuffer] = random_scene({64, 48, 0, 1, 4}, 1214);
+  third_scene.camera.eye = {-40.0, 30.0, -300.0};
+  testing::add_shaped_lights(third_scene, {kAutoCullingLights}, 1214);
+  Scene one_light_short = third_scene;
+  one_light_short.lights.pop_back();
+  relighter.set_frame(one_light_short, GBuffer(third_gbuffer));
+  relighter.shade();
+  EXPECT_FALSE(relighter.last_report().culled);
+  relighter.set_lights(third_scene.lights);
+  expect_matches_reference(relighter.shade(), third_scene, third_gbuffer, "culled after a frame without");
+  EXPECT_TRUE(relighter.last_report().culled);
+  EXPECT_FALSE(relighter.last_timings().gbuffer_uploaded);
 }
 
 TEST(Relighter, OneRelighterShadesASequenceOfFrames) {

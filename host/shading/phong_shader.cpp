@@ -148,8 +148,7 @@ PhongShader::FrameSetup PhongShader::prepare(const Scene& scene, const GBuffer& 
       .shadow_tiles = tile_layout(gbuffer.width, gbuffer.height, kShadowCullingTile),
       .shadow_culler = shadows_culled ? &shadow_culler_for(report.build_options) : nullptr,
       .packed_for = wanted,
-      .resident = resident,
-      .pixels_kept = packed_.has_value()};
+      .resident = resident};
 }
 
 std::size_t PhongShader::pack_or_reuse(const FrameSetup& frame, const Scene& scene, const GBuffer& gbuffer,
@@ -161,6 +160,7 @@ std::size_t PhongShader::pack_or_reuse(const FrameSetup& frame, const Scene& sce
   }
   const PackedTile packed =
       pack_into_mapped(compute_.queue, frame.pack_target, gbuffer, scene.camera.eye, recipe, first, count, padded);
+  ++packings_;
   report.counts += packed.counts;
   report.timings.pack_ms += packed.pack_ms;
   report.timings.upload_ms += packed.upload_ms;
@@ -179,7 +179,7 @@ cl::Event PhongShader::cull_and_launch(cl::Kernel& kernel, FrameSetup& frame, co
   const ResidentShadows* shadows = recipe.shadows != ShadowMode::off ? &*shadows_ : nullptr;
   if (culler) {
     const CullingStats culled = culler->cull(packed.planes, frame.stride, packed.material_index, padded, frame.tiles,
-                                             uniforms.point_bounds, uniforms.scalars.point_count);
+                                             uniforms.point_bounds, uniforms.scalars.point_count, packings_);
     report.culling += culled;
     report.timings.kernel_ms += culled.culling_ms;
   }
@@ -188,7 +188,7 @@ cl::Event PhongShader::cull_and_launch(cl::Kernel& kernel, FrameSetup& frame, co
     const ShadowCullingStats culled = shadow_culler->cull(
         packed.planes, frame.stride, packed.material_index, padded, frame.shadow_tiles, shadows->device.geometry,
         shadow_lights_, shadow_light_count_, shadows->device.frame.offset_scale, shadows->device.frame.eye_extent,
-        frame.pixels_kept);
+        packings_);
     report.shadows_culled = true;
     report.shadow_culling += culled;
     report.timings.kernel_ms += culled.culling_ms;

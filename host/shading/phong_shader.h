@@ -2,6 +2,7 @@
 // Phong shading of a G-buffer on an OpenCL device: kernel build (cached), packing, launch and
 // download, in tiles when a frame is larger than one device allocation. The one engine under
 // phongcl::Relighter (include/phongcl/relighter.hpp, which `phongcl shade` uses) and the lab.
+#include <cstdint>
 #include <memory>
 #include <optional>
 #include <string>
@@ -102,7 +103,6 @@ class PhongShader {
     ShadowCuller* shadow_culler = nullptr;  // with geometry shadows culled per tile
     PackedFor packed_for;
     bool resident = false;  // one launch holds the frame: its packed G-buffer is kept
-    bool pixels_kept = false;  // and the kept one is this frame's: nothing is packed
   };
   cl::Kernel& kernel_for(ShadeReport& report);
   TileCuller& culler_for(const std::string& build_options);
@@ -131,6 +131,7 @@ class PhongShader {
   std::string uniforms_options_;
   std::size_t uniforms_stride_ = 0;
   std::optional<PackedFrame> packed_;  // the planes hold the whole frame, packed for this
+  std::uint64_t packings_ = 0;         // the planes' packings so far: the last one's number (BoxesKey)
   std::optional<ResidentShadows> shadows_;
   cl::Buffer shadow_casters_, shadow_lights_;  // uploaded with the tables (ShadowCasters' words, lights)
   std::size_t shadow_light_count_ = 0;

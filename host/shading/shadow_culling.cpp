@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cstring>
 #include <vector>
 
 #include "cl/kernel_source.h"
@@ -112,11 +111,14 @@ ShadowCullingStats ShadowCuller::cull(const cl::Buffer& planes, std::size_t plan
                                       std::size_t slot_count, const TileLayout& layout,
                                       const ShadowGeometryBuffers& geometry, const cl::Buffer& lights,
                                       std::size_t light_count, float offset_scale, float eye_extent,
-                                      bool pixels_unchanged) {
+                                      std::uint64_t packing) {
   ShadowCullingStats stats;
-  const bool same_layout = boxes_for_ && boxes_for_->tile_count == layout.tile_count &&
-                           std::memcmp(&boxes_for_->grid, &layout.grid, sizeof(TileGrid)) == 0;
-  if (!pixels_unchanged || !same_layout) stats.culling_ms += box_tiles(planes, plane_stride, material_index, slot_count, layout);
+  const BoxesKey wanted{packing, layout};
+  if (!boxes_serve(boxes_for_, wanted)) {
+    boxes_for_.reset();
+    stats.culling_ms += box_tiles(planes, plane_stride, material_index, slot_count, layout);
+    boxes_for_ = wanted;
+  }
   coarse_level(coarse_boxes_, geometry, lights, light_count, offset_scale, eye_extent, stats);
   fine_.grid = layout.grid;
   fine_.tiles = static_cast<cl_uint>(layout.tile_count);
@@ -145,7 +147,6 @@ double ShadowCuller::box_tiles(const cl::Buffer& planes, std::size_t plane_strid
   const cl::Event merged = merge(cl::EnqueueArgs(queue, cl::NDRange(coarse_.tiles)), boxes_, layout.grid.tiles_x,
                                  static_cast<cl_uint>(layout.tile_count), ratio, coarse_.grid.tiles_x, coarse_boxes_);
   merged.wait();  // the in-order queue ran `boxed` first
-  boxes_for_ = layout;
   return event_milliseconds(boxed[0]) + event_milliseconds(boxed[1]) + event_milliseconds(merged);
 }
 

@@ -30,13 +30,12 @@ class ShadowCuller {
   ShadowCuller(const ComputeContext& compute, ProgramCache& cache, const std::string& shading_options);
 
   // Culls one launch's slots [0, slot_count) (packed as kernels/layout.h says) for `lights`
-  // (ShadowLight, light_count of them). The tiles' boxes of shaded positions depend on the pixels
-  // alone: with `pixels_unchanged` (the slots hold what they held at the previous call, as when
-  // only lights change) and the same layout, the previous call's are used again.
+  // (ShadowLight, light_count of them). `packing` numbers what the slots hold (BoxesKey): the
+  // tiles' boxes of shaded positions of the last cull serve the same one.
   ShadowCullingStats cull(const cl::Buffer& planes, std::size_t plane_stride, const cl::Buffer& material_index,
                           std::size_t slot_count, const TileLayout& layout, const ShadowGeometryBuffers& geometry,
                           const cl::Buffer& lights, std::size_t light_count, float offset_scale, float eye_extent,
-                          bool pixels_unchanged = false);
+                          std::uint64_t packing = 0);
 
   const ShadowLists& lists() const { return fine_; }
 
@@ -57,7 +56,7 @@ class ShadowCuller {
   ShadowLists coarse_, fine_;
   cl::Buffer boxes_, coarse_boxes_;
   ReusableBuffer row_boxes_{CL_MEM_READ_WRITE};
-  std::optional<TileLayout> boxes_for_;  // the layout boxes_ were taken for
+  std::optional<BoxesKey> boxes_for_;  // what boxes_ were taken for
 };
 
 }  // namespace phongcl

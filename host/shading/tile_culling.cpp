@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <stdexcept>
 
@@ -68,6 +69,12 @@ TileLayout tile_layout(int width, int height, int tile_size) {
   layout.grid.tiles_x = (static_cast<cl_uint>(width) + size - 1) / size;
   layout.tile_count = static_cast<std::size_t>(layout.grid.tiles_x) * ((static_cast<cl_uint>(height) + size - 1) / size);
   return layout;
+}
+
+bool boxes_serve(const std::optional<BoxesKey>& taken, const BoxesKey& wanted) {
+  return taken && wanted.packing != 0 && taken->packing == wanted.packing &&
+         taken->layout.tile_count == wanted.layout.tile_count &&
+         std::memcmp(&taken->layout.grid, &wanted.layout.grid, sizeof(TileGrid)) == 0;
 }
 
 TileCuller::TileCuller(const ComputeContext& compute, ProgramCache& cache, const std::string& build_options)
@@ -163,19 +170,24 @@ TileCuller::Lists TileCuller::lists(const cl::Buffer& boxes, const BoxGrid& grid
 
 CullingStats TileCuller::cull(const cl::Buffer& planes, std::size_t plane_stride, const cl::Buffer& material_index,
                               std::size_t slot_count, const TileLayout& layout, const cl::Buffer& light_bounds,
-                              std::size_t light_count) {
+                              std::size_t light_count, std::uint64_t packing) {
   const auto start = std::chrono::steady_clock::now();
   const cl::Context& context = compute_.context;
   cl::CommandQueue& queue = compute_.queue;
   const std::size_t tiles = layout.tile_count;
   const cl::Buffer& boxes = boxes_.at_least(context, tiles * sizeof(TileBox));
-  enqueue_tile_boxes(queue, program_, planes, plane_stride, material_index, slot_count, layout, row_boxes_, boxes);
-  std::vector<TileBox> box_values(tiles);
-  queue.enqueueReadBuffer(boxes, CL_TRUE, 0, tiles * sizeof(TileBox), box_values.data());
+  const BoxesKey wanted{packing, layout};
+  if (!boxes_serve(boxes_for_, wanted)) {
+    boxes_for_.reset();
+    enqueue_tile_boxes(queue, program_, planes, plane_stride, material_index, slot_count, layout, row_boxes_, boxes);
+    tile_boxes_.resize(tiles);
+    queue.enqueueReadBuffer(boxes, CL_TRUE, 0, tiles * sizeof(TileBox), tile_boxes_.data());
+    boxes_for_ = wanted;
+  }
 
   // The levels' box grids, finest (the tiles) first, each with its 2 x 2 blocks; the coarsest's
   // blocks are the boxes of a grid not culled against.
-  std::vector<BoxGrid> grids{{layout.grid.tiles_x, std::move(box_values), {}}};
+  std::vector<BoxGrid> grids{{layout.grid.tiles_x, tile_boxes_, {}}};
   for (std::size_t span = 1; span < kCoarsestSpan; span *= 2) grids.push_back(merge_blocks(grids.back()));
   merge_blocks(grids.back());
   // The coarsest level tests every light; each finer box its parent box's survivors.

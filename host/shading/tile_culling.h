@@ -4,6 +4,8 @@
 // bounds reach it; phong_shade's TILED_CULLING variant loops over its tile's list only.
 #include <array>
 #include <cstddef>
+#include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -20,6 +22,15 @@ struct TileLayout {
   std::size_t tile_count = 0;
 };
 TileLayout tile_layout(int width, int height, int tile_size);
+// What a launch's tile boxes are taken from: its slots' packing, numbered by whoever packs them (a
+// new number each time they are packed; 0: not numbered), and the tiles. The boxes depend on the
+// pixels alone, so a cull of the same numbered packing and tiles (only the lights changed) keeps them.
+struct BoxesKey {
+  std::uint64_t packing = 0;
+  TileLayout layout;
+};
+// Whether boxes taken for `taken` (none: never taken) serve `wanted`.
+bool boxes_serve(const std::optional<BoxesKey>& taken, const BoxesKey& wanted);
 
 // cull.cl's options for a shading variant's build options: its lanes and storage.
 std::string culling_options(const std::string& shading_options);
@@ -40,10 +51,11 @@ class TileCuller {
   TileCuller(const ComputeContext& compute, ProgramCache& cache, const std::string& build_options);
 
   // Culls one launch's slots [0, slot_count) (frame pixels grid.first_pixel onwards) against the
-  // lights; afterwards offsets(), counts() and lights() hold the lists phong_shade reads.
+  // lights; afterwards offsets(), counts() and lights() hold the lists phong_shade reads. `packing`
+  // numbers what the slots hold (BoxesKey): the tiles' boxes of the last cull serve the same one.
   CullingStats cull(const cl::Buffer& planes, std::size_t plane_stride, const cl::Buffer& material_index,
                     std::size_t slot_count, const TileLayout& layout, const cl::Buffer& light_bounds,
-                    std::size_t light_count);
+                    std::size_t light_count, std::uint64_t packing = 0);
 
   const cl::Buffer& offsets() const { return offsets_buffer_; }
   const cl::Buffer& counts() const { return counts_buffer_; }
@@ -73,6 +85,8 @@ class TileCuller {
   ComputeContext compute_;
   cl::Program program_;
   ReusableBuffer boxes_{CL_MEM_READ_WRITE}, row_boxes_{CL_MEM_READ_WRITE};
+  std::vector<TileBox> tile_boxes_;      // boxes_ read back
+  std::optional<BoxesKey> boxes_for_;    // what they were taken for
   std::vector<LevelBuffers> level_buffers_;  // the tiles' first
   cl::Buffer offsets_buffer_, counts_buffer_, lights_buffer_, holding_buffer_;
 };
