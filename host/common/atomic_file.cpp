@@ -136,8 +136,20 @@ AtomicBatch::Pending write_temporary(const fs::path& destination, const std::fun
 }
 
 // Names every unnamed temporary first (the only step that can fail for lack of space or a too long
-// name), then renames them all.
+// name), then renames them all. The files they replace are held open until every rename is done:
+// the last reference to a replaced file frees its blocks, 2-8 ms for a 1080p EXR on ext4, and done
+// inside a rename it let a kill find the other outputs' temporaries named, beside a mix of old and
+// new files. Held, the renames take microseconds and the freeing happens after them.
 void commit_all(std::vector<AtomicBatch::Pending>& all) {
+  std::vector<int> replaced;
+  for (const auto& pending : all) replaced.push_back(::open(pending.destination.c_str(), O_PATH | O_CLOEXEC));
+  struct CloseReplaced {
+    std::vector<int>& fds;
+    ~CloseReplaced() {
+      for (int fd : fds)
+        if (fd >= 0) ::close(fd);
+    }
+  } close_replaced{replaced};
   for (auto& pending : all) {
     if (pending.fd < 0) continue;
     pending.named = named_temp(pending.destination);
