@@ -53,15 +53,6 @@ TEST(DefaultDevice, OnlySimulatorsMeansNoDefault) {
   EXPECT_EQ(choose_default_device({}).index, -1);
 }
 
-std::size_t files_in(const std::filesystem::path& directory) {
-  std::size_t count = 0;
-  for (const auto& entry : std::filesystem::directory_iterator(directory)) count += entry.path().extension() == ".clbin";
-  return count;
-}
-
-// Each new light-count mix built and kept a new program, in memory and on disk, without end. The
-// cache now keeps the ones used last: a program dropped from memory comes back from disk, and the
-// disk keeps its newest files.
 // On a CPU, many groups for the cores to share: the largest divisor up to the bound, 1 for a prime
 // count; a GPU keeps its runtime's choice.
 TEST(WorkGroups, ACpuGetsManySmallGroupsAGpuTheRuntimesChoice) {
@@ -74,6 +65,15 @@ TEST(WorkGroups, ACpuGetsManySmallGroupsAGpuTheRuntimesChoice) {
   EXPECT_EQ(spread_work_groups(kPocl, 0, 64).dimensions(), 0u);
 }
 
+std::size_t files_in(const std::filesystem::path& directory) {
+  std::size_t count = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(directory)) count += entry.path().extension() == ".clbin";
+  return count;
+}
+
+// Each new light-count mix built and kept a new program, in memory and on disk, without end. The
+// cache now keeps the ones used last: a program dropped from memory comes back from disk, and the
+// disk keeps its newest files.
 TEST(ProgramCache, BothCachesKeepTheProgramsUsedLast) {
   if (list_devices().empty()) GTEST_SKIP() << "no OpenCL device on this machine";
   testing::TempDir dir("program_cache");
