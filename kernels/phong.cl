@@ -92,14 +92,44 @@ static inline realv pixel_plane(const PixelPlanes* pixels, int plane) {
 #define MATERIAL_FIELD3(materials, field) \
   make_vec3(material_field(materials, field), material_field(materials, (field) + 1), material_field(materials, (field) + 2))
 
+/* A light's specular lobe where some lane of the vector may have a highlight, raised to the power
+ * after the block's lights (sum_pending_lobes). Whether any lane has one follows no pattern a branch
+ * predictor learns once a pixel has more than a few lights, and a mispredicted skip of the power cost
+ * about what the power does; a block's lobes are counted into `lobes` instead, with no branch. */
+typedef struct {
+  realv cosine, one_minus_cosine; /* specular_power()'s arguments */
+  realv factor;                   /* the power's factor: F where n.l > 0 (F n.l for a normalised lobe), else 0 */
+  UNIFORM_SPACE const float* color;
+} PendingLobe;
+
+typedef struct {
+  PendingLobe lobes[PHONGCL_LIGHT_BLOCK];
+  int count;
+} PendingLobes;
+
+/* Whether a kind of light leaves its powers to sum_pending_lobes: in vectors of lanes, unless the
+ * kernel holds a few of them (`count` in the code), whose skips a predictor learns (the branch was
+ * 4-6% faster with 2 and 4 lights of each kind, the pending lobes 6% with 8 and 12% with 128). One
+ * lane per work-item (GPUs) keeps the branch: a GPU would keep the lobes in scratch memory. */
+#define DEFERS_LOBES(count) (PHONGCL_LANES > 1 && ((count) == 0 || (count) > 4))
+
+/* Adds Li spec factor, spec the lobe's power: 0 where factor is (F may be +Inf where spec is 0). */
+void add_specular(LightSums* sums, realv spec, realv factor, UNIFORM_SPACE const float* color) {
+  const realv lit_spec = NONNEGATIVE_TIMES(spec, factor);
+  sums->specular.x += NONNEGATIVE_TIMES(color[0], lit_spec);
+  sums->specular.y += NONNEGATIVE_TIMES(color[1], lit_spec);
+  sums->specular.z += NONNEGATIVE_TIMES(color[2], lit_spec);
+}
+
 /* Adds what one light of colour `color` and weight F adds: Li F max(0, n.l) and Li F spec, with
- * l = toward * inverse (inverse = 1 / |toward|, 1 for a directional light's unit vector). In place,
- * not returned: each `sum += colour * lobe` contracts to one fma. Nothing here waits for the light's
- * square root before it must: the loop is latency-bound, and waiting makes a point light's chain 50%
- * longer. n, v and q come by value, not as the Surface: with the struct's address passed this deep,
- * PoCL keeps a copy of it per work-item (4 KB each with double16, past the work-group's stack). */
-void add_lobes(LightSums* sums, vec3 n, vec3 v, realv shininess, realv cutoff, realv model, vec3 toward,
-               realv inverse, UNIFORM_SPACE const float* color, realv weight) {
+ * l = toward * inverse (inverse = 1 / |toward|, 1 for a directional light's unit vector); where
+ * `pending` is not 0 the lobe is left there for its power. In place, not returned: each
+ * `sum += colour * lobe` contracts to one fma. Nothing here waits for the light's square root before
+ * it must: the loop is latency-bound, and waiting makes a point light's chain 50% longer. n, v and q
+ * come by value, not as the Surface: with the struct's address passed this deep, PoCL keeps a copy of
+ * it per work-item (4 KB each with double16, past the work-group's stack). */
+void add_lobes(LightSums* sums, PendingLobes* pending, vec3 n, vec3 v, realv shininess, realv cutoff, realv model,
+               vec3 toward, realv inverse, UNIFORM_SPACE const float* color, realv weight) {
   const realv n_dot = dot3(n, toward);
   const realv ndl = n_dot * inverse;
   const realv lit_ndl = SELECT(ndl > 0, ndl * weight, 0); /* back-facing or grazing: nothing from this light */
@@ -109,16 +139,33 @@ void add_lobes(LightSums* sums, vec3 n, vec3 v, realv shininess, realv cutoff, r
   if (SPECULAR) {
     const LobeCosine lobe = lobe_cosine(n, v, toward, inverse, n_dot, model);
     /* The power is half of a light's instructions and most of its dependency chain. Where every
-     * lane faces away or is below the cutoff the terms below are 0, and adding them changes no bit:
-     * skipped (half of the vectors and lights of the throughput bench's 256 lights). */
-    if (all_lanes(LANE_MASK(ndl <= 0) | LANE_MASK(lobe.cosine < cutoff))) return;
-    const realv spec = specular_power(lobe.cosine, lobe.one_minus_cosine, shininess);
-    realv lit_spec = SELECT(ndl > 0, NONNEGATIVE_TIMES(spec, weight), 0);
+     * lane faces away or is below the cutoff its terms are 0, and adding them changes no bit: left
+     * out (half of the vectors and lights of the throughput bench's 256 lights), by the count of
+     * pending lobes or by a branch. */
+    const int dark = all_lanes(LANE_MASK(ndl <= 0) | LANE_MASK(lobe.cosine < cutoff));
+    realv factor = SELECT(ndl > 0, weight, 0);
     /* A normalised lobe takes the cosine: lit_ndl is F n.l, and 0 where n.l <= 0. */
-    if (NORMALIZED_LOBES) lit_spec = SELECT(normalized_model(model) != 0, NONNEGATIVE_TIMES(spec, lit_ndl), lit_spec);
-    sums->specular.x += NONNEGATIVE_TIMES(color[0], lit_spec);
-    sums->specular.y += NONNEGATIVE_TIMES(color[1], lit_spec);
-    sums->specular.z += NONNEGATIVE_TIMES(color[2], lit_spec);
+    if (NORMALIZED_LOBES) factor = SELECT(normalized_model(model) != 0, lit_ndl, factor);
+    if (pending) {
+      /* Written whether or not it is kept: the next light's lobe overwrites a dark one. */
+      PendingLobe* next = &pending->lobes[pending->count];
+      next->cosine = lobe.cosine;
+      next->one_minus_cosine = lobe.one_minus_cosine;
+      next->factor = factor;
+      next->color = color;
+      pending->count += !dark;
+      return;
+    }
+    if (dark) return;
+    add_specular(sums, specular_power(lobe.cosine, lobe.one_minus_cosine, shininess), factor, color);
+  }
+}
+
+/* The block's pending lobes (add_lobes) raised to the power q and added, in the lights' order. */
+void sum_pending_lobes(LightSums* sums, const PendingLobes* pending, realv shininess) {
+  for (int k = 0; k < pending->count; ++k) {
+    const PendingLobe* lobe = &pending->lobes[k];
+    add_specular(sums, specular_power(lobe->cosine, lobe->one_minus_cosine, shininess), lobe->factor, lobe->color);
   }
 }
 
@@ -154,7 +201,8 @@ static inline vec3 light_offset(vec3 position, vec3 rest, const Surface* surface
 /* What a point or spot light adds, F from its shape and linking mask, times its visibility with
  * SHADOWS. In a tile's list a spot whose cone leaves out every lane is left early: that changes no
  * bit of the sums. */
-static inline void add_point_light(LightSums* sums, const Surface* surface, const Lights* lights, int i) {
+static inline void add_point_light(LightSums* sums, PendingLobes* pending, const Surface* surface,
+                                   const Lights* lights, int i) {
   UNIFORM_SPACE const PointLight* light = &lights->point[i];
   UNIFORM_SPACE const LightShape* shape = &lights->point_shapes[i];
   UNIFORM_SPACE const LinkWord* link_mask = &lights->point_links[i * LIGHT_LINKING];
@@ -167,19 +215,20 @@ static inline void add_point_light(LightSums* sums, const Surface* surface, cons
   const realv gate = link_gate(link_mask, surface->material);
   realv weight = POINT_SHAPES ? shape_weight(shape, toward, inverse, distance, inverse_distance, gate) : gate;
   if (SHADOWS) weight = shadowed_weight(weight, surface, lights, position, 0, lights->point_casters[i]);
-  add_lobes(sums, surface->n, surface->v, surface->shininess, surface->highlight_cutoff, surface->specular_model,
-            toward, inverse, light->color, weight);
+  add_lobes(sums, pending, surface->n, surface->v, surface->shininess, surface->highlight_cutoff,
+            surface->specular_model, toward, inverse, light->color, weight);
 }
 
 /* What a directional light adds; F is its linking, times its visibility with SHADOWS. */
-static inline void add_directional_light(LightSums* sums, const Surface* surface, const Lights* lights, int k) {
+static inline void add_directional_light(LightSums* sums, PendingLobes* pending, const Surface* surface,
+                                         const Lights* lights, int k) {
   UNIFORM_SPACE const DirectionalLight* light = &lights->directional[k];
   UNIFORM_SPACE const LinkWord* link_mask = &lights->directional_links[k * LIGHT_LINKING];
   const vec3 l = make_vec3(light->to_light[0], light->to_light[1], light->to_light[2]);
   realv weight = link_gate(link_mask, surface->material);
   if (SHADOWS) weight = shadowed_weight(weight, surface, lights, l, 1, lights->directional_casters[k]);
-  add_lobes(sums, surface->n, surface->v, surface->shininess, surface->highlight_cutoff, surface->specular_model, l,
-            1, light->color, weight);
+  add_lobes(sums, pending, surface->n, surface->v, surface->shininess, surface->highlight_cutoff,
+            surface->specular_model, l, 1, light->color, weight);
 }
 
 /* An area light's hard shadow: its E and S are 0 in the lanes where the one ray to the emitter's
@@ -239,6 +288,9 @@ static inline void sum_point_lights(LightSums* sums, LightSums* compensation, co
   for (int first = 0; first < lights->point_count; first += PHONGCL_LIGHT_BLOCK) {
     const int last = min(first + PHONGCL_LIGHT_BLOCK, lights->point_count);
     LightSums block = no_light;
+    PendingLobes lobes;
+    lobes.count = 0;
+    PendingLobes* pending = SPECULAR && DEFERS_LOBES(POINT_COUNT) ? &lobes : 0;
     if (TILED_CULLING) {
       int kept[PHONGCL_LIGHT_BLOCK], count = 0;
       for (int k = first; k < last; ++k) {
@@ -251,11 +303,12 @@ static inline void sum_point_lights(LightSums* sums, LightSums* compensation, co
         kept[count] = i;
         count += !beyond && in_group;
       }
-      for (int k = 0; k < count; ++k) add_point_light(&block, surface, lights, kept[k]);
+      for (int k = 0; k < count; ++k) add_point_light(&block, pending, surface, lights, kept[k]);
     } else {
       for (int k = first; k < last; ++k)
-        if (!LIGHT_GROUPS || lights->point_groups[k] == group) add_point_light(&block, surface, lights, k);
+        if (!LIGHT_GROUPS || lights->point_groups[k] == group) add_point_light(&block, pending, surface, lights, k);
     }
+    if (pending) sum_pending_lobes(&block, pending, surface->shininess);
     add_block(sums, compensation, &block);
   }
 }
@@ -274,8 +327,13 @@ static inline void sum_lights(LightSums* out, const Surface* surface, const Ligh
   if (DIRECTIONAL_LIGHTS)
     for (int first = 0; first < lights->directional_count; first += PHONGCL_LIGHT_BLOCK) {
       LightSums block = no_light;
+      PendingLobes lobes;
+      lobes.count = 0;
+      PendingLobes* pending = SPECULAR && DEFERS_LOBES(DIRECTIONAL_COUNT) ? &lobes : 0;
       for (int k = first; k < min(first + PHONGCL_LIGHT_BLOCK, lights->directional_count); ++k)
-        if (!LIGHT_GROUPS || lights->directional_groups[k] == group) add_directional_light(&block, surface, lights, k);
+        if (!LIGHT_GROUPS || lights->directional_groups[k] == group)
+          add_directional_light(&block, pending, surface, lights, k);
+      if (pending) sum_pending_lobes(&block, pending, surface->shininess);
       add_block(&sums, &compensation, &block);
     }
   if (AREA_LIGHTS)
