@@ -32,8 +32,8 @@ PackedTile pack_into_mapped(cl::CommandQueue& queue, const PackTarget& target, c
   void* mapped_planes = queue.enqueueMapBuffer(target.planes, CL_TRUE, CL_MAP_WRITE_INVALIDATE_REGION, 0, plane_bytes);
   auto* mapped_index = static_cast<cl_int*>(queue.enqueueMapBuffer(
       target.material_index, CL_TRUE, CL_MAP_WRITE_INVALIDATE_REGION, 0, stride * sizeof(cl_int)));
-  std::vector<float> half_staging(half ? stride * recipe.plane_count() : 0);
-  float* float_planes = half ? half_staging.data() : static_cast<float*>(mapped_planes);
+  if (half) target.half_staging.resize(stride * recipe.plane_count());
+  float* float_planes = half ? target.half_staging.data() : static_cast<float*>(mapped_planes);
   PackedTile packed;
   try {
     packed.counts = pack_tile(gbuffer, eye, recipe, first, count, padded, stride, float_planes, mapped_index);

@@ -140,7 +140,7 @@ PhongShader::FrameSetup PhongShader::prepare(const Scene& scene, const GBuffer& 
   return FrameSetup{
       .stride = stride,
       .pack_target = {planes_.at_least(context, plane_bytes), material_index_.at_least(context, stride * sizeof(cl_int)),
-                      stride},
+                      stride, half_staging_},
       .output = output_.at_least(context, PHONGCL_OUTPUT_PLANES * stride * sizeof(cl_float)),
       .terms = terms_.at_least(context, (recipe.write_terms ? term_planes(recipe) * stride : 1) * sizeof(cl_float)),
       .tiles = tile_layout(gbuffer.width, gbuffer.height, recipe.tile_size),

@@ -140,6 +140,7 @@ class PhongShader {
   ReusableBuffer material_index_{CL_MEM_READ_ONLY | CL_MEM_ALLOC_HOST_PTR};
   ReusableBuffer output_{CL_MEM_WRITE_ONLY | CL_MEM_ALLOC_HOST_PTR};
   ReusableBuffer terms_{CL_MEM_WRITE_ONLY | CL_MEM_ALLOC_HOST_PTR};
+  std::vector<float> half_staging_;  // PackTarget::half_staging
   std::unique_ptr<TileCuller> culler_;  // built for culler_options_
   std::string culler_options_;
   std::unique_ptr<ShadowCuller> shadow_culler_;  // built for shadow_culler_options_
