@@ -153,6 +153,17 @@ void bind_relighter(py::module_& module) {
           "NumPy arrays; linked materials must exist in the scene. Raises InputError or ValueError naming the "
           "entry (e.g. a NaN: must be finite).")
       .def(
+          "set_frame",
+          [](Relighter& r, const Scene& scene, const GBuffer& gbuffer) {
+            GBuffer frame = gbuffer;  // copied while the GIL is held: the Python object may change after
+            py::gil_scoped_release release;
+            r.set_frame(scene, std::move(frame));
+          },
+          py::arg("scene"), py::arg("gbuffer"),
+          "The next frame of a sequence: its scene (camera, lights, materials) and G-buffer, of any size. "
+          "The kernels and device buffers are kept (a kernel is built again only where the recipe changes). "
+          "Raises InputError or ValueError as the constructor does, and then keeps the frame it had.")
+      .def(
           "set_area_lights",
           [](Relighter& r, const py::object& lights) { r.set_area_lights(area_lights_from_python(lights)); },
           py::arg("lights"),

@@ -330,3 +330,25 @@ def test_scene_colours_in_a_named_space_arrive_in_the_working_space():
     assert scene.lights[0].color == pytest.approx([1, decoded, 0], rel=1e-6)
     with pytest.raises(phongcl.InputError, match="no such colour space"):
         phongcl.Scene.from_dict({"color_space": "Rec.2020"})
+
+
+@needs_device
+def test_a_sequence_hands_each_frame_to_one_relighter(scene, gbuffer):
+    relighter = phongcl.Relighter(scene, gbuffer)
+    first = relighter.shade()
+    document = json.loads(DEFAULT.read_text())
+    document["lights"] = [{"type": "point", "position": [-3, 5, 4], "color": [1.2, 1, 0.8]}]
+    moved = phongcl.Scene.from_dict(document)
+    # The next frame: other lights, the image upside down, then a smaller one.
+    flipped = phongcl.GBuffer(P=gbuffer.P[::-1], N=gbuffer.N[::-1], material=np.array(gbuffer.material)[::-1])
+    cropped = phongcl.GBuffer(P=gbuffer.P[:40, :60], N=gbuffer.N[:40, :60],
+                              material=np.array(gbuffer.material)[:40, :60])
+    for frame_scene, frame in [(moved, flipped), (scene, cropped), (scene, gbuffer)]:
+        relighter.set_frame(frame_scene, frame)
+        np.testing.assert_array_equal(relighter.shade(), phongcl.Relighter(frame_scene, frame).shade())
+    np.testing.assert_array_equal(relighter.shade(), first)
+    # A frame the scene cannot shade is refused, and the one before stays.
+    document["materials"] = document["materials"][:1]
+    with pytest.raises(phongcl.InputError, match="material"):
+        relighter.set_frame(phongcl.Scene.from_dict(document), gbuffer)  # the G-buffer uses indices up to 4
+    np.testing.assert_array_equal(relighter.shade(), first)
