@@ -9,6 +9,7 @@
 #include <iostream>
 #include <sstream>
 #include <stdexcept>
+#include <thread>
 
 #include "cl/compute_context.h"
 #include "cli/bench_arguments.h"
@@ -89,36 +90,37 @@ class ManyLightsBench {
     for (std::size_t i = 0; i < gbuffer.pixel_count(); ++i) shaded_ += classify_pixel(gbuffer, i) == PixelClass::shaded;
   }
 
-  void opencl(const Scene& scene, bool tiled, Reach reach, const ReferenceRows* reference) {
+  void unculled(const Scene& scene, Reach reach, const ReferenceRows* reference) {
     ShadeOptions options;
-    options.culling = tiled ? Culling::tiled : Culling::none;
-    options.tile_size = kTileSize;
+    options.culling = Culling::none;
     ShadeResult last;
-    std::vector<double> culling;
     ManyLightsResult r;
     const std::vector<double> times = time_runs(runs_, [&] {
       last = shader_.shade(scene, gbuffer_, options);
-      culling.push_back(last.culling.culling_ms);
       return last.timings.kernel_ms;
     }, r.single_run);
-    r.impl = tiled ? "opencl-tiled" : "opencl-unculled";
+    r.impl = "opencl-unculled";
     r.lights = static_cast<int>(scene.lights.size());
     r.time = summarize(times);
-    const double pairs = tiled ? last.culling.kept_pairs : static_cast<double>(shaded_) * r.lights;
-    if (tiled) {
-      if (!r.single_run) culling.erase(culling.begin());  // the warm-up's
-      r.culling_ms = summarize(culling).median_ms;
-      r.mean_lights_per_tile = last.culling.mean_lights_per_tile();
-      r.mean_holding_per_tile = last.culling.mean_holding_per_tile();
-    }
-    set_figures(r, pairs, reach, reference ? std::optional(reference->error_of(last.image)) : std::nullopt);
+    set_figures(r, static_cast<double>(shaded_) * r.lights, reach,
+                reference ? std::optional(reference->error_of(last.image)) : std::nullopt);
     finish(r);
   }
 
-  // cpp-tiled at its default schedule and, with `sweep`, at every schedule of a grid, the fastest
-  // reported as "cpp-tiled-best". The schedules take turns, one run each per round after a warm-up
-  // each, so that the machine's drift (10-20% over a minute here) lands on all of them alike.
-  void cpp_tiled(const Scene& scene, Reach reach, const ReferenceRows& reference, bool sweep) {
+  // The tiled kernel, and cpp-tiled at its default schedule and, with `sweep`, at every schedule of a
+  // grid, the fastest reported as "cpp-tiled-best". They take turns, one run each per round after a
+  // warm-up each, so that the machine's drift (10-20% over a minute here) lands on all of them alike.
+  void tiled(const Scene& scene, Reach reach, const ReferenceRows& reference, bool sweep) {
+    ShadeOptions options;
+    options.culling = Culling::tiled;
+    options.tile_size = kTileSize;
+    ShadeResult last;
+    std::vector<double> kernel_times, culling;
+    const auto run_kernel = [&] {
+      last = shader_.shade(scene, gbuffer_, options);
+      kernel_times.push_back(last.timings.kernel_ms);
+      culling.push_back(last.culling.culling_ms);
+    };
     const PackedFrame frame = pack_frame(gbuffer_, scene);
     const PackedScene packed = pack_scene(scene);
     std::vector<PeerTiming> timings{{TiledPeerSchedule{}}};
@@ -136,15 +138,33 @@ class ManyLightsBench {
       timing.kept_pairs = stats.kept_pairs;
       timing.max_rel_err = reference.error_of(image);
     };
-    // The warm-ups, each kept as its schedule's one timed run where it took over 10 s (as time_runs).
+    // The warm-ups, each kept as the one timed run where it took over 10 s (as time_runs).
+    run_kernel();
+    const bool kernel_single = kernel_times.back() > kSingleRunMs;
+    if (!kernel_single) kernel_times.clear(), culling.clear();
     for (PeerTiming& timing : timings) {
       run(timing);
       timing.single_run = timing.times.back() > kSingleRunMs;
       if (!timing.single_run) timing.times.clear(), timing.culling.clear();
     }
-    for (int round = 0; round < runs_; ++round)
+    for (int round = 0; round < runs_; ++round) {
+      // The peer's idle OpenMP workers spin after its parallel regions (libgomp's GOMP_SPINCOUNT,
+      // host/shading/host_threads.h), on the cores the kernel runs on: they are let go to sleep first.
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+      if (!kernel_single) run_kernel();
       for (PeerTiming& timing : timings)
         if (!timing.single_run) run(timing);
+    }
+    ManyLightsResult r;
+    r.impl = "opencl-tiled";
+    r.lights = static_cast<int>(scene.lights.size());
+    r.single_run = kernel_single;
+    r.time = summarize(kernel_times);
+    r.culling_ms = summarize(culling).median_ms;
+    r.mean_lights_per_tile = last.culling.mean_lights_per_tile();
+    r.mean_holding_per_tile = last.culling.mean_holding_per_tile();
+    set_figures(r, last.culling.kept_pairs, reach, reference.error_of(last.image));
+    finish(r);
     const auto lights = static_cast<int>(scene.lights.size());
     finish(peer_result(timings.front(), "cpp-tiled", lights, reach));
     if (!sweep) return;
@@ -227,7 +247,7 @@ void run_many_lights_bench(const BenchArguments& args) {
     // The unculled kernel's pixel-lights/s at 16 lights: what culling's effective rate is held to.
     const Scene sixteen = with_many_lights(scene, gbuffer, kUnculledRateLights);
     std::cout << "  lights     " << kUnculledRateLights << " (the unculled rate)\n";
-    bench.opencl(sixteen, false, {mean_lights_reaching(sixteen, gbuffer, 97), 0.0}, nullptr);
+    bench.unculled(sixteen, {mean_lights_reaching(sixteen, gbuffer, 97), 0.0}, nullptr);
   }
   for (const Scene& lit : scenes) {
     const auto start = Clock::now();
@@ -236,9 +256,8 @@ void run_many_lights_bench(const BenchArguments& args) {
               << " on average, one of its tile's pixels by " << reach.tile << "; reference rows..." << std::flush;
     const ReferenceRows reference(lit, gbuffer);
     std::cout << " every " << reference.step << "\n";
-    bench.opencl(lit, true, reach, &reference);
-    bench.opencl(lit, false, reach, &reference);
-    bench.cpp_tiled(lit, reach, reference, args.peer_schedules);
+    bench.tiled(lit, reach, reference, args.peer_schedules);
+    bench.unculled(lit, reach, &reference);
     std::cout << "    (" << static_cast<int>(elapsed_ms(start) / 1000) << " s)\n";
   }
   std::cout << "\n" << many_lights_table(bench.results());
