@@ -109,7 +109,7 @@ typedef struct {
 
 /* Whether a kind of light leaves its powers to sum_pending_lobes: in vectors of lanes, unless the
  * kernel holds a few of them (`count` in the code), whose skips a predictor learns (the branch was
- * 4-6% faster with 2 and 4 lights of each kind, the pending lobes 6% with 8 and 12% with 128). One
+ * 3-6% faster with 2 and 4 lights of each kind, the pending lobes 6% with 8 and 12% with 128). One
  * lane per work-item (GPUs) keeps the branch: a GPU would keep the lobes in scratch memory. */
 #define DEFERS_LOBES(count) (PHONGCL_LANES > 1 && ((count) == 0 || (count) > 4))
 
