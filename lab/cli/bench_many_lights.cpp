@@ -139,14 +139,14 @@ class ManyLightsBench {
       timing.max_rel_err = reference.error_of(image);
     };
     // The warm-ups, each kept as the one timed run where it took over 10 s (as time_runs).
-    run_kernel();
-    const bool kernel_single = kernel_times.back() > kSingleRunMs;
-    if (!kernel_single) kernel_times.clear(), culling.clear();
-    for (PeerTiming& timing : timings) {
-      run(timing);
-      timing.single_run = timing.times.back() > kSingleRunMs;
-      if (!timing.single_run) timing.times.clear(), timing.culling.clear();
-    }
+    const auto warm_up = [](std::vector<double>& times, std::vector<double>& culling, const auto& run_once) {
+      run_once();
+      const bool single = times.back() > kSingleRunMs;
+      if (!single) times.clear(), culling.clear();
+      return single;
+    };
+    const bool kernel_single = warm_up(kernel_times, culling, run_kernel);
+    for (PeerTiming& timing : timings) timing.single_run = warm_up(timing.times, timing.culling, [&] { run(timing); });
     for (int round = 0; round < runs_; ++round) {
       // The peer's idle OpenMP workers spin after its parallel regions (libgomp's GOMP_SPINCOUNT,
       // host/shading/host_threads.h), on the cores the kernel runs on: they are let go to sleep first.
@@ -155,9 +155,10 @@ class ManyLightsBench {
       for (PeerTiming& timing : timings)
         if (!timing.single_run) run(timing);
     }
+    const auto lights = static_cast<int>(scene.lights.size());
     ManyLightsResult r;
     r.impl = "opencl-tiled";
-    r.lights = static_cast<int>(scene.lights.size());
+    r.lights = lights;
     r.single_run = kernel_single;
     r.time = summarize(kernel_times);
     r.culling_ms = summarize(culling).median_ms;
@@ -165,7 +166,6 @@ class ManyLightsBench {
     r.mean_holding_per_tile = last.culling.mean_holding_per_tile();
     set_figures(r, last.culling.kept_pairs, reach, reference.error_of(last.image));
     finish(r);
-    const auto lights = static_cast<int>(scene.lights.size());
     finish(peer_result(timings.front(), "cpp-tiled", lights, reach));
     if (!sweep) return;
     for (const PeerTiming& timing : timings)
