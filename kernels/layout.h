@@ -84,7 +84,8 @@ typedef struct {
  * next tile), so one light list serves all of a work-item's pixels. */
 typedef struct {
   unsigned int image_width; /* pixels per row */
-  unsigned int tile_size;   /* tiles are tile_size x tile_size pixels */
+  unsigned int tile_size;   /* tiles are tile_size pixels wide */
+  unsigned int tile_rows;   /* and tile_rows tall */
   unsigned int tiles_x;     /* tiles per row */
   unsigned int first_pixel; /* the frame pixel of this launch's slot 0 */
 } TileGrid;
@@ -107,8 +108,8 @@ typedef struct {
   unsigned int distance_bins;
 } TileBox;
 
-/* The culling tests a 2 x 2 block of boxes at once (cull.cl's keep_box_lights), given as four box
- * indices; a block at the grid's edge has PHONGCL_NO_BOX in the slots past it. */
+/* The culling tests a block of up to eight boxes at once (cull.cl's keep_box_lights), given as eight
+ * box indices; a block at the grid's edge, or of fewer boxes, has PHONGCL_NO_BOX in the slots past it. */
 #define PHONGCL_NO_BOX 0xffffffffu
 
 /* A directional light. to_light is the unit vector l = -normalize(direction), computed in double. */

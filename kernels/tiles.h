@@ -7,7 +7,7 @@
 
 uint tile_of_pixel(TileGrid grid, uint pixel) {
   const uint x = pixel % grid.image_width, y = pixel / grid.image_width;
-  return (y / grid.tile_size) * grid.tiles_x + x / grid.tile_size;
+  return (y / grid.tile_rows) * grid.tiles_x + x / grid.tile_size;
 }
 
 /* A box with no point in it: the union's identity, as row_bounds leaves a row with nothing shaded. */

@@ -98,6 +98,7 @@ py::dict report(const Relighter& relighter) {
   if (r.culled) {
     py::dict culling;
     culling["tile_size"] = r.culling.tile_size;
+    culling["tile_rows"] = r.culling.tile_rows;
     culling["shaded_tiles"] = r.culling.shaded_tiles;
     culling["mean_lights_per_tile"] = r.culling.mean_lights_per_tile();
     culling["mean_holding_per_tile"] = r.culling.mean_holding_per_tile();

@@ -12,6 +12,7 @@
 #include "cl/kernel_source.h"
 #include "shading/phong_arguments.h"
 #include "shading/phong_launch.h"
+#include "shading/tile_culling.h"
 #include "shading_support.h"
 #include "shaped_lights.h"
 
@@ -137,8 +138,7 @@ TEST(KernelVariants, EveryVariantBuilds) {
     if (options.precision == Precision::double_precision && !device.has_fp64) return;
     const Recipe recipe = make_recipe(scene, gbuffer, device, options);
     phong_options.insert(recipe.build_options());
-    cull_options.insert("-cl-std=CL1.2 -DPHONGCL_LANES=" + recipe.value("PHONGCL_LANES") +
-                        " -DHALF_STORAGE=" + recipe.value("HALF_STORAGE"));
+    for (int block_boxes : {4, 8}) cull_options.insert(culling_options(recipe.build_options(), block_boxes));
   };
   const auto scenes = variant_scenes();
   // Every scene one pixel per work-item, culled with terms, and general; the shaped scene in every precision.

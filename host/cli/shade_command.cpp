@@ -121,8 +121,9 @@ void run_shade(const ShadeArguments& args) {
             << mpixels_per_second(gbuffer.pixel_count(), t.kernel_ms) << ")\n";
   if (result.culled) {
     const CullingStats& c = result.culling;
-    std::cout << "  culling    tiles " << c.tile_size << "x" << c.tile_size << ", " << with_commas(c.shaded_tiles)
-              << " with shaded pixels; lights per tile mean " << std::fixed << std::setprecision(1)
+    std::cout << "  culling    light lists per " << c.tile_size << "x" << c.tile_rows << " tile, "
+              << with_commas(c.shaded_tiles) << " with shaded pixels; lights per tile mean " << std::fixed
+              << std::setprecision(1)
               << c.mean_lights_per_tile() << " (" << c.mean_holding_per_tile() << " holding all of it)"
               << std::defaultfloat << ", max "
               << c.max_lights_per_tile << "; " << milliseconds(c.culling_ms) << " (inside kernel time)\n";

@@ -25,5 +25,5 @@ static_assert(offsetof(MaterialRecord, ka) == MATERIAL_KA * sizeof(float) &&
 static_assert(sizeof(LightShape) == 48 && offsetof(LightShape, inverse_range) == 16 && offsetof(LightShape, falloff) == 32 &&
               offsetof(LightShape, cosine_power) == 36);
 static_assert(sizeof(LightBounds) == 64 && offsetof(LightBounds, apex) == 16 && offsetof(LightBounds, distance_bins) == 48 &&
-              sizeof(TileGrid) == 16 && sizeof(LinkWord) == 4);
+              sizeof(TileGrid) == 20 && sizeof(LinkWord) == 4);
 static_assert(sizeof(TileBox) == 32 && offsetof(TileBox, hi) == 16);

@@ -143,9 +143,9 @@ PhongShader::FrameSetup PhongShader::prepare(const Scene& scene, const GBuffer& 
                       stride, half_staging_},
       .output = output_.at_least(context, PHONGCL_OUTPUT_PLANES * stride * sizeof(cl_float)),
       .terms = terms_.at_least(context, (recipe.write_terms ? term_planes(recipe) * stride : 1) * sizeof(cl_float)),
-      .tiles = tile_layout(gbuffer.width, gbuffer.height, recipe.tile_size),
+      .tiles = light_list_layout(gbuffer.width, gbuffer.height, recipe.tile_size),
       .culler = recipe.tiled ? &culler_for(report.build_options) : nullptr,
-      .shadow_tiles = tile_layout(gbuffer.width, gbuffer.height, kShadowCullingTile),
+      .shadow_tiles = tile_layout(gbuffer.width, gbuffer.height, kShadowCullingTile, kShadowCullingTile),
       .shadow_culler = shadows_culled ? &shadow_culler_for(report.build_options) : nullptr,
       .packed_for = wanted,
       .resident = resident};

@@ -31,7 +31,7 @@ struct PixelCounts {
 
 // What one frame's tiled light culling kept.
 struct CullingStats {
-  int tile_size = 0;
+  int tile_size = 0, tile_rows = 0;  // each list's tile: tile_size wide, tile_rows tall
   std::size_t tiles = 0, shaded_tiles = 0;  // shaded: tiles with at least one shaded pixel
   std::size_t max_lights_per_tile = 0;
   double list_entries = 0.0;                // sum over shaded tiles of their list lengths

@@ -140,6 +140,7 @@ double ShadowCuller::box_tiles(const cl::Buffer& planes, std::size_t plane_strid
   const cl_uint rows = static_cast<cl_uint>(layout.tile_count / layout.grid.tiles_x);
   coarse_.grid = layout.grid;
   coarse_.grid.tile_size *= ratio;
+  coarse_.grid.tile_rows *= ratio;
   coarse_.grid.tiles_x = (layout.grid.tiles_x + ratio - 1) / ratio;
   coarse_.tiles = coarse_.grid.tiles_x * ((rows + ratio - 1) / ratio);
   coarse_boxes_ = cl::Buffer(context, CL_MEM_READ_WRITE, coarse_.tiles * sizeof(TileBox));

@@ -15,13 +15,13 @@ namespace phongcl {
 namespace {
 
 using KeepKernel = cl::KernelFunctor<cl::Buffer, cl::Buffer, cl::Buffer, cl::Buffer, cl::Buffer, cl::Buffer, cl::Buffer,
-                                    cl::Buffer, cl::Buffer, cl_uint, cl::Buffer>;
+                                    cl::Buffer, cl::Buffer, cl::Buffer, cl::Buffer, cl_uint>;
 
 }  // namespace
 
 // The lane count and storage type are all cull.cl shares with the shading variant.
-std::string culling_options(const std::string& shading_options) {
-  std::string options = "-cl-std=CL1.2";
+std::string culling_options(const std::string& shading_options, int block_boxes) {
+  std::string options = "-cl-std=CL1.2 -DPHONGCL_BLOCK_BOXES=" + std::to_string(block_boxes);
   for (const char* keep : {"-DPHONGCL_LANES=", "-DHALF_STORAGE"}) {
     const std::size_t at = shading_options.find(keep);
     if (at == std::string::npos) continue;
@@ -35,9 +35,9 @@ std::array<cl::Event, 2> enqueue_tile_boxes(cl::CommandQueue& queue, const cl::P
                                             const cl::Buffer& material_index, std::size_t slot_count,
                                             const TileLayout& layout, ReusableBuffer& rows, const cl::Buffer& boxes) {
   // Bands of 4 rows where the tile size allows: each of row_bounds' work-items reduces its lanes once.
-  const cl_uint tile_size = layout.grid.tile_size;
-  const cl_uint rows_per_item = tile_size % 4 == 0 ? 4 : tile_size % 2 == 0 ? 2 : 1;
-  const std::size_t band_count = layout.tile_count * (tile_size / rows_per_item);
+  const cl_uint tile_rows = layout.grid.tile_rows;
+  const cl_uint rows_per_item = tile_rows % 4 == 0 ? 4 : tile_rows % 2 == 0 ? 2 : 1;
+  const std::size_t band_count = layout.tile_count * (tile_rows / rows_per_item);
   const cl::Buffer& band_boxes = rows.at_least(queue.getInfo<CL_QUEUE_CONTEXT>(), band_count * sizeof(TileBox));
   cl::KernelFunctor<cl::Buffer, cl_uint, cl::Buffer, cl_uint, TileGrid, cl_uint, cl::Buffer> by_band(cull_program,
                                                                                                    "row_bounds");
@@ -51,6 +51,7 @@ std::array<cl::Event, 2> enqueue_tile_boxes(cl::CommandQueue& queue, const cl::P
 
 CullingStats& CullingStats::operator+=(const CullingStats& other) {
   tile_size = other.tile_size;
+  tile_rows = other.tile_rows;
   tiles = std::max(tiles, other.tiles);
   shaded_tiles += other.shaded_tiles;
   max_lights_per_tile = std::max(max_lights_per_tile, other.max_lights_per_tile);
@@ -61,14 +62,20 @@ CullingStats& CullingStats::operator+=(const CullingStats& other) {
   return *this;
 }
 
-TileLayout tile_layout(int width, int height, int tile_size) {
+TileLayout tile_layout(int width, int height, int tile_size, int tile_rows) {
   TileLayout layout;
-  const auto size = static_cast<cl_uint>(tile_size);
+  const auto size = static_cast<cl_uint>(tile_size), rows = static_cast<cl_uint>(tile_rows);
   layout.grid.image_width = static_cast<cl_uint>(width);
   layout.grid.tile_size = size;
+  layout.grid.tile_rows = rows;
   layout.grid.tiles_x = (static_cast<cl_uint>(width) + size - 1) / size;
-  layout.tile_count = static_cast<std::size_t>(layout.grid.tiles_x) * ((static_cast<cl_uint>(height) + size - 1) / size);
+  layout.tile_count =
+      static_cast<std::size_t>(layout.grid.tiles_x) * ((static_cast<cl_uint>(height) + rows - 1) / rows);
   return layout;
+}
+
+TileLayout light_list_layout(int width, int height, int tile_size) {
+  return tile_layout(width, height, tile_size, tile_size % 2 == 0 ? tile_size / 2 : tile_size);
 }
 
 bool boxes_serve(const std::optional<BoxesKey>& taken, const BoxesKey& wanted) {
@@ -78,38 +85,44 @@ bool boxes_serve(const std::optional<BoxesKey>& taken, const BoxesKey& wanted) {
 }
 
 TileCuller::TileCuller(const ComputeContext& compute, ProgramCache& cache, const std::string& build_options)
-    : compute_(compute), program_(cache.build(compute, load_kernel_source("cull.cl"), culling_options(build_options)).program) {}
+    : compute_(compute),
+      program_(cache.build(compute, load_kernel_source("cull.cl"), culling_options(build_options, 4)).program),
+      halves_program_(cache.build(compute, load_kernel_source("cull.cl"), culling_options(build_options, 8)).program) {}
 
-// The culling levels above the tiles are boxes of 2 x 2, 4 x 4 and 8 x 8 tiles: every light is tested
-// against the coarsest boxes, and each finer box against its parent's survivors.
+// The culling levels above the square tiles are boxes of 2 x 2, 4 x 4 and 8 x 8 of them: every light
+// is tested against the coarsest boxes, and each finer box against its parent's survivors.
 constexpr std::size_t kCoarsestSpan = 8;
 
-// A grid of boxes, each the union of the tile boxes it spans, and its 2 x 2 blocks: block b holds
-// the indices of the boxes the parent box b (one level up) is made of, PHONGCL_NO_BOX where the grid
-// ends.
+// A grid of boxes, each the union of the tile boxes it spans, and its blocks of 2 x block_rows boxes
+// (2 x 4 half tiles, or 2 x 2 boxes): blocks[b * block_size() ...] holds the indices of the boxes the
+// parent box b (one level up) is made of, PHONGCL_NO_BOX where the grid ends.
 struct BoxGrid {
   std::size_t columns = 0;
   std::vector<TileBox> boxes;
-  std::vector<cl_uint4> blocks;
+  std::size_t block_rows = 2;
+  std::vector<cl_uint> blocks;
+  std::size_t block_size() const { return 2 * block_rows; }
 };
 
 namespace {
 
-// The boxes of `grid` merged 2 x 2 (and grid.blocks filled: the merged box m is made of block m).
-BoxGrid merge_blocks(BoxGrid& grid) {
+// The boxes of `grid` merged 2 x block_rows (and grid.blocks filled: the merged box m is made of
+// block m).
+BoxGrid merge_blocks(BoxGrid& grid, std::size_t block_rows = 2) {
+  grid.block_rows = block_rows;
   const std::size_t rows = grid.boxes.size() / grid.columns;
   BoxGrid merged;
   merged.columns = (grid.columns + 1) / 2;
-  merged.boxes.resize(merged.columns * ((rows + 1) / 2));
+  merged.boxes.resize(merged.columns * ((rows + block_rows - 1) / block_rows));
   for (TileBox& box : merged.boxes) {
     for (int axis = 0; axis < 3; ++axis) box.lo[axis] = INFINITY, box.hi[axis] = -INFINITY;
     box.shaded = box.distance_bins = 0;
   }
-  grid.blocks.assign(merged.boxes.size(), cl_uint4{{PHONGCL_NO_BOX, PHONGCL_NO_BOX, PHONGCL_NO_BOX, PHONGCL_NO_BOX}});
+  grid.blocks.assign(merged.boxes.size() * grid.block_size(), PHONGCL_NO_BOX);
   for (std::size_t t = 0; t < grid.boxes.size(); ++t) {
     const std::size_t column = t % grid.columns, row = t / grid.columns;
-    const std::size_t m = row / 2 * merged.columns + column / 2;
-    grid.blocks[m].s[row % 2 * 2 + column % 2] = static_cast<cl_uint>(t);
+    const std::size_t m = row / block_rows * merged.columns + column / 2;
+    grid.blocks[m * grid.block_size() + row % block_rows * 2 + column % 2] = static_cast<cl_uint>(t);
     const TileBox& box = grid.boxes[t];
     if (box.shaded == 0) continue;
     for (int axis = 0; axis < 3; ++axis) {
@@ -132,7 +145,8 @@ cl::Buffer device_copy(const cl::Context& context, std::vector<T> values) {
 
 TileCuller::Lists TileCuller::lists(const cl::Buffer& boxes, const BoxGrid& grid, const cl::Buffer& light_bounds,
                                     const cl::Buffer& candidates, const std::vector<cl_uint>& candidate_first,
-                                    const std::vector<cl_uint>& candidate_count, bool lead_holding,
+                                    const std::vector<cl_uint>& candidate_count,
+                                    const std::vector<cl_uint>& candidate_holding, bool sieve,
                                     LevelBuffers& buffers) {
   const cl::Context& context = compute_.context;
   cl::CommandQueue& queue = compute_.queue;
@@ -141,8 +155,9 @@ TileCuller::Lists TileCuller::lists(const cl::Buffer& boxes, const BoxGrid& grid
   // Room for every candidate of each shaded box, so that one pass both tests and writes.
   lists.host_offsets.assign(box_count, 0);
   std::size_t room = 0;
-  for (std::size_t b = 0; b < grid.blocks.size(); ++b)
-    for (cl_uint t : grid.blocks[b].s) {
+  for (std::size_t b = 0; b < candidate_count.size(); ++b)
+    for (std::size_t slot = 0; slot < grid.block_size(); ++slot) {
+      const cl_uint t = grid.blocks[b * grid.block_size() + slot];
       if (t == PHONGCL_NO_BOX) continue;
       lists.host_offsets[t] = static_cast<cl_uint>(room);
       if (grid.boxes[t].shaded > 0) room += candidate_count[b];
@@ -154,17 +169,19 @@ TileCuller::Lists TileCuller::lists(const cl::Buffer& boxes, const BoxGrid& grid
   // OpenCL has no empty buffers: a frame that keeps no light still gets one entry.
   lists.lights = buffers.lights.at_least(context, std::max<std::size_t>(room, 1) * sizeof(cl_uint));
   lists.counts = buffers.counts.at_least(context, box_count * sizeof(cl_uint));
-  lists.holding = buffers.holding.at_least(context, (lead_holding ? box_count : 1) * sizeof(cl_uint));
+  lists.holding = buffers.holding.at_least(context, box_count * sizeof(cl_uint));
   // One block per group: PoCL's default put each level's blocks (2,040 at the tiles of a 1080p frame)
   // in one group, on one core; at 10,000 lights the four levels took 6.1 against 9.5 ms.
-  const std::size_t blocks = grid.blocks.size();
-  KeepKernel(program_, "keep_box_lights")(
+  const std::size_t blocks = candidate_count.size();
+  KeepKernel(grid.block_rows == 2 ? program_ : halves_program_, "keep_box_lights")(
       cl::EnqueueArgs(queue, cl::NDRange(blocks), spread_work_groups(compute_.device.info, blocks, 1)), boxes,
       light_bounds, device_copy(context, grid.blocks), candidates, device_copy(context, candidate_first),
-      device_copy(context, candidate_count), lists.offsets, lists.lights, lists.counts, cl_uint{lead_holding},
-      lists.holding);
+      device_copy(context, candidate_count), device_copy(context, candidate_holding), lists.offsets, lists.lights,
+      lists.counts, lists.holding, cl_uint{sieve});
   lists.host_counts.resize(box_count);
-  queue.enqueueReadBuffer(lists.counts, CL_TRUE, 0, box_count * sizeof(cl_uint), lists.host_counts.data());
+  lists.host_holding.resize(box_count);
+  queue.enqueueReadBuffer(lists.counts, CL_FALSE, 0, box_count * sizeof(cl_uint), lists.host_counts.data());
+  queue.enqueueReadBuffer(lists.holding, CL_TRUE, 0, box_count * sizeof(cl_uint), lists.host_holding.data());
   return lists;
 }
 
@@ -185,28 +202,29 @@ CullingStats TileCuller::cull(const cl::Buffer& planes, std::size_t plane_stride
     boxes_for_ = wanted;
   }
 
-  // The levels' box grids, finest (the tiles) first, each with its 2 x 2 blocks; the coarsest's
-  // blocks are the boxes of a grid not culled against.
+  // The levels' box grids, finest (the tiles) first, each with its blocks; the coarsest's blocks are
+  // the boxes of a grid not culled against. Tiles half as tall as wide make boxes of 2 x 2 squares
+  // in blocks of 2 x 4.
   std::vector<BoxGrid> grids{{layout.grid.tiles_x, tile_boxes_, {}}};
-  for (std::size_t span = 1; span < kCoarsestSpan; span *= 2) grids.push_back(merge_blocks(grids.back()));
+  const bool halves = layout.grid.tile_rows < layout.grid.tile_size;
+  if (halves) grids.push_back(merge_blocks(grids.back(), 4));
+  for (std::size_t span = halves ? 2 : 1; span < kCoarsestSpan; span *= 2) grids.push_back(merge_blocks(grids.back()));
   merge_blocks(grids.back());
   // The coarsest level tests every light; each finer box its parent box's survivors.
   std::vector<cl_uint> every_light(light_count);
   for (std::size_t k = 0; k < light_count; ++k) every_light[k] = static_cast<cl_uint>(k);
-  const std::size_t coarsest_blocks = grids.back().blocks.size();
+  const std::size_t coarsest_blocks = grids.back().blocks.size() / grids.back().block_size();
   level_buffers_.resize(grids.size());
   Lists level = lists(device_copy(context, grids.back().boxes), grids.back(), light_bounds,
                       device_copy(context, every_light), std::vector<cl_uint>(coarsest_blocks, 0),
-                      std::vector<cl_uint>(coarsest_blocks, static_cast<cl_uint>(light_count)), false,
-                      level_buffers_.back());
+                      std::vector<cl_uint>(coarsest_blocks, static_cast<cl_uint>(light_count)),
+                      std::vector<cl_uint>(coarsest_blocks, 0), true, level_buffers_.back());
   for (std::size_t g = grids.size() - 1; g-- > 0;) {
     const cl::Buffer finer = g == 0 ? boxes : device_copy(context, grids[g].boxes);
-    level = lists(finer, grids[g], light_bounds, level.lights, level.host_offsets, level.host_counts, g == 0,
-                  level_buffers_[g]);
+    level = lists(finer, grids[g], light_bounds, level.lights, level.host_offsets, level.host_counts,
+                  level.host_holding, false, level_buffers_[g]);
   }
   const Lists& fine = level;
-  std::vector<cl_uint> holding(tiles);
-  queue.enqueueReadBuffer(fine.holding, CL_TRUE, 0, tiles * sizeof(cl_uint), holding.data());
   offsets_buffer_ = fine.offsets;
   counts_buffer_ = fine.counts;
   lights_buffer_ = fine.lights;
@@ -214,6 +232,7 @@ CullingStats TileCuller::cull(const cl::Buffer& planes, std::size_t plane_stride
 
   CullingStats stats;
   stats.tile_size = static_cast<int>(layout.grid.tile_size);
+  stats.tile_rows = static_cast<int>(layout.grid.tile_rows);
   stats.tiles = tiles;
   const std::vector<TileBox>& tile_boxes = grids.front().boxes;
   for (std::size_t t = 0; t < tiles; ++t) {
@@ -221,7 +240,7 @@ CullingStats TileCuller::cull(const cl::Buffer& planes, std::size_t plane_stride
     ++stats.shaded_tiles;
     stats.max_lights_per_tile = std::max<std::size_t>(stats.max_lights_per_tile, fine.host_counts[t]);
     stats.list_entries += fine.host_counts[t];
-    stats.holding_entries += holding[t];
+    stats.holding_entries += fine.host_holding[t];
     stats.kept_pairs += static_cast<double>(fine.host_counts[t]) * tile_boxes[t].shaded;
   }
   stats.culling_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();

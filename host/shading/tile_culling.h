@@ -16,12 +16,17 @@
 
 namespace phongcl {
 
-// The grid of tiles over an image of the given width and height.
+// The grid of tile_size x tile_rows tiles over an image of the given width and height.
 struct TileLayout {
   TileGrid grid{};
   std::size_t tile_count = 0;
 };
-TileLayout tile_layout(int width, int height, int tile_size);
+TileLayout tile_layout(int width, int height, int tile_size, int tile_rows);
+// The tiles the shading's light lists are kept for: square tiles of an even size are split into a
+// top and a bottom half, so a list serves a work-item's row of tile_size pixels and tile_size / 2 - 1
+// rows more. Halves keep fewer lights than the square (the kernel tests each light not holding all
+// of the tile against each row) and cost one more culling level.
+TileLayout light_list_layout(int width, int height, int tile_size);
 // What a launch's tile boxes are taken from: its slots' packing, numbered by whoever packs them (a
 // new number each time they are packed; 0: not numbered), and the tiles. The boxes depend on the
 // pixels alone, so a cull of the same numbered packing and tiles (only the lights changed) keeps them.
@@ -32,8 +37,9 @@ struct BoxesKey {
 // Whether boxes taken for `taken` (none: never taken) serve `wanted`.
 bool boxes_serve(const std::optional<BoxesKey>& taken, const BoxesKey& wanted);
 
-// cull.cl's options for a shading variant's build options: its lanes and storage.
-std::string culling_options(const std::string& shading_options);
+// cull.cl's options for a shading variant's build options (its lanes and storage) and blocks of
+// `block_boxes` boxes (4 or 8).
+std::string culling_options(const std::string& shading_options, int block_boxes = 4);
 
 // The boxes of a launch's tiles (layout.tile_count TileBoxes into `boxes`) from its packed slots
 // [0, slot_count), by cull.cl's row_bounds and tile_bounds (`rows` holds the first pass's boxes, one
@@ -64,13 +70,14 @@ class TileCuller {
   const cl::Buffer& holding() const { return holding_buffer_; }
 
  private:
-  // One level of culling: each 2 x 2 block's candidates (a range of `candidates`: block b's from
-  // candidate_first[b], candidate_count[b] of them) against its boxes (`boxes` on the device,
-  // grid.boxes the same on the host); box t's list is lights[host_offsets[t] ...], host_counts[t] of them.
-  // With lead_holding (the tiles) the lights whose bounds hold all of the box come first, holding[t] of them.
+  // One level of culling: each block's candidates (a range of `candidates`: block b's from
+  // candidate_first[b], candidate_count[b] of them, the first candidate_holding[b] holding all of the
+  // block's boxes) against its boxes (`boxes` on the device, grid.boxes the same on the host); box t's
+  // list is lights[host_offsets[t] ...], host_counts[t] of them, led by the host_holding[t] whose
+  // bounds hold all of the box.
   struct Lists {
     cl::Buffer offsets, counts, lights, holding;
-    std::vector<cl_uint> host_offsets, host_counts;
+    std::vector<cl_uint> host_offsets, host_counts, host_holding;
   };
   // A level's device lists, kept from frame to frame: fresh ones cost page faults every frame (at
   // 10,000 lights the coarsest level has room for 1.35 million entries; kept, the frame took 0.98 of
@@ -80,10 +87,11 @@ class TileCuller {
   };
   Lists lists(const cl::Buffer& boxes, const BoxGrid& grid, const cl::Buffer& light_bounds,
               const cl::Buffer& candidates, const std::vector<cl_uint>& candidate_first,
-              const std::vector<cl_uint>& candidate_count, bool lead_holding, LevelBuffers& buffers);
+              const std::vector<cl_uint>& candidate_count, const std::vector<cl_uint>& candidate_holding,
+              bool sieve, LevelBuffers& buffers);
 
   ComputeContext compute_;
-  cl::Program program_;
+  cl::Program program_, halves_program_;  // blocks of 2 x 2 boxes, of 2 x 4 half tiles
   ReusableBuffer boxes_{CL_MEM_READ_WRITE}, row_boxes_{CL_MEM_READ_WRITE};
   std::vector<TileBox> tile_boxes_;      // boxes_ read back
   std::optional<BoxesKey> boxes_for_;    // what they were taken for

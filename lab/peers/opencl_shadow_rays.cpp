@@ -115,7 +115,7 @@ OpenClShadowRays::Counts OpenClShadowRays::count_blocked(Method method, int tile
   counts.blocked_lights.assign(stride_, 0.0f);
   if (stride_ == 0) return counts;
   if (method == Method::screen && screen == nullptr) throw std::invalid_argument("shadow rays: the screen march needs a depth plane");
-  const TileLayout layout = tile_layout(width_, height_, tile_size);
+  const TileLayout layout = tile_layout(width_, height_, tile_size, tile_size);
   ShadowLists lists{.grid = layout.grid, .tiles = static_cast<cl_uint>(layout.tile_count)};
   if (method == Method::culled) {
     const ShadowCullingStats stats = culler_.cull(pixels_, stride_, materials_, stride_, layout, geometry_, lights_,
