@@ -23,6 +23,7 @@
 #include "report/elapsed.h"
 #include "report/report_files.h"
 #include "shading/phong_shader.h"
+#include "shading/tile_culling.h"
 
 namespace phongcl::cli {
 
@@ -232,8 +233,9 @@ void run_many_lights_bench(const BenchArguments& args) {
   const GBuffer gbuffer = has_gbuffer ? args.inputs.load_gbuffer(scene) : generate_gbuffer(scene);
   ProgramCache cache(ProgramCache::default_directory());
   PhongShader shader(make_compute_context(pick_device(args.device)), cache);
+  const int list_rows = static_cast<int>(light_list_layout(gbuffer.width, gbuffer.height, kTileSize).grid.tile_rows);
   ManyLightsMachine machine{cpu_model_name(), describe(shader.compute().device.info), load_average(),
-                            omp_get_max_threads(), gbuffer.width, gbuffer.height, kTileSize,
+                            omp_get_max_threads(), gbuffer.width, gbuffer.height, kTileSize, list_rows,
                             "`" + scene.source.string() + "`" + (has_gbuffer ? "" : " (G-buffer ray-cast)")};
   std::cout << "phongcl bench --many-lights: " << scene.source.string() << ", " << gbuffer.width << "x" << gbuffer.height
             << "\n  device     " << machine.device << "\n  load       " << machine.loadavg << "\n";
@@ -251,7 +253,8 @@ void run_many_lights_bench(const BenchArguments& args) {
   }
   for (const Scene& lit : scenes) {
     const auto start = Clock::now();
-    const Reach reach{mean_lights_reaching(lit, gbuffer, 97), mean_lights_reaching_tiles(lit, gbuffer, kTileSize)};
+    const Reach reach{mean_lights_reaching(lit, gbuffer, 97),
+                      mean_lights_reaching_tiles(lit, gbuffer, kTileSize, list_rows)};
     std::cout << "  lights     " << lit.lights.size() << ": a shaded pixel is reached by " << reach.pixel
               << " on average, one of its tile's pixels by " << reach.tile << "; reference rows..." << std::flush;
     const ReferenceRows reference(lit, gbuffer);

@@ -40,7 +40,7 @@ std::string many_lights_json(const ManyLightsMachine& machine, const std::vector
   nlohmann::json json;
   json["machine"] = {{"cpu", machine.cpu},       {"cores", machine.cores},   {"device", machine.device},
                      {"loadavg", machine.loadavg}, {"width", machine.width}, {"height", machine.height},
-                     {"tile_size", machine.tile_size}};
+                     {"tile_size", machine.tile_size}, {"list_rows", machine.list_rows}};
   json["results"] = nlohmann::json::array();
   for (const ManyLightsResult& r : results) {
     json["results"].push_back({{"impl", r.impl},
@@ -82,7 +82,9 @@ void write_many_lights_report(const std::string& directory, const ManyLightsMach
   write_text_file(dir / "results.json", many_lights_json(machine, results));
   std::string md = "# Many lights: tiled culling against the unculled kernel and a C++ peer\n\n";
   md += "Inputs: " + machine.inputs + ", " + std::to_string(machine.width) + "x" + std::to_string(machine.height) +
-        ", tiles " + std::to_string(machine.tile_size) + "x" + std::to_string(machine.tile_size) + ".\n\n";
+        ", tiles " + std::to_string(machine.tile_size) + "x" + std::to_string(machine.tile_size) +
+        ", a light list per " + std::to_string(machine.tile_size) + "x" + std::to_string(machine.list_rows) +
+        " pixels.\n\n";
   md += "- CPU: " + machine.cpu + ", " + std::to_string(machine.cores) + " cores; device: " + machine.device + "\n";
   md += "- Load average at the start: " + machine.loadavg + "\n\n";
   md += "Lights: point and spot alternately, quadratic falloff, one range for all, spread through the box of the "
@@ -91,8 +93,8 @@ void write_many_lights_report(const std::string& directory, const ManyLightsMach
         "(cpp-tiled-best: the fastest of its schedules, with --peer-schedules). "
         "Effective Mpix-lights/s counts only the pixel-light pairs shaded: those the culling keeps, or every light "
         "for the unculled kernel. Lights reached: per shaded pixel, the lights that reach it, and the lights that reach "
-        "a shaded pixel of its tile (what one list per tile must keep at the least). Errors against the double "
-        "reference on a sample of rows.\n\n";
+        "a shaded pixel of its list's pixels (what one list per tile must keep at the least). Errors against the "
+        "double reference on a sample of rows.\n\n";
   md += many_lights_table(results) + "\n";
   for (const ManyLightsResult& r : results)
     if (!r.schedule.empty()) md += "- " + r.impl + " at " + std::to_string(r.lights) + " lights: " + r.schedule + "\n";

@@ -29,7 +29,7 @@ struct ManyLightsResult {
 struct ManyLightsMachine {
   std::string cpu, device, loadavg;
   int cores = 0;
-  int width = 0, height = 0, tile_size = 16;
+  int width = 0, height = 0, tile_size = 16, list_rows = 8;  // tiles, and the rows each light list serves
   std::string inputs;
 };
 

@@ -56,14 +56,15 @@ double mean_lights_reaching(const Scene& scene, const GBuffer& gbuffer, std::siz
   return mean_reach(scene.lights, shaded_sample(gbuffer, std::max<std::size_t>(step, 1)));
 }
 
-double mean_lights_reaching_tiles(const Scene& scene, const GBuffer& gbuffer, int tile_size) {
-  const int tiles_x = (gbuffer.width + tile_size - 1) / tile_size, tiles_y = (gbuffer.height + tile_size - 1) / tile_size;
+double mean_lights_reaching_tiles(const Scene& scene, const GBuffer& gbuffer, int tile_size, int tile_rows) {
+  const int tiles_x = (gbuffer.width + tile_size - 1) / tile_size;
+  const int tiles_y = (gbuffer.height + tile_rows - 1) / tile_rows;
   double pairs = 0.0, shaded = 0.0;
 #pragma omp parallel for reduction(+ : pairs, shaded) schedule(dynamic)
   for (int tile = 0; tile < tiles_x * tiles_y; ++tile) {
     std::vector<glm::dvec3> points;
-    const int x0 = tile % tiles_x * tile_size, y0 = tile / tiles_x * tile_size;
-    for (int y = y0; y < std::min(y0 + tile_size, gbuffer.height); ++y)
+    const int x0 = tile % tiles_x * tile_size, y0 = tile / tiles_x * tile_rows;
+    for (int y = y0; y < std::min(y0 + tile_rows, gbuffer.height); ++y)
       for (int x = x0; x < std::min(x0 + tile_size, gbuffer.width); ++x) {
         const std::size_t i = static_cast<std::size_t>(y) * gbuffer.width + x;
         if (classify_pixel(gbuffer, i) == PixelClass::shaded)

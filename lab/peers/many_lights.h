@@ -20,7 +20,7 @@ Scene with_many_lights(const Scene& scene, const GBuffer& gbuffer, int count, do
 double mean_lights_reaching(const Scene& scene, const GBuffer& gbuffer, std::size_t step = 1);
 
 // How many of them reach at least one shaded pixel of an average shaded pixel's tile_size x
-// tile_size screen tile: the fewest lights per pixel that one list per tile can keep.
-double mean_lights_reaching_tiles(const Scene& scene, const GBuffer& gbuffer, int tile_size);
+// tile_rows screen tile: the fewest lights per pixel that one list per tile can keep.
+double mean_lights_reaching_tiles(const Scene& scene, const GBuffer& gbuffer, int tile_size, int tile_rows);
 
 }  // namespace phongcl
