@@ -20,7 +20,7 @@ struct ShadeOptions {
   bool write_terms = false;         // also return ambient, diffuse and specular separately (AOVs)
   int lanes = 0;                    // pixels per work-item: 1, 2, 4, 8 or 16; 0: the device's choice
   Culling culling = Culling::automatic;
-  int tile_size = 16;               // culling tiles of tile_size x tile_size pixels
+  int tile_size = 16;               // culling tiles of tile_size pixels, lists per half tile (tile_culling.h)
   ShadowSettings shadows;           // how lights with "shadows": true cast them (docs/shadows.md)
 };
 

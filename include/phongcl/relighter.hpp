@@ -29,7 +29,7 @@ struct RelighterOptions {
   bool specialise = true;                    // false: the general kernel
   int lanes = 0;                             // pixels per work-item (1, 2, 4, 8, 16); 0: the device's choice
   Culling culling = Culling::automatic;      // docs/performance.md "Tiled light culling"
-  int tile_size = 16;                        // culling tiles of tile_size x tile_size pixels (docs/performance.md)
+  int tile_size = 16;                        // culling tiles of tile_size pixels (docs/performance.md)
   bool terms = false;                        // also shade ambient, diffuse and specular apart: shade(TermImages&)
   std::size_t max_tile_pixels = 0;           // > 0: at most this many pixels per launch (else the device's limit)
   ShadowSettings shadows;                    // how lights with "shadows": true cast them (docs/shadows.md)
