@@ -22,10 +22,10 @@ struct TileLayout {
   std::size_t tile_count = 0;
 };
 TileLayout tile_layout(int width, int height, int tile_size, int tile_rows);
-// The tiles the shading's light lists are kept for: square tiles of an even size are split into a
-// top and a bottom half, so a list serves a work-item's row of tile_size pixels and tile_size / 2 - 1
-// rows more. Halves keep fewer lights than the square (the kernel tests each light not holding all
-// of the tile against each row) and cost one more culling level.
+// The tiles the shading's light lists are kept for: square tiles of an even size split into a top
+// and a bottom half. A work-item shades tile_size pixels of one row, so a half's list serves
+// tile_size / 2 rows of work-items, not tile_size, and holds fewer lights (the kernel tests each
+// light that does not hold all of its tile against each row).
 TileLayout light_list_layout(int width, int height, int tile_size);
 // What a launch's tile boxes are taken from: its slots' packing, numbered by whoever packs them (a
 // new number each time they are packed; 0: not numbered), and the tiles. The boxes depend on the
