@@ -1,7 +1,7 @@
 /* Tiled light culling (Andersson 2009; ISPC's examples/cpu/deferred), before phong_shade:
- *   row_bounds, tile_bounds  the box of each tile's shaded positions, in lane vectors (band by band)
- *   keep_box_lights    one work-item per block of boxes: its candidate lights that can reach each
- *                      box, those holding the box first
+ *   tile_bounds      one work-item per tile: the box of its shaded positions, in lane vectors
+ *   keep_box_lights  one work-item per block of boxes: its candidate lights that can reach each box,
+ *                    those holding the box first
  * The host runs the last once per level: boxes of 8 x 8 square tiles with every light a candidate,
  * then boxes of 4 x 4 and 2 x 2 of them and then the tiles (the half tiles where the size is even),
  * each with its parent box's list (the parent being the box one level up that the block makes;
@@ -29,27 +29,22 @@ uint round_up_lanes(uint pixel) { return (pixel + PHONGCL_LANES - 1) / PHONGCL_L
 #define PLUS(a, b) ((a) + (b))
 #define BIT_OR(a, b) ((a) | (b))
 
-/* A tile's boxes are taken in two passes, so that the planes are read front to back: row_bounds,
- * one work-item per band of rows_per_item pixel rows of each tile (item = band * tiles_x + tile
- * column: a band's work-items are consecutive), then tile_bounds merges each tile's bands. One
- * work-item per tile read 32 strided rows of 128 bytes per plane, and took 10 ms for a 1080p frame
- * on 2 cores; one per row spent most of its time reducing its lanes (rows_per_item divides the tile
- * height: 4 where it can). */
-
-/* The box of the shaded positions the work-items whose first pixel is in [row + x_begin,
- * row + x_end) shade, for each row of the band; those slots begin and end at multiples of
+/* The box of the shaded positions the work-items of one tile shade: for each of its rows, those whose
+ * first pixel is in [row + x_begin, row + x_end). Those slots begin and end at multiples of
  * PHONGCL_LANES (so does first_pixel), so the box is taken over whole lane vectors, background lanes
- * left out by selects, and the lanes reduced once per band. */
-__kernel void row_bounds(__global const STORAGE* restrict planes, uint plane_stride,
-                         __global const int* restrict material_index, uint slot_count, TileGrid grid,
-                         uint rows_per_item, __global TileBox* restrict rows) {
-  const uint item = get_global_id(0);
-  const uint tile_x = item % grid.tiles_x, band = item / grid.tiles_x;
+ * left out by selects, and the lanes reduced once per tile. The sums are named vectors, not arrays
+ * indexed by axis, and min and max, not fmin and fmax (no NaN comes here: a shaded position is
+ * finite): PoCL kept indexed arrays in memory, and the pass took 2.5 against 1.3 ms for a 1080p
+ * frame on 2 cores. */
+__kernel void tile_bounds(__global const STORAGE* restrict planes, uint plane_stride,
+                          __global const int* restrict material_index, uint slot_count, TileGrid grid,
+                          __global TileBox* restrict boxes) {
+  const uint tile = get_global_id(0);
+  const uint tile_x = tile % grid.tiles_x, tile_y = tile / grid.tiles_x;
   const uint x_begin = tile_x * grid.tile_size, x_end = min(x_begin + grid.tile_size, grid.image_width);
-  floatv lo[3] = {(floatv)INFINITY, (floatv)INFINITY, (floatv)INFINITY};
-  floatv hi[3] = {(floatv)-INFINITY, (floatv)-INFINITY, (floatv)-INFINITY};
+  floatv lo_x = (floatv)INFINITY, lo_y = lo_x, lo_z = lo_x, hi_x = -lo_x, hi_y = hi_x, hi_z = hi_x;
   intv shaded = (intv)0, distance_bins = (intv)0;
-  for (uint y = band * rows_per_item; y < (band + 1) * rows_per_item; ++y) {
+  for (uint y = tile_y * grid.tile_rows; y < (tile_y + 1) * grid.tile_rows; ++y) {
     const ulong row = (ulong)y * grid.image_width;
     const ulong begin = max((ulong)round_up_lanes(row + x_begin), (ulong)grid.first_pixel);
     const ulong end = min((ulong)round_up_lanes(row + x_end), (ulong)grid.first_pixel + slot_count);
@@ -58,42 +53,34 @@ __kernel void row_bounds(__global const STORAGE* restrict planes, uint plane_str
       const intv is_shaded = VLOAD(chunk, material_index) != PHONGCL_BACKGROUND;
       const intv one_if_shaded = select((intv)0, (intv)1, is_shaded);
       shaded += one_if_shaded;
-      floatv distance_sq = (floatv)0;
-      for (int axis = 0; axis < 3; ++axis) {
-        const floatv value = load_plane(planes, plane_stride, PLANE_PX + axis, chunk);
-        lo[axis] = fmin(lo[axis], select((floatv)INFINITY, value, is_shaded));
-        hi[axis] = fmax(hi[axis], select((floatv)-INFINITY, value, is_shaded));
-        distance_sq += value * value;
-      }
+      const floatv px = load_plane(planes, plane_stride, PLANE_PX, chunk);
+      const floatv py = load_plane(planes, plane_stride, PLANE_PX + 1, chunk);
+      const floatv pz = load_plane(planes, plane_stride, PLANE_PX + 2, chunk);
+      lo_x = min(lo_x, select((floatv)INFINITY, px, is_shaded));
+      lo_y = min(lo_y, select((floatv)INFINITY, py, is_shaded));
+      lo_z = min(lo_z, select((floatv)INFINITY, pz, is_shaded));
+      hi_x = max(hi_x, select((floatv)-INFINITY, px, is_shaded));
+      hi_y = max(hi_y, select((floatv)-INFINITY, py, is_shaded));
+      hi_z = max(hi_z, select((floatv)-INFINITY, pz, is_shaded));
+      const floatv distance_sq = px * px + py * py + pz * pz;
       const intv bin = (AS_INTV(distance_sq) >> PHONGCL_DISTANCE_BIN_SHIFT) & 31;
       distance_bins |= AS_INTV(AS_UINTV(one_if_shaded) << AS_UINTV(bin)); /* unsigned: bit 31 is no overflow */
     }
   }
   TileBox box;
-  for (int axis = 0; axis < 3; ++axis) {
-    box.lo[axis] = REDUCE_LANES(lo[axis], fmin);
-    box.hi[axis] = REDUCE_LANES(hi[axis], fmax);
-  }
+  box.lo[0] = REDUCE_LANES(lo_x, min), box.lo[1] = REDUCE_LANES(lo_y, min), box.lo[2] = REDUCE_LANES(lo_z, min);
+  box.hi[0] = REDUCE_LANES(hi_x, max), box.hi[1] = REDUCE_LANES(hi_y, max), box.hi[2] = REDUCE_LANES(hi_z, max);
   box.shaded = (uint)REDUCE_LANES(shaded, PLUS);
   box.distance_bins = (uint)REDUCE_LANES(distance_bins, BIT_OR);
-  rows[item] = box;
-}
-
-/* A tile's box, the union of its bands' (row_bounds: tile_rows / rows_per_item bands per tile). */
-__kernel void tile_bounds(__global const TileBox* restrict rows, TileGrid grid, uint rows_per_item,
-                          __global TileBox* restrict boxes) {
-  const uint tile = get_global_id(0);
-  const uint tile_x = tile % grid.tiles_x, tile_y = tile / grid.tiles_x, bands = grid.tile_rows / rows_per_item;
-  TileBox box = empty_tile_box();
-  for (uint band = tile_y * bands; band < (tile_y + 1) * bands; ++band)
-    add_to_box(&box, rows[band * grid.tiles_x + tile_x]);
   boxes[tile] = box;
 }
 
 /* Boxes side by side, tested together against one light: a block of one level's grid
  * (tile_culling.cpp), so that each candidate light is read once per block and tested in one vector.
  * PHONGCL_BLOCK_BOXES is 4 (2 x 2 boxes) or 8 (2 x 4 half tiles). A slot with no box holds an empty
- * one (nothing shaded: it keeps nothing). */
+ * one (nothing shaded: it keeps nothing). The tests take max rather than fmax: centres are finite and
+ * bounds finite or, in an empty box, infinite, so no NaN arises, and fmax's NaN rule costs
+ * instructions. */
 #if PHONGCL_BLOCK_BOXES == 8
 typedef float8 floatb;
 typedef int8 intb;
@@ -123,7 +110,7 @@ typedef struct {
   intb shaded; /* -1 where the box has a shaded pixel, 0 elsewhere */
 } BoxBlock;
 
-BoxBlock box_block(__global const TileBox* boxes, const uint slots[PHONGCL_BLOCK_BOXES]) {
+static inline BoxBlock box_block(__global const TileBox* boxes, const uint slots[PHONGCL_BLOCK_BOXES]) {
   float lo[3][PHONGCL_BLOCK_BOXES], hi[3][PHONGCL_BLOCK_BOXES];
   uint distance_bins[PHONGCL_BLOCK_BOXES], shaded[PHONGCL_BLOCK_BOXES];
   for (int s = 0; s < PHONGCL_BLOCK_BOXES; ++s) {
@@ -144,11 +131,11 @@ BoxBlock box_block(__global const TileBox* boxes, const uint slots[PHONGCL_BLOCK
 
 /* Where a light's bounding sphere meets the boxes: the squared distance from its centre to each box
  * against its radius squared. */
-intb sphere_meets_boxes(LightBounds light, const BoxBlock* block) {
+static inline intb sphere_meets_boxes(LightBounds light, const BoxBlock* block) {
   floatb distance_sq = 0;
   for (int axis = 0; axis < 3; ++axis) {
     const floatb outside =
-        fmax(fmax(block->lo[axis] - light.center[axis], light.center[axis] - block->hi[axis]), 0.0f);
+        max(max(block->lo[axis] - light.center[axis], light.center[axis] - block->hi[axis]), 0.0f);
     distance_sq += outside * outside;
   }
   return distance_sq <= light.radius * light.radius;
@@ -158,7 +145,7 @@ intb sphere_meets_boxes(LightBounds light, const BoxBlock* block) {
  * plane through its apex across its axis, and behind the plane through its apex that touches it
  * along the side facing a box's centre; a box is out when all of it is in front of either. The slack
  * covers the rounding of the eye-relative floats. */
-intb cone_meets_boxes(LightBounds light, const BoxBlock* block) {
+static inline intb cone_meets_boxes(LightBounds light, const BoxBlock* block) {
   floatb half_side[3], to_center[3], along = 0, length_sq = 0, size = 0;
   float apex_sq = 0;
   for (int axis = 0; axis < 3; ++axis) {
@@ -189,7 +176,7 @@ intb cone_meets_boxes(LightBounds light, const BoxBlock* block) {
 /* Where a light can reach the boxes: a shaded box sharing one of its distance bins, met by its
  * sphere (or it has no range), and for a spot met by its cone. Each test runs only while a box is
  * left. */
-intb reaches_boxes(LightBounds light, const BoxBlock* block) {
+static inline intb reaches_boxes(LightBounds light, const BoxBlock* block) {
   intb mask = block->shaded & ((light.distance_bins & block->distance_bins) != 0);
   if (light.radius >= 0 && any_box(mask)) mask &= sphere_meets_boxes(light, block);
   if (light.cone_cos > 0 && any_box(mask)) mask &= cone_meets_boxes(light, block);
@@ -200,12 +187,12 @@ intb reaches_boxes(LightBounds light, const BoxBlock* block) {
  * box). Such a light reaches every row of a tile, or nearly (a spot's sphere bounds its cone, not
  * its range), so the shading leaves out its range test per row: a shortcut only, as the window is
  * still taken per pixel. */
-intb sphere_holds_boxes(LightBounds light, const BoxBlock* block) {
+static inline intb sphere_holds_boxes(LightBounds light, const BoxBlock* block) {
   if (light.radius < 0) return (intb)-1;
   floatb farthest_sq = 0;
   for (int axis = 0; axis < 3; ++axis) {
     const floatb farthest =
-        fmax(fabs(block->lo[axis] - light.center[axis]), fabs(block->hi[axis] - light.center[axis]));
+        max(fabs(block->lo[axis] - light.center[axis]), fabs(block->hi[axis] - light.center[axis]));
     farthest_sq += farthest * farthest;
   }
   return farthest_sq <= light.radius * light.radius;
@@ -222,7 +209,7 @@ typedef struct {
 /* Light k is written to both free ends of each box's room, and the end it belongs to, if any, is
  * moved on: which of a block's boxes a light reaches follows no pattern a branch predictor learns.
  * Both slots are free, as fewer entries than the room holds are written before the last candidate. */
-void keep_in_boxes(intb reaches, intb holds, uint k, uint room, __global uint* kept_lights, KeptLists* kept) {
+static inline void keep_in_boxes(intb reaches, intb holds, uint k, uint room, __global uint* kept_lights, KeptLists* kept) {
   uint front[PHONGCL_BLOCK_BOXES], back[PHONGCL_BLOCK_BOXES];
   int has_room[PHONGCL_BLOCK_BOXES];
   VSTORE_BOXES(kept->first + kept->holding, 0, front);
@@ -235,7 +222,7 @@ void keep_in_boxes(intb reaches, intb holds, uint k, uint room, __global uint* k
 }
 
 /* Light k kept in each box it reaches. */
-void keep_if_reaching(__global const LightBounds* lights, uint k, const BoxBlock* block, uint room,
+static inline void keep_if_reaching(__global const LightBounds* lights, uint k, const BoxBlock* block, uint room,
                       __global uint* kept_lights, KeptLists* kept) {
   const intb reaches = reaches_boxes(lights[k], block);
   if (any_box(reaches)) keep_in_boxes(reaches, sphere_holds_boxes(lights[k], block), k, room, kept_lights, kept);
@@ -251,7 +238,7 @@ TileBox union_of_boxes(__global const TileBox* boxes, const uint slots[PHONGCL_B
 
 /* Which of lights k[0 ... 7] may reach the box `around` (their spheres and distance bins, as
  * reaches_boxes): a sieve tested across eight lights at once, where most lights reach none. */
-int8 may_reach(__global const LightBounds* lights, const uint k[8], TileBox around) {
+static inline int8 may_reach(__global const LightBounds* lights, const uint k[8], TileBox around) {
   float center[3][8], radius[8];
   uint distance_bins[8];
   for (int i = 0; i < 8; ++i) {
@@ -262,7 +249,7 @@ int8 may_reach(__global const LightBounds* lights, const uint k[8], TileBox arou
   float8 distance_sq = 0;
   for (int axis = 0; axis < 3; ++axis) {
     const float8 c = vload8(0, center[axis]);
-    const float8 outside = fmax(fmax(around.lo[axis] - c, c - around.hi[axis]), 0.0f);
+    const float8 outside = max(max(around.lo[axis] - c, c - around.hi[axis]), 0.0f);
     distance_sq += outside * outside;
   }
   const float8 r = vload8(0, radius);

@@ -10,7 +10,7 @@ uint tile_of_pixel(TileGrid grid, uint pixel) {
   return (y / grid.tile_rows) * grid.tiles_x + x / grid.tile_size;
 }
 
-/* A box with no point in it: the union's identity, as row_bounds leaves a row with nothing shaded. */
+/* A box with no point in it: the union's identity, as tile_bounds leaves a tile with nothing shaded. */
 TileBox empty_tile_box(void) {
   const TileBox box = {{INFINITY, INFINITY, INFINITY}, 0, {-INFINITY, -INFINITY, -INFINITY}, 0};
   return box;

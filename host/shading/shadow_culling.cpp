@@ -132,8 +132,8 @@ double ShadowCuller::box_tiles(const cl::Buffer& planes, std::size_t plane_strid
   cl::CommandQueue& queue = compute_.queue;
   const std::size_t tiles = std::max<std::size_t>(layout.tile_count, 1);
   boxes_ = cl::Buffer(context, CL_MEM_READ_WRITE, tiles * sizeof(TileBox));
-  const std::array<cl::Event, 2> boxed = enqueue_tile_boxes(queue, bounds_program_, planes, plane_stride, material_index,
-                                                            slot_count, layout, row_boxes_, boxes_);
+  const cl::Event boxed =
+      enqueue_tile_boxes(queue, bounds_program_, planes, plane_stride, material_index, slot_count, layout, boxes_);
 
   // The coarse level's boxes, merged from the tiles'.
   const cl_uint ratio = PHONGCL_SHADOW_COARSE_RATIO;
@@ -148,7 +148,7 @@ double ShadowCuller::box_tiles(const cl::Buffer& planes, std::size_t plane_strid
   const cl::Event merged = merge(cl::EnqueueArgs(queue, cl::NDRange(coarse_.tiles)), boxes_, layout.grid.tiles_x,
                                  static_cast<cl_uint>(layout.tile_count), ratio, coarse_.grid.tiles_x, coarse_boxes_);
   merged.wait();  // the in-order queue ran `boxed` first
-  return event_milliseconds(boxed[0]) + event_milliseconds(boxed[1]) + event_milliseconds(merged);
+  return event_milliseconds(boxed) + event_milliseconds(merged);
 }
 
 }  // namespace phongcl

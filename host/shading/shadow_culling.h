@@ -55,7 +55,6 @@ class ShadowCuller {
   cl::Program bounds_program_, cull_program_;
   ShadowLists coarse_, fine_;
   cl::Buffer boxes_, coarse_boxes_;
-  ReusableBuffer row_boxes_{CL_MEM_READ_WRITE};
   std::optional<BoxesKey> boxes_for_;  // what boxes_ were taken for
 };
 

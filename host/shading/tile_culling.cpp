@@ -30,23 +30,13 @@ std::string culling_options(const std::string& shading_options, int block_boxes)
   return options;
 }
 
-std::array<cl::Event, 2> enqueue_tile_boxes(cl::CommandQueue& queue, const cl::Program& cull_program,
-                                            const cl::Buffer& planes, std::size_t plane_stride,
-                                            const cl::Buffer& material_index, std::size_t slot_count,
-                                            const TileLayout& layout, ReusableBuffer& rows, const cl::Buffer& boxes) {
-  // Bands of 4 rows where the tile size allows: each of row_bounds' work-items reduces its lanes once.
-  const cl_uint tile_rows = layout.grid.tile_rows;
-  const cl_uint rows_per_item = tile_rows % 4 == 0 ? 4 : tile_rows % 2 == 0 ? 2 : 1;
-  const std::size_t band_count = layout.tile_count * (tile_rows / rows_per_item);
-  const cl::Buffer& band_boxes = rows.at_least(queue.getInfo<CL_QUEUE_CONTEXT>(), band_count * sizeof(TileBox));
-  cl::KernelFunctor<cl::Buffer, cl_uint, cl::Buffer, cl_uint, TileGrid, cl_uint, cl::Buffer> by_band(cull_program,
-                                                                                                   "row_bounds");
-  cl::KernelFunctor<cl::Buffer, TileGrid, cl_uint, cl::Buffer> by_tile(cull_program, "tile_bounds");
-  cl::Event first = by_band(cl::EnqueueArgs(queue, cl::NDRange(band_count)), planes, static_cast<cl_uint>(plane_stride),
-                            material_index, static_cast<cl_uint>(slot_count), layout.grid, rows_per_item, band_boxes);
-  cl::Event second =
-      by_tile(cl::EnqueueArgs(queue, cl::NDRange(layout.tile_count)), band_boxes, layout.grid, rows_per_item, boxes);
-  return {first, second};
+cl::Event enqueue_tile_boxes(cl::CommandQueue& queue, const cl::Program& cull_program, const cl::Buffer& planes,
+                             std::size_t plane_stride, const cl::Buffer& material_index, std::size_t slot_count,
+                             const TileLayout& layout, const cl::Buffer& boxes) {
+  cl::KernelFunctor<cl::Buffer, cl_uint, cl::Buffer, cl_uint, TileGrid, cl::Buffer> by_tile(cull_program,
+                                                                                        "tile_bounds");
+  return by_tile(cl::EnqueueArgs(queue, cl::NDRange(layout.tile_count)), planes, static_cast<cl_uint>(plane_stride),
+                 material_index, static_cast<cl_uint>(slot_count), layout.grid, boxes);
 }
 
 CullingStats& CullingStats::operator+=(const CullingStats& other) {
@@ -196,7 +186,7 @@ CullingStats TileCuller::cull(const cl::Buffer& planes, std::size_t plane_stride
   const BoxesKey wanted{packing, layout};
   if (!boxes_serve(boxes_for_, wanted)) {
     boxes_for_.reset();
-    enqueue_tile_boxes(queue, program_, planes, plane_stride, material_index, slot_count, layout, row_boxes_, boxes);
+    enqueue_tile_boxes(queue, program_, planes, plane_stride, material_index, slot_count, layout, boxes);
     tile_boxes_.resize(tiles);
     queue.enqueueReadBuffer(boxes, CL_TRUE, 0, tiles * sizeof(TileBox), tile_boxes_.data());
     boxes_for_ = wanted;

@@ -2,7 +2,6 @@
 // Tiled light culling on the device (kernels/cull.cl): per screen tile, the box of its shaded
 // positions, then (boxes of 8 x 8, 4 x 4 and 2 x 2 tiles first) the list of point and spot lights whose
 // bounds reach it; phong_shade's TILED_CULLING variant loops over its tile's list only.
-#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <optional>
@@ -42,12 +41,10 @@ bool boxes_serve(const std::optional<BoxesKey>& taken, const BoxesKey& wanted);
 std::string culling_options(const std::string& shading_options, int block_boxes = 4);
 
 // The boxes of a launch's tiles (layout.tile_count TileBoxes into `boxes`) from its packed slots
-// [0, slot_count), by cull.cl's row_bounds and tile_bounds (`rows` holds the first pass's boxes, one
-// per band of rows); returns both passes' events.
-std::array<cl::Event, 2> enqueue_tile_boxes(cl::CommandQueue& queue, const cl::Program& cull_program,
-                                            const cl::Buffer& planes, std::size_t plane_stride,
-                                            const cl::Buffer& material_index, std::size_t slot_count,
-                                            const TileLayout& layout, ReusableBuffer& rows, const cl::Buffer& boxes);
+// [0, slot_count), by cull.cl's tile_bounds; returns its event.
+cl::Event enqueue_tile_boxes(cl::CommandQueue& queue, const cl::Program& cull_program, const cl::Buffer& planes,
+                             std::size_t plane_stride, const cl::Buffer& material_index, std::size_t slot_count,
+                             const TileLayout& layout, const cl::Buffer& boxes);
 
 struct BoxGrid;  // one culling level's boxes (tile_culling.cpp)
 
@@ -92,7 +89,7 @@ class TileCuller {
 
   ComputeContext compute_;
   cl::Program program_, halves_program_;  // blocks of 2 x 2 boxes, of 2 x 4 half tiles
-  ReusableBuffer boxes_{CL_MEM_READ_WRITE}, row_boxes_{CL_MEM_READ_WRITE};
+  ReusableBuffer boxes_{CL_MEM_READ_WRITE};
   std::vector<TileBox> tile_boxes_;      // boxes_ read back
   std::optional<BoxesKey> boxes_for_;    // what they were taken for
   std::vector<LevelBuffers> level_buffers_;  // the tiles' first
