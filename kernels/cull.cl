@@ -12,6 +12,9 @@
  * cone can too, and when it spans one of the distance bins of the box's positions (layout.h). The
  * tile of a work-item is the tile of its first pixel (tiles.h), so a tile's box covers every pixel
  * its work-items shade.
+ * The small fixed loops (the three axes, a block's boxes, the sieve's eight lights) are unrolled by
+ * pragma: PoCL's compiler left them rolled, with the arrays they index in memory, and the culling
+ * took 7.6 against 6.6 ms at 10,000 lights (paired, 1080p, 2 cores).
  * Options: PHONGCL_LANES and HALF_STORAGE, as phong_shade's; PHONGCL_BLOCK_BOXES, the boxes of a
  * block (4 or 8). */
 /* The boxes are plain float whatever the shading's arithmetic. */
@@ -113,13 +116,16 @@ typedef struct {
 static inline BoxBlock box_block(__global const TileBox* boxes, const uint slots[PHONGCL_BLOCK_BOXES]) {
   float lo[3][PHONGCL_BLOCK_BOXES], hi[3][PHONGCL_BLOCK_BOXES];
   uint distance_bins[PHONGCL_BLOCK_BOXES], shaded[PHONGCL_BLOCK_BOXES];
+#pragma unroll
   for (int s = 0; s < PHONGCL_BLOCK_BOXES; ++s) {
     const TileBox box = slots[s] == PHONGCL_NO_BOX ? empty_tile_box() : boxes[slots[s]];
+#pragma unroll
     for (int axis = 0; axis < 3; ++axis) lo[axis][s] = box.lo[axis], hi[axis][s] = box.hi[axis];
     distance_bins[s] = box.distance_bins;
     shaded[s] = box.shaded;
   }
   BoxBlock block;
+#pragma unroll
   for (int axis = 0; axis < 3; ++axis) {
     block.lo[axis] = VLOAD_BOXES(0, lo[axis]);
     block.hi[axis] = VLOAD_BOXES(0, hi[axis]);
@@ -133,6 +139,7 @@ static inline BoxBlock box_block(__global const TileBox* boxes, const uint slots
  * against its radius squared. */
 static inline intb sphere_meets_boxes(LightBounds light, const BoxBlock* block) {
   floatb distance_sq = 0;
+#pragma unroll
   for (int axis = 0; axis < 3; ++axis) {
     const floatb outside =
         max(max(block->lo[axis] - light.center[axis], light.center[axis] - block->hi[axis]), 0.0f);
@@ -148,6 +155,7 @@ static inline intb sphere_meets_boxes(LightBounds light, const BoxBlock* block) 
 static inline intb cone_meets_boxes(LightBounds light, const BoxBlock* block) {
   floatb half_side[3], to_center[3], along = 0, length_sq = 0, size = 0;
   float apex_sq = 0;
+#pragma unroll
   for (int axis = 0; axis < 3; ++axis) {
     half_side[axis] = 0.5f * (block->hi[axis] - block->lo[axis]);
     to_center[axis] = block->lo[axis] + half_side[axis] - light.apex[axis];
@@ -158,6 +166,7 @@ static inline intb cone_meets_boxes(LightBounds light, const BoxBlock* block) {
   }
   const floatb slack = 1e-5f * (sqrt(length_sq) + sqrt(apex_sq) + size);
   floatb depth_extent = 0, across_sq = 0, across[3];
+#pragma unroll
   for (int axis = 0; axis < 3; ++axis) {
     depth_extent += fabs(light.axis[axis]) * half_side[axis];
     across[axis] = to_center[axis] - along * light.axis[axis];
@@ -165,6 +174,7 @@ static inline intb cone_meets_boxes(LightBounds light, const BoxBlock* block) {
   }
   const floatb inverse_across = rsqrt(across_sq);
   floatb side_extent = 0;
+#pragma unroll
   for (int axis = 0; axis < 3; ++axis)
     side_extent +=
         fabs(light.cone_cos * across[axis] * inverse_across - light.cone_sin * light.axis[axis]) * half_side[axis];
@@ -190,6 +200,7 @@ static inline intb reaches_boxes(LightBounds light, const BoxBlock* block) {
 static inline intb sphere_holds_boxes(LightBounds light, const BoxBlock* block) {
   if (light.radius < 0) return (intb)-1;
   floatb farthest_sq = 0;
+#pragma unroll
   for (int axis = 0; axis < 3; ++axis) {
     const floatb farthest =
         max(fabs(block->lo[axis] - light.center[axis]), fabs(block->hi[axis] - light.center[axis]));
@@ -215,6 +226,7 @@ static inline void keep_in_boxes(intb reaches, intb holds, uint k, uint room, __
   VSTORE_BOXES(kept->first + kept->holding, 0, front);
   VSTORE_BOXES(kept->first + (room - 1) - kept->partial, 0, back);
   VSTORE_BOXES(kept->has_room, 0, has_room);
+#pragma unroll
   for (int s = 0; s < PHONGCL_BLOCK_BOXES; ++s)
     if (has_room[s]) kept_lights[front[s]] = k, kept_lights[back[s]] = k;
   kept->holding += AS_UINTB(reaches & holds) & 1;
@@ -231,6 +243,7 @@ static inline void keep_if_reaching(__global const LightBounds* lights, uint k, 
 /* The union of the boxes in `slots`. */
 TileBox union_of_boxes(__global const TileBox* boxes, const uint slots[PHONGCL_BLOCK_BOXES]) {
   TileBox around = empty_tile_box();
+#pragma unroll
   for (int s = 0; s < PHONGCL_BLOCK_BOXES; ++s)
     if (slots[s] != PHONGCL_NO_BOX) add_to_box(&around, boxes[slots[s]]);
   return around;
@@ -241,12 +254,15 @@ TileBox union_of_boxes(__global const TileBox* boxes, const uint slots[PHONGCL_B
 static inline int8 may_reach(__global const LightBounds* lights, const uint k[8], TileBox around) {
   float center[3][8], radius[8];
   uint distance_bins[8];
+#pragma unroll
   for (int i = 0; i < 8; ++i) {
+#pragma unroll
     for (int axis = 0; axis < 3; ++axis) center[axis][i] = lights[k[i]].center[axis];
     radius[i] = lights[k[i]].radius;
     distance_bins[i] = lights[k[i]].distance_bins;
   }
   float8 distance_sq = 0;
+#pragma unroll
   for (int axis = 0; axis < 3; ++axis) {
     const float8 c = vload8(0, center[axis]);
     const float8 outside = max(max(around.lo[axis] - c, c - around.hi[axis]), 0.0f);
@@ -278,6 +294,7 @@ __kernel void keep_box_lights(__global const TileBox* restrict boxes, __global c
   const BoxBlock block = box_block(boxes, slots);
   uint list_first[PHONGCL_BLOCK_BOXES];
   int has_room[PHONGCL_BLOCK_BOXES];
+#pragma unroll
   for (int s = 0; s < PHONGCL_BLOCK_BOXES; ++s) {
     has_room[s] = slots[s] != PHONGCL_NO_BOX && boxes[slots[s]].shaded > 0;
     list_first[s] = slots[s] == PHONGCL_NO_BOX ? 0 : kept_first[slots[s]];
@@ -301,6 +318,7 @@ __kernel void keep_box_lights(__global const TileBox* restrict boxes, __global c
       int may[8];
       vstore8(vload8(0, candidates + j), 0, k);
       vstore8(may_reach(lights, k, around), 0, may);
+#pragma unroll
       for (int i = 0; i < 8; ++i)
         if (may[i]) keep_if_reaching(lights, k[i], &block, room, kept_lights, &kept);
     }
@@ -309,6 +327,7 @@ __kernel void keep_box_lights(__global const TileBox* restrict boxes, __global c
   uint holding[PHONGCL_BLOCK_BOXES], partial[PHONGCL_BLOCK_BOXES];
   VSTORE_BOXES(kept.holding, 0, holding);
   VSTORE_BOXES(kept.partial, 0, partial);
+#pragma unroll
   for (int s = 0; s < PHONGCL_BLOCK_BOXES; ++s) {
     if (slots[s] == PHONGCL_NO_BOX) continue;
     /* The rest down to just after the holding ones: the copy never overwrites an entry before reading it. */
