@@ -113,7 +113,7 @@ typedef struct {
   intb shaded; /* -1 where the box has a shaded pixel, 0 elsewhere */
 } BoxBlock;
 
-static inline BoxBlock box_block(__global const TileBox* boxes, const uint slots[PHONGCL_BLOCK_BOXES]) {
+BoxBlock box_block(__global const TileBox* boxes, const uint slots[PHONGCL_BLOCK_BOXES]) {
   float lo[3][PHONGCL_BLOCK_BOXES], hi[3][PHONGCL_BLOCK_BOXES];
   uint distance_bins[PHONGCL_BLOCK_BOXES], shaded[PHONGCL_BLOCK_BOXES];
 #pragma unroll
@@ -137,7 +137,7 @@ static inline BoxBlock box_block(__global const TileBox* boxes, const uint slots
 
 /* Where a light's bounding sphere meets the boxes: the squared distance from its centre to each box
  * against its radius squared. */
-static inline intb sphere_meets_boxes(LightBounds light, const BoxBlock* block) {
+intb sphere_meets_boxes(LightBounds light, const BoxBlock* block) {
   floatb distance_sq = 0;
 #pragma unroll
   for (int axis = 0; axis < 3; ++axis) {
@@ -152,7 +152,7 @@ static inline intb sphere_meets_boxes(LightBounds light, const BoxBlock* block) 
  * plane through its apex across its axis, and behind the plane through its apex that touches it
  * along the side facing a box's centre; a box is out when all of it is in front of either. The slack
  * covers the rounding of the eye-relative floats. */
-static inline intb cone_meets_boxes(LightBounds light, const BoxBlock* block) {
+intb cone_meets_boxes(LightBounds light, const BoxBlock* block) {
   floatb half_side[3], to_center[3], along = 0, length_sq = 0, size = 0;
   float apex_sq = 0;
 #pragma unroll
@@ -186,7 +186,7 @@ static inline intb cone_meets_boxes(LightBounds light, const BoxBlock* block) {
 /* Where a light can reach the boxes: a shaded box sharing one of its distance bins, met by its
  * sphere (or it has no range), and for a spot met by its cone. Each test runs only while a box is
  * left. */
-static inline intb reaches_boxes(LightBounds light, const BoxBlock* block) {
+intb reaches_boxes(LightBounds light, const BoxBlock* block) {
   intb mask = block->shaded & ((light.distance_bins & block->distance_bins) != 0);
   if (light.radius >= 0 && any_box(mask)) mask &= sphere_meets_boxes(light, block);
   if (light.cone_cos > 0 && any_box(mask)) mask &= cone_meets_boxes(light, block);
@@ -197,7 +197,7 @@ static inline intb reaches_boxes(LightBounds light, const BoxBlock* block) {
  * box). Such a light reaches every row of a tile, or nearly (a spot's sphere bounds its cone, not
  * its range), so the shading leaves out its range test per row: a shortcut only, as the window is
  * still taken per pixel. */
-static inline intb sphere_holds_boxes(LightBounds light, const BoxBlock* block) {
+intb sphere_holds_boxes(LightBounds light, const BoxBlock* block) {
   if (light.radius < 0) return (intb)-1;
   floatb farthest_sq = 0;
 #pragma unroll
@@ -220,7 +220,7 @@ typedef struct {
 /* Light k is written to both free ends of each box's room, and the end it belongs to, if any, is
  * moved on: which of a block's boxes a light reaches follows no pattern a branch predictor learns.
  * Both slots are free, as fewer entries than the room holds are written before the last candidate. */
-static inline void keep_in_boxes(intb reaches, intb holds, uint k, uint room, __global uint* kept_lights, KeptLists* kept) {
+void keep_in_boxes(intb reaches, intb holds, uint k, uint room, __global uint* kept_lights, KeptLists* kept) {
   uint front[PHONGCL_BLOCK_BOXES], back[PHONGCL_BLOCK_BOXES];
   int has_room[PHONGCL_BLOCK_BOXES];
   VSTORE_BOXES(kept->first + kept->holding, 0, front);
@@ -234,7 +234,7 @@ static inline void keep_in_boxes(intb reaches, intb holds, uint k, uint room, __
 }
 
 /* Light k kept in each box it reaches. */
-static inline void keep_if_reaching(__global const LightBounds* lights, uint k, const BoxBlock* block, uint room,
+void keep_if_reaching(__global const LightBounds* lights, uint k, const BoxBlock* block, uint room,
                       __global uint* kept_lights, KeptLists* kept) {
   const intb reaches = reaches_boxes(lights[k], block);
   if (any_box(reaches)) keep_in_boxes(reaches, sphere_holds_boxes(lights[k], block), k, room, kept_lights, kept);
@@ -251,7 +251,7 @@ TileBox union_of_boxes(__global const TileBox* boxes, const uint slots[PHONGCL_B
 
 /* Which of lights k[0 ... 7] may reach the box `around` (their spheres and distance bins, as
  * reaches_boxes): a sieve tested across eight lights at once, where most lights reach none. */
-static inline int8 may_reach(__global const LightBounds* lights, const uint k[8], TileBox around) {
+int8 may_reach(__global const LightBounds* lights, const uint k[8], TileBox around) {
   float center[3][8], radius[8];
   uint distance_bins[8];
 #pragma unroll
