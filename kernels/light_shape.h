@@ -46,6 +46,18 @@ realv cone_versine(UNIFORM_SPACE const LightShape* shape, vec3 toward, realv inv
   return (real)0.5 * dot3(off_axis, off_axis);
 }
 
+/* weight / d^powers (0 to 3), one factor 1/d at a time: -cl-fast-relaxed-math would square 1/d
+ * first, which overflows float for d < 1e-19 where the products do not. Unrolled by pragma: PoCL's
+ * compiler kept falloff 2 as a loop of two passes, and unrolled, the frame of 10,000 ranged lights
+ * took 0.965-0.985 of the time (paired, bit-identical). */
+static inline realv times_inverse_powers(realv weight, realv inverse_distance, int powers) {
+#pragma clang fp reassociate(off)
+#pragma unroll
+  for (int power = 0; power < 3; ++power)
+    if (power < powers) weight *= inverse_distance;
+  return weight;
+}
+
 /* F for one point or spot light; `gate` (0 or 1) is its linking. toward * inverse is l; distance and
  * inverse_distance are d and 1/d, read only with NEEDS_DISTANCE. */
 realv shape_weight(UNIFORM_SPACE const LightShape* shape, vec3 toward, realv inverse, realv distance,
@@ -65,14 +77,7 @@ realv shape_weight(UNIFORM_SPACE const LightShape* shape, vec3 toward, realv inv
      * as the specular lobe's from 1 - v.r, so a large p keeps its precision; p = 0 gives 1. */
     if (SPOT_COSINE_POWER) bounded *= specular_power(1 - versine, versine, (realv)(real)shape->cosine_power);
   }
-  realv weight = bounded;
-  const int powers = FALLOFF_MIXED ? shape->falloff : FALLOFF;
-  /* Up to the largest power (3), unrolled by pragma: PoCL's compiler kept falloff 2 as a loop of two
-   * passes; unrolled, the frame of 10,000 ranged lights took 0.965-0.985 of the time (paired,
-   * bit-identical). */
-#pragma unroll
-  for (int power = 0; power < 3; ++power)
-    if (power < powers) weight *= inverse_distance;
+  const realv weight = times_inverse_powers(bounded, inverse_distance, FALLOFF_MIXED ? shape->falloff : FALLOFF);
   return WEIGHT_CAN_OVERFLOW ? SELECT(bounded > 0, weight, 0) : weight; /* 0 * (1/d^k = Inf) */
 }
 
