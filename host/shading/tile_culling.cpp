@@ -33,8 +33,8 @@ std::string culling_options(const std::string& shading_options, int block_boxes)
 cl::Event enqueue_tile_boxes(cl::CommandQueue& queue, const cl::Program& cull_program, const cl::Buffer& planes,
                              std::size_t plane_stride, const cl::Buffer& material_index, std::size_t slot_count,
                              const TileLayout& layout, const cl::Buffer& boxes) {
-  cl::KernelFunctor<cl::Buffer, cl_uint, cl::Buffer, cl_uint, TileGrid, cl::Buffer> by_tile(cull_program,
-                                                                                        "tile_bounds");
+  using BoundsKernel = cl::KernelFunctor<cl::Buffer, cl_uint, cl::Buffer, cl_uint, TileGrid, cl::Buffer>;
+  BoundsKernel by_tile(cull_program, "tile_bounds");
   return by_tile(cl::EnqueueArgs(queue, cl::NDRange(layout.tile_count)), planes, static_cast<cl_uint>(plane_stride),
                  material_index, static_cast<cl_uint>(slot_count), layout.grid, boxes);
 }
