@@ -43,6 +43,9 @@ typedef struct {
   layout_float position_rest[4]; /* xyz, w unused */
 } PointLight;
 
+/* The largest falloff power (cubic); the kernel unrolls its powers up to it. */
+#define PHONGCL_MAX_FALLOFF 3
+
 /* How a point or spot light's F = falloff(d) * window(d) * cone(l) is shaped (docs/shading.md
  * "The formula"), parallel to the point lights; only scenes with falloff, ranges or spots read it.
  * The cone is given by versines, 1 - cos, computed in double: a cone of 1e-3 degrees has
@@ -55,7 +58,7 @@ typedef struct {
   layout_float versine_inner;       /* 1 - cos(A/2) */
   layout_float versine_outer;       /* 1 - cos(A/2 + P) */
   layout_float inverse_cone_width;  /* 1 / (versine_outer - versine_inner), 0 for a hard edge */
-  int falloff;                      /* the power k of 1/d^k: 0 to 3 */
+  int falloff;                      /* the power k of 1/d^k: 0 to PHONGCL_MAX_FALLOFF */
   layout_float cosine_power;        /* spot: p of max(0, dot(-l, axis))^p; 0 for none and point lights */
   int padding[2];
 } LightShape;

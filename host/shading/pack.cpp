@@ -122,6 +122,7 @@ UniformData pack_uniforms(const Scene& scene, const Recipe& recipe) {
 // sphere through apex and rim, radius R / (2 cos t); wider, the rim's circle, radius R sin t).
 LightShape light_shape(const Light& light) {
   LightShape shape{};
+  static_assert(static_cast<int>(Falloff::cubic) == PHONGCL_MAX_FALLOFF, "the kernel unrolls the powers up to cubic");
   shape.falloff = static_cast<int>(light.falloff);
   shape.inverse_range = light.has_range() ? static_cast<float>(1.0 / light.range) : 0.0f;
   shape.versine_inner = shape.versine_outer = 3.0f;  // a point light: every direction is inside
