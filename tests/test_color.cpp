@@ -582,7 +582,11 @@ TEST(ColorConfig, LoadErrorsNameTheFile) {
     }
     return std::string("no error");
   };
-  EXPECT_NE(message((dir / "absent.ocio").string()).find("absent.ocio: cannot read the OCIO config"), std::string::npos);
+  EXPECT_NE(message((dir / "absent.ocio").string()).find("absent.ocio: cannot read the OCIO config: no such file"),
+            std::string::npos);
+  std::filesystem::create_directory(dir / "folder.ocio");
+  EXPECT_NE(message((dir / "folder.ocio").string()).find("folder.ocio: cannot read the OCIO config: it is a directory"),
+            std::string::npos);
   std::ofstream(dir / "bad.ocio") << "ocio_profile_version: 2\nroles: [unclosed\n";
   const std::string bad = message((dir / "bad.ocio").string());
   EXPECT_NE(bad.find("bad.ocio: not a usable OCIO config"), std::string::npos) << bad;

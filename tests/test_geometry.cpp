@@ -12,6 +12,8 @@
 #include <set>
 #include <stdexcept>
 
+#include <sys/stat.h>
+
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "common/error.h"
@@ -109,6 +111,111 @@ TEST(MeshFile, BadFilesAreOneLineErrorsNamingTheFile) {
   const std::string nan = error_of([&] { read_mesh(dir / "nan.ply"); });
   EXPECT_NE(nan.find("nan.ply"), std::string::npos) << nan;
   EXPECT_NE(nan.find("not finite"), std::string::npos) << nan;
+}
+
+// A triangle's PLY header: three vertices and `faces` faces, each a uchar-counted list of ints.
+std::string triangle_header(const std::string& format, int faces) {
+  return "ply\nformat " + format + " 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n" +
+         "element face " + std::to_string(faces) + "\nproperty list uchar int vertex_indices\nend_header\n";
+}
+
+std::string binary_triangle(std::uint8_t corners) {
+  std::string bytes = triangle_header("binary_little_endian", 1);
+  const float xyz[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+  bytes.append(reinterpret_cast<const char*>(xyz), sizeof xyz);
+  bytes.push_back(static_cast<char>(corners));
+  const std::int32_t indices[3] = {0, 1, 2};
+  bytes.append(reinterpret_cast<const char*>(indices), std::min<std::size_t>(sizeof indices, 4u * corners));
+  return bytes;
+}
+
+// Assimp 5.2 aborts the process on a face without corners (an assert in its triangulation).
+TEST(MeshFile, AFaceWithNoCornersIsAnError) {
+  TempDir dir;
+  write_text(dir / "ascii.ply", triangle_header("ascii", 2) + "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n0\n");
+  std::ofstream(dir / "binary.ply", std::ios::binary) << binary_triangle(0);
+  for (const char* name : {"ascii.ply", "binary.ply"}) {
+    const std::string error = error_of([&] { read_mesh(dir / name); });
+    EXPECT_NE(error.find(std::string(name) + ": face "), std::string::npos) << error;
+    EXPECT_NE(error.find("with no corners"), std::string::npos) << error;
+  }
+  std::ofstream(dir / "good.ply", std::ios::binary) << binary_triangle(3);
+  EXPECT_EQ(read_mesh(dir / "good.ply").triangles.size(), 1u);
+}
+
+// Assimp 5.2 spins for ever on a PLY header cut short: every cut inside the header is an error.
+TEST(MeshFile, AHeaderCutAnywhereIsAnError) {
+  TempDir dir;
+  const std::string header = triangle_header("ascii", 1);
+  for (std::size_t cut = 4; cut < header.size(); cut += 7) {
+    write_text(dir / "cut.ply", header.substr(0, cut));
+    const std::string error = error_of([&] { read_mesh(dir / "cut.ply"); });
+    EXPECT_NE(error.find("cut.ply: "), std::string::npos) << "cut at " << cut << ": " << error;
+  }
+  write_text(dir / "cut.ply", header.substr(0, header.size() - 3));
+  EXPECT_NE(error_of([&] { read_mesh(dir / "cut.ply"); }).find("ends before end_header"), std::string::npos);
+}
+
+// Assimp allocates a list's claimed length before reading it: 4 billion corners in a few bytes is
+// 16 GB. Every list is held to the bytes after it, and the header's counts to the file's size
+// however long the header is.
+TEST(MeshFile, ClaimedCountsAreHeldToTheFilesSize) {
+  TempDir dir;
+  std::string bytes = triangle_header("binary_little_endian", 1);
+  bytes = bytes.replace(bytes.find("uchar int"), 9, "uint int");
+  const float xyz[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+  bytes.append(reinterpret_cast<const char*>(xyz), sizeof xyz);
+  const std::uint32_t corners = 0xfffffff0u;
+  bytes.append(reinterpret_cast<const char*>(&corners), sizeof corners);
+  bytes.append(12, '\0');
+  std::ofstream(dir / "list.ply", std::ios::binary) << bytes;
+  const std::string list = error_of([&] { read_mesh(dir / "list.ply"); });
+  EXPECT_NE(list.find("list.ply: face 0 of 1: a list of 4294967280 vertex_indices runs past the end"), std::string::npos)
+      << list;
+  // In ASCII: 188 bytes that took 9 GB before failing.
+  std::string ascii = triangle_header("ascii", 1);
+  write_text(dir / "ascii.ply", ascii.replace(ascii.find("uchar int"), 9, "uint int") + "0 0 0\n1 0 0\n0 1 0\n1999999999 0 1 2\n");
+  const std::string ascii_list = error_of([&] { read_mesh(dir / "ascii.ply"); });
+  EXPECT_NE(ascii_list.find("ascii.ply: face 0 of 1: a list of 1999999999 vertex_indices runs past the end"),
+            std::string::npos)
+      << ascii_list;
+
+  std::string padded = triangle_header("ascii", 200000000);
+  padded.insert(padded.find("element vertex"), std::string(70000, 'c').replace(0, 8, "comment ") + "\n");
+  write_text(dir / "padded.ply", padded + "0 0 0\n");
+  const std::string claimed = error_of([&] { read_mesh(dir / "padded.ply"); });
+  EXPECT_NE(claimed.find("padded.ply: its header declares elements that need at least"), std::string::npos) << claimed;
+}
+
+TEST(MeshFile, MalformedHeadersSayWhatIsWrong) {
+  TempDir dir;
+  const std::string header = triangle_header("ascii", 1), data = "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+  const auto error_with = [&](const std::string& from, const std::string& to) {
+    std::string text = header + data;
+    text.replace(text.find(from), from.size(), to);
+    write_text(dir / "bad.ply", text);
+    return error_of([&] { read_mesh(dir / "bad.ply"); });
+  };
+  EXPECT_NE(error_with("face 1", "face -10").find("has count '-10', not a whole number >= 0"), std::string::npos);
+  EXPECT_NE(error_with("float z", "float w").find("no vertex element with x, y and z"), std::string::npos);
+  EXPECT_NE(error_with("float y", "quaternion y").find("'quaternion' is not a PLY type"), std::string::npos);
+  EXPECT_NE(error_with("ascii", "utf8").find("header line 2: must be 'format ascii 1.0'"), std::string::npos);
+  EXPECT_NE(error_with("3 0 1 2", "3 0 one 2").find("'one' is not an integer"), std::string::npos);
+}
+
+TEST(MeshFile, WhatIsNotARegularFileIsNamedForWhatItIs) {
+  TempDir dir;
+  std::filesystem::create_directory(dir / "folder.ply");
+  EXPECT_NE(error_of([&] { read_mesh(dir / "folder.ply"); }).find("folder.ply: cannot read the mesh: it is a directory"),
+            std::string::npos);
+  ASSERT_EQ(::mkfifo((dir / "fifo.ply").c_str(), 0600), 0);
+  EXPECT_NE(error_of([&] { read_mesh(dir / "fifo.ply"); }).find("fifo.ply: cannot read the mesh: it is not a regular file"),
+            std::string::npos);
+  std::filesystem::create_symlink(dir / "loop.ply", dir / "loop.ply");
+  const std::string loop = error_of([&] { read_mesh(dir / "loop.ply"); });
+  EXPECT_NE(loop.find("loop.ply: cannot read the mesh: Too many levels of symbolic links"), std::string::npos) << loop;
+  EXPECT_NE(error_of([&] { read_mesh(dir / "absent.ply"); }).find("absent.ply: cannot read the mesh: no such file"),
+            std::string::npos);
 }
 
 TEST(MeshFile, SceneMeshObjectsResolveRelativeToTheSceneAndCheckTheirKeys) {

@@ -13,6 +13,7 @@
 #include "color/chromaticities.h"
 #include "color/config_impl.h"
 #include "common/error.h"
+#include "common/regular_file.h"
 #include "common/joined.h"
 
 namespace phongcl {
@@ -64,7 +65,7 @@ std::vector<fs::path> blender_config_candidates() {
 }
 
 std::shared_ptr<ColorConfig::Impl> from_file(const fs::path& file) {
-  if (!fs::is_regular_file(file)) throw InputError(file, "cannot read the OCIO config: no such file");
+  require_regular_file(file, "OCIO config");
   auto impl = std::make_shared<ColorConfig::Impl>();
   try {
     impl->ocio = OCIO::Config::CreateFromFile(file.c_str());

@@ -3,10 +3,8 @@
 #include <cmath>
 #include <fstream>
 #include <iterator>
-#include <limits>
-#include <map>
-#include <sstream>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <assimp/Importer.hpp>
@@ -14,6 +12,8 @@
 #include <assimp/scene.h>
 
 #include "common/error.h"
+#include "common/regular_file.h"
+#include "geometry/ply_check.h"
 
 namespace phongcl {
 namespace {
@@ -49,83 +49,37 @@ void append_triangles(const aiMesh& mesh, const std::filesystem::path& file, Tri
   }
 }
 
-// A PLY file's header: its lines up to "end_header", and where its data starts. Empty lines when
-// the file is not a PLY file (Assimp then reads it by its own lights).
-struct PlyHeader {
-  std::vector<std::string> lines;  // without their line ends
-  std::uintmax_t data_offset = 0;
-  bool crlf = false;  // lines end in "\r\n"
-  bool binary() const { return lines.size() > 1 && lines[1].starts_with("format binary"); }
-};
-
-PlyHeader read_ply_header(std::ifstream& in) {
-  PlyHeader header;
-  std::uintmax_t bytes = 0;
-  for (std::string line; bytes < 65536 && std::getline(in, line);) {
-    bytes += line.size() + 1;
-    header.crlf = !line.empty() && line.back() == '\r';
-    if (header.crlf) line.pop_back();
-    if (header.lines.empty() && line != "ply") return {};
-    header.lines.push_back(line);
-    if (line == "end_header") {
-      header.data_offset = bytes;
-      return header;
-    }
-  }
-  return {};
-}
-
-// The fewest bytes a PLY file's data can take for the elements its header declares (a binary
-// value's size, or two characters for an ASCII one; a list at least its count), so that a header
-// declaring billions of vertices in a small file is refused before Assimp allocates for them.
-std::uintmax_t least_data_bytes(const PlyHeader& header) {
-  static const std::map<std::string, unsigned> kSizes = {
-      {"char", 1},  {"uchar", 1},  {"int8", 1},  {"uint8", 1},  {"short", 2},   {"ushort", 2},  {"int16", 2},
-      {"uint16", 2}, {"int", 4},   {"uint", 4},  {"int32", 4},  {"uint32", 4},  {"float", 4},   {"float32", 4},
-      {"double", 8}, {"float64", 8}};
-  long double total = 0, count = 0, record = 0;
-  for (const std::string& line : header.lines) {
-    std::istringstream words(line);
-    std::string keyword, type;
-    words >> keyword;
-    if (keyword == "element") {
-      total += count * record;
-      std::string name;
-      words >> name >> count;
-      record = 0;
-    } else if (keyword == "property") {
-      words >> type;
-      if (type == "list") words >> type;  // the count's type: a list holds at least its count
-      const auto size = kSizes.find(type);
-      record += header.binary() ? (size == kSizes.end() ? 1 : size->second) : 2;
-    }
-  }
-  total += count * record;
-  return total > static_cast<long double>(std::numeric_limits<std::uintmax_t>::max()) ? std::numeric_limits<std::uintmax_t>::max()
-                                                                                      : static_cast<std::uintmax_t>(total);
-}
-
 // Assimp 5.2's PLY reader skips a '\n' that starts a binary file's data as if it ended the header
 // line, and reads every value one byte off (assimp/assimp#5341; one binary PLY in 256). With the
 // header's lines ended by "\r\n" it takes exactly those two bytes, so such a file is handed over
 // from memory with its header so rewritten; the data is untouched.
-std::vector<char> with_crlf_header(const PlyHeader& header, std::ifstream& in) {
-  std::vector<char> rewritten;
-  for (const std::string& line : header.lines) {
-    rewritten.insert(rewritten.end(), line.begin(), line.end());
-    rewritten.push_back('\r');
-    rewritten.push_back('\n');
-  }
-  in.seekg(static_cast<std::streamoff>(header.data_offset));
-  rewritten.insert(rewritten.end(), std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+std::string with_crlf_header(const PlyLayout& ply, std::string_view bytes) {
+  std::string rewritten;
+  for (const std::string& line : ply.header_lines) rewritten += line + "\r\n";
+  rewritten += bytes.substr(ply.data_offset);
   return rewritten;
+}
+
+// The whole file, for the PLY check and Assimp to read from memory.
+std::string file_bytes(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (in.bad()) throw InputError(file, "cannot be read");
+  return bytes;
+}
+
+// Whether `file` starts as a PLY file does; it is then checked before Assimp sees it
+// (geometry/ply_check.h) and handed over from memory.
+bool starts_as_ply(const std::filesystem::path& file) {
+  char magic[5] = {};
+  std::ifstream(file, std::ios::binary).read(magic, sizeof magic);
+  return is_ply(std::string_view(magic, sizeof magic));
 }
 
 }  // namespace
 
 TriangleMesh read_mesh(const std::filesystem::path& file) {
-  std::error_code error;
-  if (!std::filesystem::is_regular_file(file, error)) throw InputError(file, "cannot open (no such mesh file)");
+  require_regular_file(file, "mesh");
   Assimp::Importer importer;
   // Points and lines are sorted out and removed; polygons become triangles; the file's node
   // hierarchy is flattened into its meshes' vertices. Validation first: a file Assimp misreads is
@@ -133,26 +87,31 @@ TriangleMesh read_mesh(const std::filesystem::path& file) {
   importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
   const unsigned steps = aiProcess_ValidateDataStructure | aiProcess_Triangulate | aiProcess_SortByPType |
                          aiProcess_PreTransformVertices;
-  std::ifstream in(file, std::ios::binary);
-  const PlyHeader header = read_ply_header(in);
-  std::vector<char> rewritten;
-  if (!header.lines.empty()) {
-    const std::uintmax_t size = std::filesystem::file_size(file, error);
-    const std::uintmax_t least = least_data_bytes(header);
-    if (!error && least > size - header.data_offset)
-      throw InputError(file, "its header declares elements that need at least " + std::to_string(least) +
-                                 " bytes, but only " + std::to_string(size - header.data_offset) + " follow it");
-    in.clear();
-    in.seekg(static_cast<std::streamoff>(header.data_offset));
-    if (header.binary() && !header.crlf && in.peek() == '\n') rewritten = with_crlf_header(header, in);
+  const aiScene* scene = nullptr;
+  if (starts_as_ply(file)) {
+    std::string bytes = file_bytes(file);
+    const PlyLayout ply = check_ply(bytes, file);
+    const bool data_starts_with_newline = ply.data_offset < bytes.size() && bytes[ply.data_offset] == '\n';
+    if (ply.binary && !ply.crlf && data_starts_with_newline) bytes = with_crlf_header(ply, bytes);
+    scene = importer.ReadFileFromMemory(bytes.data(), bytes.size(), steps, "ply");
+  } else {
+    scene = importer.ReadFile(file.string(), steps);
   }
-  const aiScene* scene = rewritten.empty() ? importer.ReadFile(file.string(), steps)
-                                           : importer.ReadFileFromMemory(rewritten.data(), rewritten.size(), steps, "ply");
   if (scene == nullptr) throw InputError(file, one_line(importer.GetErrorString()));
   TriangleMesh mesh;
   for (unsigned m = 0; m < scene->mNumMeshes; ++m) append_triangles(*scene->mMeshes[m], file, mesh);
   if (mesh.triangles.empty()) throw InputError(file, "has no triangles");
   return mesh;
+}
+
+MeshCounts count_mesh(const std::filesystem::path& file) {
+  require_regular_file(file, "mesh");
+  if (starts_as_ply(file)) {
+    const PlyLayout ply = check_ply(file_bytes(file), file);
+    return {ply.vertices, ply.triangles};
+  }
+  const TriangleMesh mesh = read_mesh(file);
+  return {mesh.vertices.size(), mesh.triangles.size()};
 }
 
 }  // namespace phongcl

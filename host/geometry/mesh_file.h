@@ -23,4 +23,13 @@ inline constexpr std::size_t kMaxMeshTriangles = std::size_t{1} << 28;
 // finite, more than kMaxMeshTriangles triangles.
 TriangleMesh read_mesh(const std::filesystem::path& file);
 
+struct MeshCounts {
+  std::uint64_t vertices = 0, triangles = 0;
+};
+
+// What read_mesh would return, counted before it allocates it: a PLY file's from its checked header
+// and lists (geometry/ply_check.h: nothing allocated per element), another format's by reading it.
+// Throws as read_mesh does.
+MeshCounts count_mesh(const std::filesystem::path& file);
+
 }  // namespace phongcl

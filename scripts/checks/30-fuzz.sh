@@ -1,18 +1,18 @@
 #!/usr/bin/env bash
 # Each libFuzzer harness (tests/fuzz/) for a bounded time from the seed corpus in
-# tests/fuzz/corpus/ (the bundled scenes, small G-buffers, HTTP requests and the regression
-# inputs). Fails on a crash, a sanitizer report, a leak, an allocation over -malloc_limit_mb or an
-# input slower than -timeout; fuzz_http also on a 500 or an error without a JSON body. The scene
-# and G-buffer harnesses load no OpenCL and run with LeakSanitizer on; fuzz_http shades with PoCL
-# behind the server and runs with it off, as the sanitizer suite does (PoCL keeps allocations
-# until exit). FUZZ_SECONDS (default 60) sets the time per harness; CONTRIBUTING.md "Reliability"
-# says how to run them longer.
+# tests/fuzz/corpus/ (the bundled scenes, small G-buffers, mesh files, HTTP requests and the
+# regression inputs). Fails on a crash, a sanitizer report, a leak, an allocation over
+# -malloc_limit_mb or an input slower than -timeout (a reader that spins); fuzz_http also on a 500
+# or an error without a JSON body. The scene, G-buffer and mesh harnesses load no OpenCL and run
+# with LeakSanitizer on; fuzz_http shades with PoCL behind the server and runs with it off, as the
+# sanitizer suite does (PoCL keeps allocations until exit). FUZZ_SECONDS (default 60) sets the time
+# per harness; CONTRIBUTING.md "Reliability" says how to run them longer.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 source scripts/checks/lib/sanitizer_build.sh
 seconds="${FUZZ_SECONDS:-60}"
 configure_sanitizer_build
-cmake --build "$sanitizer_dir" -j2 --target fuzz_scene fuzz_gbuffer fuzz_http > "$sanitizer_dir/fuzz-build.log" 2>&1 ||
+cmake --build "$sanitizer_dir" -j2 --target fuzz_scene fuzz_gbuffer fuzz_mesh fuzz_http > "$sanitizer_dir/fuzz-build.log" 2>&1 ||
   { tail -40 "$sanitizer_dir/fuzz-build.log"; exit 1; }
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
@@ -46,17 +46,19 @@ fuzz() {
     return 1
   fi
 }
-# The two readers' harnesses are single-threaded: they share the machine's two cores. fuzz_http
+# The three readers' harnesses are single-threaded: they share the machine's two cores. fuzz_http
 # shades with PoCL's threads, so it runs alone after them.
 fuzz scene & scene=$!
 fuzz gbuffer & gbuffer=$!
+fuzz mesh & mesh=$!
 failed=0
 wait "$scene" || failed=1
 wait "$gbuffer" || failed=1
+wait "$mesh" || failed=1
 [ "$failed" = 0 ] || exit 1
 fuzz http
 summary=()
-for target in scene gbuffer http; do
+for target in scene gbuffer mesh http; do
   runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$work/$target.log")
   summary+=("fuzz_$target ${runs} runs in ${seconds} s")
 done
