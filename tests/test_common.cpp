@@ -17,6 +17,7 @@
 
 #include "common/atomic_file.h"
 #include "common/error.h"
+#include "common/memory_limit.h"
 #include "common/same_file.h"
 #include "common/utf8.h"
 
@@ -240,6 +241,33 @@ TEST(AtomicWrite, MissingDirectoryFailsWithoutLeftovers) {
   // The writer "succeeds" without creating anything; the rename then fails.
   EXPECT_THROW(write_atomically(dir / "missing" / "out.txt", [](const fs::path&) {}), InputError);
   EXPECT_TRUE(fs::is_empty(dir.path));
+}
+
+TEST(MemoryLimit, TheLargestNeedIsNamedWhenTheirSumIsOverTheLimit) {
+  const MemoryLimit limit{3'000'000'000, "what the address-space limit (ulimit -v) leaves"};
+  const std::vector<MemoryNeed> needs = {{"the image", 1.2e9}, {"the shadow geometry", 1.5e9}, {"the groups", 0.2e9}};
+  EXPECT_NO_THROW(check_memory("shading this frame", needs, limit));
+  std::vector<MemoryNeed> more = needs;
+  more.push_back({"the terms", 0.2e9});
+  try {
+    check_memory("shading this frame", more, limit);
+    ADD_FAILURE() << "3.1 GB of needs passed a 3.0 GB limit";
+  } catch (const std::runtime_error& error) {
+    EXPECT_STREQ(error.what(), "shading this frame needs about 3.1 GB, 1.5 GB of it for the shadow geometry: more than "
+                               "the 3.0 GB of what the address-space limit (ulimit -v) leaves");
+  }
+}
+
+TEST(MemoryLimit, TheMachinesAvailableMemoryBoundsIt) {
+  const MemoryLimit limit = memory_limit();
+  EXPECT_GT(limit.bytes, 0u);
+  std::ifstream meminfo("/proc/meminfo");
+  std::uint64_t total_kb = 0;
+  for (std::string line; std::getline(meminfo, line);)
+    if (line.starts_with("MemTotal:")) total_kb = std::stoull(line.substr(9));
+  if (total_kb > 0) {
+    EXPECT_LE(limit.bytes, total_kb * 1024);
+  }
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 #include "cli/run_app.h"
 
 #include <iostream>
+#include <new>
 
 #include "cl/error_name.h"
 #include "cl/opencl.h"
@@ -28,6 +29,10 @@ int run_app(CLI::App& app, int argc, char** argv) {
     return 1;
   } catch (const cl::Error& error) {
     std::cerr << name << ": OpenCL call " << error.what() << " failed: " << cl_error_name(error.err()) << "\n";
+    return 1;
+  } catch (const std::bad_alloc&) {
+    // What the estimates before shading (shading/frame_memory.h) did not foresee: still one line.
+    std::cerr << name << ": out of memory: this run needs more than the machine or the process's limit allows\n";
     return 1;
   } catch (const std::exception& error) {
     std::cerr << name << ": " << error.what() << "\n";

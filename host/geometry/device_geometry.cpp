@@ -119,4 +119,17 @@ DeviceGeometry pack_device_geometry(const SceneBvh& scene, const glm::dvec3& eye
   return device;
 }
 
+// Per item of the BVH: its box, centre, group and place in the order while building, and at most two
+// nodes (a binary tree over leaves of at least one item), in the build's layout and the device's;
+// per triangle its corners' indices, and its packed primitive and bounds on the host and the device.
+double shadow_geometry_bytes(const ShapeCounts& counts) {
+  constexpr double kPerItem = sizeof(Box) + sizeof(glm::dvec3) + sizeof(std::uint8_t) + sizeof(std::uint32_t) +
+                              2 * (sizeof(Bvh::Node) + 2 * sizeof(BvhNode));
+  constexpr double kPerTriangle = sizeof(ShapeTriangle) + 2 * (sizeof(ShadowPrimitive) + sizeof(ShadowBounds));
+  constexpr double kPerSphere = sizeof(ShapeSphere) + 2 * (sizeof(ShadowPrimitive) + sizeof(ShadowBounds));
+  const double items = static_cast<double>(counts.triangles + counts.spheres);
+  return items * kPerItem + static_cast<double>(counts.triangles) * kPerTriangle +
+         static_cast<double>(counts.spheres) * kPerSphere + static_cast<double>(counts.vertices) * sizeof(glm::dvec3);
+}
+
 }  // namespace phongcl

@@ -33,4 +33,8 @@ struct DeviceGeometry {
 
 DeviceGeometry pack_device_geometry(const SceneBvh& scene, const glm::dvec3& eye);
 
+// The most memory building the shadow geometry of `counts` takes at once, host and device: the
+// world-space shapes, the BVH's build arrays and nodes, the packed layout and its device copy.
+double shadow_geometry_bytes(const ShapeCounts& counts);
+
 }  // namespace phongcl

@@ -58,6 +58,26 @@ class Flattener {
   std::map<std::filesystem::path, TriangleMesh> meshes_;
 };
 
+void count_objects(const std::vector<Object>& objects, std::map<std::filesystem::path, MeshCounts>& meshes,
+                   ShapeCounts& counts) {
+  for (const Object& object : objects) {
+    switch (object.kind) {
+      case Object::Kind::transform: count_objects(object.children, meshes, counts); break;
+      case Object::Kind::sphere: ++counts.spheres; break;
+      case Object::Kind::plane: break;
+      case Object::Kind::triangle: counts.vertices += 3, ++counts.triangles; break;
+      case Object::Kind::mesh: {
+        auto [entry, inserted] = meshes.try_emplace(object.file);
+        if (inserted) entry->second = count_mesh(object.file);
+        counts.vertices += entry->second.vertices;
+        counts.triangles += entry->second.triangles;
+        ++counts.mesh_instances;
+        break;
+      }
+    }
+  }
+}
+
 }  // namespace
 
 double Box::half_area() const {
@@ -89,6 +109,13 @@ Box SceneShapes::sphere_box(std::size_t index) const {
     reach[axis] = sphere.radius * glm::length(glm::dvec3(object_to_world[0][axis], object_to_world[1][axis],
                                                           object_to_world[2][axis]));
   return {centre - reach, centre + reach};
+}
+
+ShapeCounts count_shapes(const std::vector<Object>& objects) {
+  std::map<std::filesystem::path, MeshCounts> meshes;
+  ShapeCounts counts;
+  count_objects(objects, meshes, counts);
+  return counts;
 }
 
 SceneShapes flatten_objects(const std::vector<Object>& objects) {

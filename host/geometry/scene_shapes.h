@@ -65,4 +65,12 @@ struct SceneShapes {
 // often it is instanced.
 SceneShapes flatten_objects(const std::vector<Object>& objects);
 
+// What flatten_objects would hold, each mesh counted per instance, before any mesh is read whole
+// (count_mesh; each file once).
+struct ShapeCounts {
+  std::uint64_t vertices = 0, triangles = 0, spheres = 0;
+  std::uint64_t mesh_instances = 0;
+};
+ShapeCounts count_shapes(const std::vector<Object>& objects);
+
 }  // namespace phongcl

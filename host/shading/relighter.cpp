@@ -12,6 +12,7 @@
 #include "gbuffer/material_check.h"
 #include "scene/area_light_json.h"
 #include "scene/scene_check.h"
+#include "shading/frame_memory.h"
 #include "shading/phong_shader.h"
 #include "shading/recipe.h"
 
@@ -55,6 +56,7 @@ struct Relighter::State {
     GBuffer gbuffer;
     Recipe recipe;
     MaterialCheck material_check;  // of new material tables against this G-buffer
+    std::optional<std::vector<MemoryNeed>> geometry_memory;  // counted when the recipe first traces objects
   };
   Frame& frame() {
     if (!current) throw std::logic_error("phongcl::Relighter: no frame yet (set_frame before shade)");
@@ -66,11 +68,21 @@ struct Relighter::State {
     return make_recipe(scene, gbuffer, device(), options);
   }
 
+  // What shading `scene` with `recipe` holds, against the memory left, before any of it is allocated.
+  static void check_memory(const Scene& scene, const GBuffer& gbuffer, const Recipe& recipe,
+                           std::optional<std::vector<MemoryNeed>>& geometry_memory) {
+    if (!geometry_memory && recipe.shadows == ShadowMode::geometry)
+      geometry_memory = geometry_memory_needs(scene, recipe);
+    check_frame_memory(frame_memory_needs(gbuffer, recipe), geometry_memory.value_or(std::vector<MemoryNeed>{}));
+  }
+
   // The frame's lights or materials changed: the recipe again (their counts are compiled in),
   // and the tables uploaded again at the next shade.
   void replace_scene(Scene next) {
     Frame& f = frame();
-    f.recipe = recipe_for(next, f.gbuffer);
+    Recipe recipe = recipe_for(next, f.gbuffer);
+    check_memory(next, f.gbuffer, recipe, f.geometry_memory);
+    f.recipe = std::move(recipe);
     f.scene = std::move(next);
     engine.forget_uniforms();
   }
@@ -114,8 +126,10 @@ void Relighter::set_frame(const Scene& scene, GBuffer&& gbuffer) {
   const std::lock_guard lock(state_->mutex);
   phongcl::check_materials(gbuffer, scene.materials.size());
   Recipe recipe = state_->recipe_for(scene, gbuffer);
-  state_->current = State::Frame{scene, std::move(gbuffer), std::move(recipe),
-                                 MaterialCheck(scene.materials.size())};
+  std::optional<std::vector<MemoryNeed>> geometry_memory;
+  State::check_memory(scene, gbuffer, recipe, geometry_memory);
+  state_->current = State::Frame{scene, std::move(gbuffer), std::move(recipe), MaterialCheck(scene.materials.size()),
+                                 std::move(geometry_memory)};
   state_->engine.forget_gbuffer();
   state_->engine.forget_uniforms();
 }
