@@ -281,6 +281,37 @@ TEST_F(Cli, ColorsListsWhatAConfigOffers) {
   EXPECT_NE(bad.err.find("absent.ocio: cannot read the OCIO config"), std::string::npos) << bad.err;
 }
 
+// A view whose LUT is missing is listed with its reason, the views after it still are, and the
+// command fails after the listing (it stopped at the broken view).
+TEST_F(Cli, ColorsListsEveryViewAndFailsOnOneThatCannotBeBuilt) {
+  const std::string config = write("broken.ocio", R"(ocio_profile_version: 2
+search_path: luts
+roles:
+  default: raw
+  scene_linear: raw
+file_rules:
+  - !<Rule> {name: Default, colorspace: raw}
+displays:
+  sRGB:
+    - !<View> {name: Raw, colorspace: raw}
+    - !<View> {name: Broken, colorspace: lut}
+    - !<View> {name: After, colorspace: raw}
+colorspaces:
+  - !<ColorSpace>
+    name: raw
+  - !<ColorSpace>
+    name: lut
+    from_scene_reference: !<FileTransform> {src: missing.spi1d}
+)");
+  const CliRun run = run_phongcl("colors --ocio " + config);
+  EXPECT_EQ(run.exit_code, 1);
+  EXPECT_NE(run.out.find("pipeline   Broken: cannot be built: "), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("missing.spi1d"), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("pipeline   After: compiled"), std::string::npos) << run.out;
+  EXPECT_NE(run.err.find("broken.ocio: the views Broken cannot be built (listed above)\n"), std::string::npos) << run.err;
+  EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
+}
+
 TEST_F(Cli, DisplayNamesAreCheckedBeforeShading) {
   const std::string out = existing_output();
   const std::string shade = std::string("shade --scene ") + kDefaultScene + " --out " + out + " --png " + path("lit.png");

@@ -2,6 +2,8 @@
 // the working space and its primaries.
 #include <iostream>
 #include <memory>
+#include <stdexcept>
+#include <vector>
 
 #include "cli/commands.h"
 #include "color/color_config.h"
@@ -30,12 +32,24 @@ void run_colors(const std::string& which) {
   const std::vector<std::string> looks = config.looks();
   std::cout << "  looks      " << (looks.empty() ? "none" : joined(looks)) << "\n"
             << "  spaces     " << joined(config.color_spaces()) << "\n";
-  // How each view of the default display runs (color/view_pipeline.h): compiled, or OpenColorIO's processor.
+  // How each view of the default display runs (color/view_pipeline.h): compiled, or OpenColorIO's
+  // processor. A view that cannot be built is listed with its reason, the rest still are, and the
+  // command fails after the listing.
+  std::vector<std::string> broken;
   for (const std::string& view : config.views(default_display)) {
     DisplaySettings settings;
     settings.view = view;
-    std::cout << "  pipeline   " << view << ": " << DisplayTransform(config, settings).pipeline() << "\n";
+    std::string pipeline;
+    try {
+      pipeline = DisplayTransform(config, settings).pipeline();
+    } catch (const std::exception& error) {
+      pipeline = std::string("cannot be built: ") + error.what();
+      broken.push_back(view);
+    }
+    std::cout << "  pipeline   " << view << ": " << pipeline << "\n";
   }
+  if (!broken.empty())
+    throw std::runtime_error(config.description() + ": the views " + joined(broken) + " cannot be built (listed above)");
 }
 
 }  // namespace
