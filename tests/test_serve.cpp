@@ -296,6 +296,8 @@ TEST_F(Serve, ColorsAndThePickersConversions) {
   EXPECT_NEAR(back["rgb"][1].get<double>(), 0.5019608, 1e-6);
   expect_error(client.Get("/api/color?rgb=1,2&from=sRGB&to=scene_linear"), 400, "three finite numbers");
   expect_error(client.Get("/api/color?rgb=1,2,nan&from=sRGB&to=scene_linear"), 400, "three finite numbers");
+  // Finite in, not finite out: a 400 saying so, not a 200 of nulls.
+  expect_error(client.Get("/api/color?rgb=1e308,1e308,1e308&from=sRGB&to=scene_linear"), 400, "no finite value");
   expect_error(client.Get("/api/color?rgb=1,2,3&from=sRGB"), 400, "are required");
   expect_error(client.Get("/api/color?rgb=1,2,3&from=P3&to=scene_linear"), 400, "'P3': no such colour space");
 }
@@ -500,6 +502,9 @@ TEST_F(Serve, LightGroupsAreListedShownSoloedAndMuted) {
   EXPECT_EQ(settings["solo"], "");
   EXPECT_EQ(settings["mute"], json({"key"}));
   expect_error(client.Put("/api/settings", R"({"solo": "a b"})", "application/json"), 400, "letters, digits");
+  // As aov= refuses it: soloing a group the scene lacks would darken every light.
+  expect_error(client.Put("/api/settings", R"({"solo": "rim"})", "application/json"), 400,
+               "the scene has no light group 'rim' (groups: key, fill)");
   expect_error(client.Put("/api/settings", R"({"mute": "key"})", "application/json"), 400, "array");
 }
 

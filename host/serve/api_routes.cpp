@@ -14,6 +14,7 @@
 #include "color/color_conversion.h"
 #include "common/atomic_file.h"
 #include "common/error.h"
+#include "common/joined.h"
 #include "scene/json_reader.h"
 #include "scene/scene_check.h"
 #include "serve/image_encoding.h"
@@ -138,7 +139,9 @@ glm::dvec3 parse_rgb(const std::string& text) {
   return rgb;
 }
 
-RenderSettings parse_settings(const std::string& body, RenderSettings settings) {
+// `groups`: the scene's light groups, which solo must name (as aov= must): soloing a group the
+// scene lacks would darken every light.
+RenderSettings parse_settings(const std::string& body, RenderSettings settings, const std::vector<std::string>& groups) {
   const std::filesystem::path source = "settings";
   const json document = parse_json(body, source);
   const JsonObject object = JsonValue(document, "", source).object();
@@ -157,6 +160,8 @@ RenderSettings parse_settings(const std::string& body, RenderSettings settings) 
   if (auto value = object.find("solo")) {
     settings.solo = value->string();
     if (!settings.solo.empty() && !valid_light_group_name(settings.solo)) value->fail(kLightGroupNameRule);
+    if (!settings.solo.empty() && std::find(groups.begin(), groups.end(), settings.solo) == groups.end())
+      value->fail("the scene has no light group '" + settings.solo + "' (groups: " + joined(groups, ", ", "none") + ")");
   }
   if (auto value = object.find("mute")) {
     settings.muted.clear();
@@ -247,7 +252,7 @@ void ApiRoutes::get_settings(const httplib::Request& request, httplib::Response&
 
 void ApiRoutes::put_settings(const httplib::Request& request, httplib::Response& response) {
   Query query(request, {});
-  const RenderSettings settings = parse_settings(request.body, live_.settings());
+  const RenderSettings settings = parse_settings(request.body, live_.settings(), live_.scene().light_groups);
   live_.replace_settings(settings);
   send_json(response, settings_json(settings));
 }
@@ -400,7 +405,10 @@ void ApiRoutes::get_color(const httplib::Request& request, httplib::Response& re
   const auto rgb = query.text("rgb"), from = query.text("from"), to = query.text("to");
   if (!rgb || !from || !to) throw BadRequest("parameters 'rgb' (r,g,b), 'from' and 'to' (colour spaces) are required");
   const ColorConversion conversion(live_.color_config(), *from, "parameter 'from'/'to'", *to);
-  send_json(response, {{"rgb", vec3_json(conversion(parse_rgb(*rgb)))}});
+  const glm::dvec3 converted = conversion(parse_rgb(*rgb));
+  if (!std::isfinite(converted.x) || !std::isfinite(converted.y) || !std::isfinite(converted.z))
+    throw BadRequest("parameter 'rgb': '" + *rgb + "' has no finite value in '" + *to + "' (too large to convert)");
+  send_json(response, {{"rgb", vec3_json(converted)}});
 }
 
 void ApiRoutes::post_save(const httplib::Request& request, httplib::Response& response) {
