@@ -251,6 +251,29 @@ TEST(Scene, AreaLightSizesStayWhereTheirSquaresFitFloat) {
   }
 }
 
+// A light group names the EXR channels group.<name>.R/G/B, which OpenEXR cuts at 255 bytes (a
+// long name's R, G and B became one channel); the rule takes Blender's 63 bytes.
+TEST(Scene, LightGroupNamesHoldAtMost63Bytes) {
+  const std::string longest(63, 'g'), too_long(64, 'g');
+  auto with_group = [](const std::string& group) {
+    return scene_json(R"("lights": [{"type": "point", "position": [0, 0, 0], "group": ")" + group + R"("},
+        {"type": "area", "shape": "disk", "position": [0, 0, 0], "direction": [0, 0, -1], "size": 1, "group": ")" +
+                      group + R"("}])");
+  };
+  const Scene scene = parse_scene(with_group(longest), kSource);
+  EXPECT_EQ(scene.lights.at(0).group, longest);
+  EXPECT_EQ(scene.area_lights.at(0).group, longest);
+  const std::string message = error_of(with_group(too_long));
+  EXPECT_NE(message.find("lights[0].group must be"), std::string::npos) << message;
+  EXPECT_NE(message.find("63 bytes"), std::string::npos) << "the message states the limit: " << message;
+  Light point;
+  point.group = too_long;
+  EXPECT_THROW(check_lights({point}, 1), std::invalid_argument);
+  AreaLight area;
+  area.group = too_long;
+  EXPECT_THROW(check_area_lights({area}), std::invalid_argument);
+}
+
 TEST(Scene, GbufferPathIsRelativeToTheSceneFile) {
   EXPECT_EQ(parse_scene(scene_json(R"("gbuffer": "g.exr")"), "some/dir/scene.json").gbuffer,
             std::filesystem::path("some/dir/g.exr"));
