@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "reference/reference_area.h"
+#include "scene/area_light_json.h"
 #include "shading_support.h"
 
 namespace phongcl {
@@ -277,6 +278,33 @@ TEST(AreaLights, NothingBeyondTheRange) {
   EXPECT_GT(reached, pixels / 20) << "the light reached almost nothing within its range";
   const TermError error = term_error(lit, reference_image(s.scene, sorted));
   EXPECT_LE(error.max_rel, 5e-5) << "pixel " << error.worst;  // the rects' bound of DiffuseMatchesTheReference
+}
+
+// A rect and a disk at the readers' size bound (kMaxAreaLightSize), close by, shade to finite
+// pixels; past it they are refused before they reach the kernel (a rect of 1e20 x 1e20 shaded to NaN).
+TEST(AreaLights, LightsAtTheSizeBoundShadeFinite) {
+  PHONGCL_REQUIRE_DEVICE(shader);
+  for (bool rect : {true, false}) {
+    std::vector<AreaLight> lights = emitters(rect);
+    lights[0].size = glm::dvec2(kMaxAreaLightSize);
+    const AreaScene s = area_scene(lights, glm::dvec3(1.0), 10.0, 506);
+    EXPECT_NO_THROW(check_area_lights(s.scene.area_lights));
+    for (Precision precision : {Precision::precise, Precision::double_precision}) {
+      if (precision == Precision::double_precision && !shader.compute().device.info.has_fp64) continue;
+      SCOPED_TRACE(std::string(rect ? "rect, " : "disk, ") + to_string(precision));
+      ShadeOptions options;
+      options.precision = precision;
+      const Image image = shader.shade(s.scene, s.gbuffer, options).image;
+      std::size_t lit = 0;
+      for (std::size_t i = 0; i < image.pixel_count(); ++i) {
+        for (int c = 0; c < 4; ++c) ASSERT_TRUE(std::isfinite(image.pixel(i)[c])) << "pixel " << i;
+        lit += image.pixel(i)[0] > 0.0f;
+      }
+      EXPECT_GT(lit, image.pixel_count() / 2);
+    }
+    lights[0].size = glm::dvec2(100 * kMaxAreaLightSize);
+    EXPECT_THROW(check_area_lights(lights), std::invalid_argument) << (rect ? "rect" : "disk");
+  }
 }
 
 TEST(AreaLights, SpecularQuadratureErrorIsMeasured) {

@@ -125,6 +125,40 @@ TEST(ExrImage, LayersOfDifferentSizesAreRejected) {
   EXPECT_FALSE(fs::exists(dir / "layers.exr"));
 }
 
+// OpenEXR cuts a channel name to 255 bytes: a long layer's R, G and B became one channel, and two
+// long names with one prefix one layer. Both are refused before anything is written.
+TEST(ExrImage, LayersWhoseChannelNamesDoNotFitOrCollideAreRefused) {
+  TempDir dir;
+  const Image combined = ramp(5, 3), group = ramp(5, 3);
+  const std::string fits(253, 'k');  // "k...k.R": 255 bytes
+  write_layered_exr({{"", &combined, true}, {fits, &group, false}}, dir / "fits.exr");
+  const Plane green = decode_with_openexr(dir / "fits.exr", fits + ".G");
+  EXPECT_EQ(green[1], group.pixel(1)[1]);
+  fs::remove(dir / "fits.exr");
+
+  const struct {
+    const char* what;
+    std::vector<ExrLayer> layers;
+    std::string expected;
+  } refused[] = {
+      {"a 300-byte name", {{"", &combined, true}, {std::string(300, 'k'), &group, false}}, "longer than 255 bytes"},
+      {"a 254-byte name", {{"", &combined, true}, {std::string(254, 'k'), &group, false}}, "longer than 255 bytes"},
+      {"one name twice", {{"", &combined, true}, {"group.key", &group, false}, {"group.key", &group, false}},
+       "'group.key.R' twice"},
+      {"two unnamed layers", {{"", &combined, true}, {"", &group, false}}, "'R' twice"},
+  };
+  for (const auto& refusal : refused) {
+    SCOPED_TRACE(refusal.what);
+    try {
+      write_layered_exr(refusal.layers, dir / "layers.exr");
+      ADD_FAILURE() << "written";
+    } catch (const std::invalid_argument& error) {
+      EXPECT_NE(std::string(error.what()).find(refusal.expected), std::string::npos) << error.what();
+    }
+    EXPECT_TRUE(fs::is_empty(dir.path)) << "no file and no temporary file";
+  }
+}
+
 TEST(ExrImage, MissingAlphaReadsAsOpaque) {
   TempDir dir;
   const fs::path file = dir / "rgb.exr";

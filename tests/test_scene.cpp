@@ -3,12 +3,15 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <glm/glm.hpp>
 
 #include "common/error.h"
+#include "scene/area_light_json.h"
 #include "scene/camera_space.h"
 #include "scene/scene.h"
 #include "scene/scene_check.h"
@@ -218,6 +221,57 @@ TEST(Scene, HdrValuesUpToFloatRangeParse) {
                                   kSource);
   EXPECT_EQ(scene.ambient.x, 3e38);
   EXPECT_EQ(scene.lights.at(0).color.x, 3e38);
+}
+
+// The kernel forms an area light's area and its axes' squared lengths in float: a rect of
+// 1e20 x 1e20 shaded to NaN. The reader and the check for lights built in code refuse any size
+// past 1e18, where those products stay far below float's largest value.
+TEST(Scene, AreaLightSizesStayWhereTheirSquaresFitFloat) {
+  const std::string rect = R"({"type": "area", "shape": "rect", "position": [0, 0, 0], "direction": [0, 0, -1], "size": )";
+  const std::string disk = R"({"type": "area", "shape": "disk", "position": [0, 0, 0], "direction": [0, 0, -1], "size": )";
+  auto with_light = [](const std::string& light) { return scene_json(R"("lights": [)" + light + "}]"); };
+  EXPECT_EQ(parse_scene(with_light(rect + "[1e18, 1e18]"), kSource).area_lights.at(0).size, glm::dvec2(1e18));
+  EXPECT_EQ(parse_scene(with_light(disk + "1e18"), kSource).area_lights.at(0).size, glm::dvec2(1e18));
+  const std::vector<std::pair<std::string, std::string>> refused = {
+      {rect + "[1e20, 1]", "lights[0].size[0] must be at most 1e+18 (got 1e+20)"},
+      {rect + "[1, 2e18]", "lights[0].size[1] must be at most 1e+18 (got 2e+18)"},
+      {disk + "1e20", "lights[0].size must be at most 1e+18 (got 1e+20)"},
+  };
+  for (const auto& [light, expected] : refused) {
+    const std::string message = error_of(with_light(light));
+    EXPECT_NE(message.find(expected), std::string::npos) << "message: " << message << "\nexpected: " << expected;
+  }
+  AreaLight huge;
+  huge.size = glm::dvec2(1e20);
+  try {
+    check_area_lights({AreaLight{}, huge});
+    ADD_FAILURE() << "a rect of 1e20 x 1e20 built in code was accepted";
+  } catch (const std::invalid_argument& error) {
+    EXPECT_NE(std::string(error.what()).find("area_lights[1].size: must be at most 1e+18"), std::string::npos) << error.what();
+  }
+}
+
+// A light group names the EXR channels group.<name>.R/G/B, which OpenEXR cuts at 255 bytes (a
+// long name's R, G and B became one channel); the rule takes Blender's 63 bytes.
+TEST(Scene, LightGroupNamesHoldAtMost63Bytes) {
+  const std::string longest(63, 'g'), too_long(64, 'g');
+  auto with_group = [](const std::string& group) {
+    return scene_json(R"("lights": [{"type": "point", "position": [0, 0, 0], "group": ")" + group + R"("},
+        {"type": "area", "shape": "disk", "position": [0, 0, 0], "direction": [0, 0, -1], "size": 1, "group": ")" +
+                      group + R"("}])");
+  };
+  const Scene scene = parse_scene(with_group(longest), kSource);
+  EXPECT_EQ(scene.lights.at(0).group, longest);
+  EXPECT_EQ(scene.area_lights.at(0).group, longest);
+  const std::string message = error_of(with_group(too_long));
+  EXPECT_NE(message.find("lights[0].group must be"), std::string::npos) << message;
+  EXPECT_NE(message.find("63 bytes"), std::string::npos) << "the message states the limit: " << message;
+  Light point;
+  point.group = too_long;
+  EXPECT_THROW(check_lights({point}, 1), std::invalid_argument);
+  AreaLight area;
+  area.group = too_long;
+  EXPECT_THROW(check_area_lights({area}), std::invalid_argument);
 }
 
 TEST(Scene, GbufferPathIsRelativeToTheSceneFile) {

@@ -1,4 +1,7 @@
 // RGBA images to and from EXR.
+#include <ImfName.h>
+
+#include <set>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -19,6 +22,24 @@ bool has_color_where_transparent(const Image& image) {
     if (p[3] == 0.0f && (p[0] != 0.0f || p[1] != 0.0f || p[2] != 0.0f)) return true;
   }
   return false;
+}
+
+// OpenEXR keeps the first 255 bytes of a channel name and silently drops the rest: a long layer's
+// R, G and B would become one channel, two long names with one prefix one layer. Both are refused,
+// naming the layer (its first bytes), before anything is written.
+void check_channel_names(const std::vector<exr::WriteSlice>& slices, const std::vector<std::string>& layer_of) {
+  std::set<std::string> names;
+  for (std::size_t i = 0; i < slices.size(); ++i) {
+    const std::string& layer = layer_of[i];
+    const std::string shown = layer.size() > 40 ? layer.substr(0, 40) + "..." : layer;
+    if (slices[i].name.size() > static_cast<std::size_t>(Imf::Name::MAX_LENGTH))
+      throw std::invalid_argument("write_layered_exr: layer '" + shown + "' (" + std::to_string(layer.size()) +
+                                  " bytes) makes channel names longer than " + std::to_string(Imf::Name::MAX_LENGTH) +
+                                  " bytes, OpenEXR's limit");
+    if (!names.insert(slices[i].name).second)
+      throw std::invalid_argument("write_layered_exr: channel '" + slices[i].name + "' twice (two layers named '" +
+                                  shown + "')");
+  }
 }
 
 Image without_color_where_transparent(const Image& image) {
@@ -49,6 +70,7 @@ void write_layered_exr(const std::vector<ExrLayer>& given, const std::filesystem
   const Image& first = *layers.front().image;
   const PixelWindow data_window = exr::data_window_for(first.data_window, first.width, first.height);
   std::vector<exr::WriteSlice> slices;
+  std::vector<std::string> layer_of;  // each slice's layer, for check_channel_names' messages
   for (const auto& layer : layers) {
     const Image& image = *layer.image;
     if (image.rgba.size() != 4 * image.pixel_count())
@@ -58,10 +80,13 @@ void write_layered_exr(const std::vector<ExrLayer>& given, const std::filesystem
     if (window.x_min != data_window.x_min || window.y_min != data_window.y_min || window.x_max != data_window.x_max ||
         window.y_max != data_window.y_max)
       throw std::invalid_argument("write_layered_exr: layer '" + layer.name + "' differs in size or window");
-    for (int c = 0; c < (layer.with_alpha ? 4 : 3); ++c)
+    for (int c = 0; c < (layer.with_alpha ? 4 : 3); ++c) {
       slices.push_back({layer.name.empty() ? kChannelNames[c] : layer.name + "." + kChannelNames[c],
                         image.rgba.data() + c, 4});
+      layer_of.push_back(layer.name);
+    }
   }
+  check_channel_names(slices, layer_of);
   exr::write_channels(file, data_window, exr::display_window_for(first.display_window, data_window), options.type, slices,
                       options.compression, options.chromaticities);
 }

@@ -29,6 +29,8 @@ AreaShape read_shape(const JsonValue& value) {
 double read_size(const JsonValue& value) {
   const double size = value.number();
   if (!(size > 0.0 && std::isfinite(size))) value.fail("must be finite and > 0 (got " + format_number(size) + ")");
+  if (size > kMaxAreaLightSize)
+    value.fail("must be at most " + format_number(kMaxAreaLightSize) + " (got " + format_number(size) + ")");
   return size;
 }
 
@@ -87,7 +89,7 @@ void check_area_lights(const std::vector<AreaLight>& lights) {
   for (std::size_t i = 0; i < lights.size(); ++i) {
     const AreaLight& light = lights[i];
     const std::string entry = "area_lights[" + std::to_string(i) + "]";
-    auto require = [&](bool ok, const char* field, const char* problem) {
+    auto require = [&](bool ok, const char* field, const std::string& problem) {
       if (!ok) throw std::invalid_argument(entry + "." + field + ": " + problem);
     };
     require(finite(light.color) && light.color.x >= 0.0 && light.color.y >= 0.0 && light.color.z >= 0.0, "color",
@@ -96,6 +98,8 @@ void check_area_lights(const std::vector<AreaLight>& lights) {
     require(finite(light.direction) && light.direction != glm::dvec3(0.0), "direction", "must be finite and not zero");
     require(std::isfinite(light.size.x) && std::isfinite(light.size.y) && light.size.x > 0.0 && light.size.y > 0.0,
             "size", "must be finite and > 0");
+    require(light.size.x <= kMaxAreaLightSize && light.size.y <= kMaxAreaLightSize, "size",
+            "must be at most " + format_number(kMaxAreaLightSize));
     if (light.shape == AreaShape::rect)
       require(finite(light.up) && up_sine(light) > kMinimumUpSine, "up", "must not be zero or parallel to direction");
     require(std::isfinite(light.range) && light.range >= 0.0, "range", "must be finite and > 0 (0: no range)");

@@ -5,8 +5,15 @@
 
 namespace phongcl {
 
-// Reads and validates one area light; fails naming the file and the entry (size <= 0, a zero
-// direction, up parallel to direction, an unknown shape, a key another light type uses).
+// The largest size (a rect's width or height, a disk's diameter) of an area light. The kernel forms
+// its area and its axes' squared lengths in float (kernels/area_light.h: the record's area, the
+// emitter's extent): at most about 3 (1e18)^2 = 3e36, a hundredth of float's largest (3.4e38). A rect
+// of 1e20 x 1e20 overflowed them to infinity and shaded to NaN.
+inline constexpr double kMaxAreaLightSize = 1e18;
+
+// Reads and validates one area light; fails naming the file and the entry (a size <= 0 or above
+// kMaxAreaLightSize, a zero direction, up parallel to direction, an unknown shape, a key another
+// light type uses).
 AreaLight read_area_light(const JsonObject& object);
 
 // The checks of read_area_light for area lights built in code: std::invalid_argument naming the

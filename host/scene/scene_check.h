@@ -21,8 +21,12 @@ void check_material_table(const std::vector<Material>& materials);
 // Every component finite: no NaN or infinity.
 bool finite(const glm::dvec3& v);
 
-// A light group names EXR layers (group.<name>.R): letters, digits, '_' and '-', no separators.
-inline constexpr const char* kLightGroupNameRule = "must be a name of letters, digits, '_' and '-'";
+// A light group names EXR layers (group.<name>.R): letters, digits, '_' and '-', no separators, and
+// at most 63 bytes, Blender's own limit for a light group's name (MAX_NAME, 64 with the NUL), far
+// inside the 255 bytes OpenEXR keeps of a channel name.
+inline constexpr std::size_t kMaxLightGroupNameBytes = 63;
+inline constexpr const char* kLightGroupNameRule =
+    "must be a name of letters, digits, '_' and '-', at most 63 bytes (Blender's limit for a light group)";
 bool valid_light_group_name(const std::string& name);
 
 // `json_text` is an array like the scene file's "lights" or "materials"; InputError names `source`.

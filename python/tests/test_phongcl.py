@@ -170,6 +170,11 @@ def test_area_lights_are_set_in_the_scene_files_form(gbuffer):
     held[0].size = [-1, -1]
     with pytest.raises(ValueError, match=r"area_lights\[0\]\.size: must be finite and > 0"):
         relighter.set_area_lights(held)
+    held[0].size = [1e20, 1e20]  # its area and axes, squared in float, overflowed to NaN pixels
+    with pytest.raises(ValueError, match=r"area_lights\[0\]\.size: must be at most 1e\+18"):
+        relighter.set_area_lights(held)
+    with pytest.raises(phongcl.InputError, match=r"size\[0\] must be at most 1e\+18 \(got 1e\+20\)"):
+        relighter.set_area_lights([dict(area, size=[1e20, 1])])
     with pytest.raises(ValueError, match="'ellipse' is not an area light shape"):
         held[0].shape = "ellipse"
 
@@ -280,6 +285,9 @@ def test_light_groups_come_back_apart_and_add_up(scene, gbuffer):
     assert (shaded["groups"]["key"][lit] > 0).any()
     with pytest.raises(RuntimeError, match="terms"):
         phongcl.Relighter(grouped, gbuffer).shade_terms()
+    lights[0].group = "k" * 64  # past Blender's 63 bytes; group.<name>.R must fit an EXR channel name
+    with pytest.raises(ValueError, match="at most 63 bytes"):
+        relighter.set_lights(lights)
 
 
 def test_write_png_through_a_view_over_a_background(tmp_path):
