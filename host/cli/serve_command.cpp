@@ -64,7 +64,7 @@ void run_serve(const ServeArguments& args) {
   refuse_save_over_inputs(nullptr);
   if (!args.save.empty()) check_destination(args.save);
   const Scene scene = args.inputs.load_scene();
-  if (args.inputs.gbuffer_file.empty()) refuse_save_over_inputs(&scene);
+  refuse_save_over_inputs(&scene);
   const LoadedGBuffer loaded = args.inputs.load_described_gbuffer(scene, /*with_beauty=*/true);
   const std::string scene_text = read_text(args.inputs.scene_file);
   RelightSession session(loaded.gbuffer, args.device);

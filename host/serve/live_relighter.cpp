@@ -11,6 +11,7 @@
 
 #include "color/color_conversion.h"
 #include "common/error.h"
+#include "scene/mesh_files.h"
 
 namespace phongcl {
 
@@ -62,7 +63,7 @@ void LiveRelighter::stop() {
 
 SceneSnapshot LiveRelighter::scene() const {
   std::lock_guard lock(mutex_);
-  return {scene_version_, scene_json_, light_groups(scene_.lights, scene_.area_lights)};
+  return {scene_version_, scene_json_, light_groups(scene_.lights, scene_.area_lights), mesh_files(scene_.objects)};
 }
 
 // The document as the shader takes it: colours in the working space.

@@ -36,6 +36,7 @@ struct SceneSnapshot {
   std::uint64_t scene_version = 0;
   std::string json;  // the document as held, pretty-printed
   std::vector<std::string> light_groups;  // its lights' groups (light_groups())
+  std::vector<std::filesystem::path> meshes;  // the mesh files its objects name (mesh_files())
 };
 
 struct RenderCounters {
