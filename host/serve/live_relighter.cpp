@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <atomic>
 #include <exception>
+#include <fstream>
 #include <utility>
 
 #include <nlohmann/json.hpp>
@@ -66,9 +67,14 @@ SceneSnapshot LiveRelighter::scene() const {
   return {scene_version_, scene_json_, light_groups(scene_.lights, scene_.area_lights), mesh_files(scene_.objects)};
 }
 
-// The document as the shader takes it: colours in the working space.
+// The document as the shader takes it: colours in the working space. A mesh file that cannot be
+// opened is refused with it; one that opens but is malformed fails the first frame that reads it
+// (meshes are read for shadows traced against the objects), with the reader's error.
 Scene LiveRelighter::parsed_scene(std::string_view text) const {
   Scene scene = parse_scene(text, scene_source_);
+  for (const std::filesystem::path& mesh : mesh_files(scene.objects))
+    if (!std::filesystem::is_regular_file(mesh) || !std::ifstream(mesh, std::ios::binary))
+      throw InputError(mesh, "cannot open this mesh the scene names");
   convert_scene_colors(scene, color_);
   return scene;
 }

@@ -56,8 +56,9 @@ class LiveRelighter {
   LiveRelighter& operator=(const LiveRelighter&) = delete;
 
   SceneSnapshot scene() const;
-  // Parses and validates the whole scene (the CLI's checks, then the G-buffer's material indices);
-  // throws InputError with the one-line message and keeps the held scene otherwise.
+  // Parses and validates the whole scene (the CLI's checks, mesh files that open, then the G-buffer's
+  // material indices); throws InputError with the one-line message and keeps the held scene otherwise.
+  // The next frame shows every change, the objects' (shadow geometry, meshes read again) included.
   std::uint64_t replace_scene(std::string_view text);
   RenderSettings settings() const;
   void replace_settings(const RenderSettings& settings);
