@@ -47,7 +47,12 @@ LiveRelighter::LiveRelighter(RelightSession& session, std::string_view scene_tex
   scene_ = parsed_scene(scene_text);
   session_.check(scene_);
   scene_json_ = normalised_json(scene_text);
-  render_thread_ = std::thread([this] { render_loop(); });
+  render_thread_ = std::thread([this] {
+    render_loop();
+    std::lock_guard lock(mutex_);
+    render_thread_done_ = true;
+    render_ended_.notify_all();
+  });
 }
 
 LiveRelighter::~LiveRelighter() {
@@ -60,6 +65,11 @@ void LiveRelighter::stop() {
   stopping_ = true;
   state_changed_.notify_all();
   frame_ready_.notify_all();
+}
+
+bool LiveRelighter::render_thread_ended_by(std::chrono::steady_clock::time_point deadline) {
+  std::unique_lock lock(mutex_);
+  return render_ended_.wait_until(lock, deadline, [&] { return render_thread_done_; });
 }
 
 SceneSnapshot LiveRelighter::scene() const {

@@ -78,6 +78,10 @@ class LiveRelighter {
 
   // Wakes every waiter and ends the render thread; idempotent.
   void stop();
+  // After stop(): whether the render thread has ended by `deadline`. A frame in flight can outlast
+  // any deadline (a mesh of millions of triangles being read, a reader that hangs), and this
+  // object's destructor waits for it: a process that must end on time exits without running it.
+  bool render_thread_ended_by(std::chrono::steady_clock::time_point deadline);
 
  private:
   void render_loop();
@@ -89,7 +93,7 @@ class LiveRelighter {
   const std::filesystem::path scene_source_;
   const ColorConfig color_;
   mutable std::mutex mutex_;
-  std::condition_variable state_changed_, frame_ready_;
+  std::condition_variable state_changed_, frame_ready_, render_ended_;
   // Guarded by mutex_:
   Scene scene_;
   std::string scene_json_;
@@ -97,6 +101,7 @@ class LiveRelighter {
   RenderSettings settings_;
   bool terms_wanted_ = false;  // sticky once a page asks for a term: the terms cost little more
   bool stopping_ = false;
+  bool render_thread_done_ = false;
   std::shared_ptr<const RenderedFrame> latest_;
   bool latest_taken_ = true;  // a request has had latest_ (or there is none yet)
   int waiting_ = 0;           // requests waiting for a frame newer than latest_
