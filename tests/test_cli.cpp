@@ -18,6 +18,7 @@
 #include "cli_runner.h"
 #include "gbuffer/gbuffer.h"
 #include "image/image.h"
+#include "peers/knot_mesh.h"
 
 namespace phongcl {
 namespace {
@@ -446,6 +447,43 @@ TEST_F(Cli, OutputsThatAreInputsAreRefusedBeforeAnythingIsRead) {
     EXPECT_EQ(read_text(path("gbuffer.exr")), gbuffer_bytes);
     EXPECT_EQ(read_text(path("scene.json")), scene_bytes);
     EXPECT_FALSE(fs::exists(path("x.exr")));
+  }
+}
+
+// The meshes a scene's objects name (here under a transform) are inputs too: no output may replace
+// one, whether the G-buffer comes from the scene or from --gbuffer, and gbuffer --out neither.
+TEST_F(Cli, OutputsOverTheScenesMeshesAreRefused) {
+  const fs::path source = fs::path(PHONGCL_SOURCE_DIR) / "scenes/default";
+  fs::copy_file(source / "gbuffer.exr", path("gbuffer.exr"));
+  std::string scene = read_text(source / "scene.json");
+  const std::string objects = "\"objects\": [";
+  scene.insert(scene.find(objects) + objects.size(),
+               R"({"type": "transform", "translate": [0, 3, 0], "children": [{"type": "mesh", "file": "rock.ply", "material": 1}]}, )");
+  write_ply(path("knot.ply"), trefoil_knot(8, 4));
+  const std::string mesh_bytes = read_text(path("knot.ply"));
+  const std::string out = path("existing.exr");
+  const std::string mesh = "the scene's mesh '" + path("rock.ply") + "'";
+  struct Case {
+    std::string arguments;
+    std::string says;
+  };
+  const std::string shade = "shade --scene " + path("scene.json");
+  const Case cases[] = {
+      {shade + " --out " + path("rock.ply"), "--out '" + path("rock.ply") + "' and " + mesh},
+      {shade + " --gbuffer " + path("gbuffer.exr") + " --out " + path("rock.ply"), "--out '" + path("rock.ply") + "' and " + mesh},
+      {shade + " --out " + out + " --png " + path("rock.ply"), "--png '" + path("rock.ply") + "' and " + mesh},
+      {shade + " --out " + out + " --aov " + path("rock.ply"), "--aov '" + path("rock.ply") + "' and " + mesh},
+      {"gbuffer --scene " + path("scene.json") + " --out " + path("rock.ply"), "--out '" + path("rock.ply") + "' and " + mesh},
+      {"gbuffer --scene " + path("scene.json") + " --out " + path("scene.json"), "--out '" + path("scene.json") + "' and --scene"},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.arguments);
+    write("scene.json", scene);
+    write("rock.ply", mesh_bytes);
+    existing_output();
+    expect_clean_failure(run_phongcl(c.arguments), c.says, out);
+    EXPECT_TRUE(read_text(path("rock.ply")) == mesh_bytes) << "the mesh was replaced";
+    EXPECT_EQ(read_text(path("scene.json")), scene);
   }
 }
 

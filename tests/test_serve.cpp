@@ -29,6 +29,7 @@
 #include "color/color_conversion.h"
 #include "color/display.h"
 #include "serve/relight_server.h"
+#include "serve_process.h"
 #include "serve_support.h"
 #include "temp_dir.h"
 
@@ -39,6 +40,7 @@ using nlohmann::json;
 using testing::TempDir;
 
 using testing::RunningServer;
+using testing::ServeProcess;
 const std::filesystem::path& kSceneFile = testing::kServeSceneFile;
 
 std::string file_text(const std::filesystem::path& file) { return testing::read_text(file); }
@@ -637,44 +639,6 @@ TEST(ServeShutdown, StopEndsWaitingRequestsPromptly) {
   poll.wait();
   EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(10)) << "the long poll held shutdown";
 }
-
-// The real binary, started with `arguments` and read until it prints its URL.
-class ServeProcess {
- public:
-  explicit ServeProcess(const std::string& arguments) : dir_("serve_cli") {
-    const std::string command = "cd '" PHONGCL_SOURCE_DIR "' && exec '" PHONGCL_EXE "' serve " + arguments +
-                                " </dev/null >'" + (dir_ / "out.txt").string() + "' 2>&1";
-    pid_ = fork();
-    if (pid_ == 0) {
-      execl("/bin/sh", "sh", "-c", command.c_str(), static_cast<char*>(nullptr));
-      _exit(127);
-    }
-    for (int i = 0; i < 1200 && output().find("url ") == std::string::npos; ++i)
-      std::this_thread::sleep_for(std::chrono::milliseconds(50));
-  }
-  ~ServeProcess() {
-    if (pid_ > 0 && !stopped_) stop(SIGKILL);
-  }
-  std::string output() const { return file_text(dir_ / "out.txt"); }
-  int port() const {
-    const std::string text = output();
-    const std::size_t at = text.find("url        http://");
-    return at == std::string::npos ? -1 : std::stoi(text.substr(text.find(':', at + 18) + 1));
-  }
-  // Sends `signal` and returns the wait status.
-  int stop(int signal) {
-    kill(pid_, signal);
-    int status = 0;
-    waitpid(pid_, &status, 0);
-    stopped_ = true;
-    return status;
-  }
-
- private:
-  TempDir dir_;
-  pid_t pid_ = -1;
-  bool stopped_ = false;
-};
 
 TEST(ServeCli, PrintsTheUrlAndStopsCleanlyOnSigtermAndSigint) {
   if (!testing::have_opencl_device()) GTEST_SKIP() << "no OpenCL device on this machine";

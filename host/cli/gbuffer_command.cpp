@@ -6,7 +6,9 @@
 #include "cli/commands.h"
 #include "cli/format.h"
 #include "common/error.h"
+#include "common/same_file.h"
 #include "raycast/raycast.h"
+#include "scene/mesh_files.h"
 
 namespace phongcl::cli {
 
@@ -21,6 +23,11 @@ void run_gbuffer(const GBufferArguments& args) {
   const Scene scene = load_scene(args.scene_file);
   const std::filesystem::path out = args.out_file.empty() ? scene.gbuffer : std::filesystem::path(args.out_file);
   if (out.empty()) throw InputError(scene.source, "no output: give --out or a \"gbuffer\" entry in the scene");
+  // Before the meshes are read: the output may replace neither the scene nor one of its meshes.
+  std::vector<NamedFile> files{{"--scene", args.scene_file}};
+  for (const std::filesystem::path& mesh : mesh_files(scene.objects)) files.push_back(mesh_input(mesh));
+  files.push_back({args.out_file.empty() ? "the scene's \"gbuffer\" entry" : "--out", out, true});
+  refuse_shared_files(files);
   const auto start = std::chrono::steady_clock::now();
   const GBuffer gbuffer = generate_gbuffer(scene);
   const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();

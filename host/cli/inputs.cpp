@@ -11,6 +11,7 @@
 #include "gbuffer/layouts.h"
 #include "raycast/depth_reconstruction.h"
 #include "scene/camera_space.h"
+#include "scene/mesh_files.h"
 
 namespace phongcl::cli {
 
@@ -62,6 +63,8 @@ std::vector<NamedFile> SceneInputs::named_files(const Scene* scene) const {
   std::vector<NamedFile> files{{"--scene", scene_file}};
   if (!gbuffer_file.empty()) files.push_back({"--gbuffer", gbuffer_file});
   else if (scene != nullptr && !scene->gbuffer.empty()) files.push_back({"the scene's \"gbuffer\" entry", scene->gbuffer});
+  if (scene != nullptr)
+    for (const std::filesystem::path& mesh : mesh_files(scene->objects)) files.push_back(mesh_input(mesh));
   return files;
 }
 

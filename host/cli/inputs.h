@@ -43,8 +43,8 @@ struct SceneInputs {
   // inputs share it.
   std::shared_ptr<const ColorConfig> color_config() const;
   bool camera_space() const { return space == "camera"; }
-  // The files read, for refuse_shared_files: --scene and --gbuffer; given the parsed scene and no
-  // --gbuffer, its "gbuffer" entry.
+  // The files read, for refuse_shared_files: --scene and --gbuffer; given the parsed scene, the
+  // mesh files its objects name and, without --gbuffer, its "gbuffer" entry.
   std::vector<NamedFile> named_files(const Scene* scene = nullptr) const;
   // --gbuffer, else the scene's "gbuffer" entry (InputError when neither names a file).
   std::filesystem::path gbuffer_path(const Scene& scene) const;

@@ -2,9 +2,13 @@
 #include <signal.h>
 
 #include <atomic>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <thread>
 
@@ -19,6 +23,12 @@
 namespace phongcl::cli {
 
 namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// How long a stop waits for the frame being shaded, from the signal: the connections close within
+// HttpLimits::stop_time meanwhile, and the process ends within 2 s whatever the render does.
+constexpr std::chrono::seconds kRenderGrace{1};
 
 struct ServeArguments {
   SceneInputs inputs;
@@ -64,7 +74,7 @@ void run_serve(const ServeArguments& args) {
   refuse_save_over_inputs(nullptr);
   if (!args.save.empty()) check_destination(args.save);
   const Scene scene = args.inputs.load_scene();
-  if (args.inputs.gbuffer_file.empty()) refuse_save_over_inputs(&scene);
+  refuse_save_over_inputs(&scene);
   const LoadedGBuffer loaded = args.inputs.load_described_gbuffer(scene, /*with_beauty=*/true);
   const std::string scene_text = read_text(args.inputs.scene_file);
   RelightSession session(loaded.gbuffer, args.device);
@@ -89,11 +99,13 @@ void run_serve(const ServeArguments& args) {
   const int port = server.bind();
 
   std::atomic<bool> done = false;
+  std::optional<Clock::time_point> signalled;  // written by the waiter, read after joining it
   std::thread signal_waiter([&] {
     const timespec poll{0, 200'000'000};
     while (!done) {
       const int signal = sigtimedwait(&signals, nullptr, &poll);
       if (signal == SIGINT || signal == SIGTERM) {
+        signalled = Clock::now();
         std::cout << "phongcl serve: " << (signal == SIGINT ? "SIGINT" : "SIGTERM") << ", stopping" << std::endl;
         server.stop();
         return;
@@ -105,6 +117,15 @@ void run_serve(const ServeArguments& args) {
   server.run();
   done = true;
   signal_waiter.join();
+  // Every connection is closed. A frame still being shaded past the grace time (a mesh of millions of
+  // triangles being read, a reader that hangs) is abandoned: the destructors of what the render
+  // thread uses (the LiveRelighter, the session, the device) would wait for it, or free memory it is
+  // using. Nothing else is left to finish (saves are written whole, atomically before they answer).
+  if (!live.render_thread_ended_by(signalled.value_or(Clock::now()) + kRenderGrace)) {
+    std::cout << "phongcl serve: stopped (the frame being shaded is abandoned)" << std::endl;
+    std::fflush(nullptr);
+    std::_Exit(0);  // as a normal stop
+  }
   std::cout << "phongcl serve: stopped" << std::endl;
 }
 

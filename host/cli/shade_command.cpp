@@ -79,7 +79,7 @@ void run_shade(const ShadeArguments& args) {
   };
   std::future<Inputs> reading = std::async(std::launch::async, [&] {
     Scene scene = args.inputs.load_scene();
-    if (args.inputs.gbuffer_file.empty()) refuse_outputs_over_inputs(args.inputs, outputs, &scene);
+    refuse_outputs_over_inputs(args.inputs, outputs, &scene);
     LoadedGBuffer loaded = args.inputs.load_described_gbuffer(scene);
     return Inputs{std::move(scene), std::move(loaded), milliseconds_since(start)};
   });

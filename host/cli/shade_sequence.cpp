@@ -185,7 +185,7 @@ void run_shade_sequence(const SceneInputs& inputs, const ImageOutputs& given_out
   stages.read = [&](FrameWork& work) {
     const SceneInputs framed = files.inputs_of(inputs, work.frame);
     work.scene = shared_scene ? *shared_scene : framed.load_scene();
-    if (framed.gbuffer_file.empty()) refuse_outputs_over_inputs(framed, files.outputs_of(outputs, work.frame), &work.scene);
+    refuse_outputs_over_inputs(framed, files.outputs_of(outputs, work.frame), &work.scene);
     LoadedGBuffer loaded = framed.load_described_gbuffer(work.scene);
     work.gbuffer = std::move(loaded.gbuffer);
     work.layout = std::move(loaded.layout);

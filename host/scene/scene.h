@@ -97,6 +97,8 @@ struct Object {
   std::filesystem::path file;                // mesh: its triangles' file (PLY, OBJ, glTF), resolved relative to the scene
   glm::dmat4 matrix{1.0};                    // transform: object-to-parent
   std::vector<Object> children;              // transform
+
+  bool operator==(const Object&) const = default;
 };
 
 struct Scene {

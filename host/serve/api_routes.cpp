@@ -15,7 +15,9 @@
 #include "common/atomic_file.h"
 #include "common/error.h"
 #include "common/joined.h"
+#include "common/same_file.h"
 #include "scene/json_reader.h"
+#include "scene/mesh_files.h"
 #include "scene/scene_check.h"
 #include "serve/image_encoding.h"
 #include "serve/query.h"
@@ -416,6 +418,14 @@ void ApiRoutes::post_save(const httplib::Request& request, httplib::Response& re
   if (options_.save_path.empty())
     return send_json(response, {{"error", "no --save path: start phongcl serve with --save FILE to save on the server"}}, 409);
   const SceneSnapshot scene = live_.scene();
+  // A PUT may have named a mesh since start-up, when --save was checked against the inputs.
+  std::vector<NamedFile> files{{"--save", options_.save_path, true}};
+  for (const std::filesystem::path& mesh : scene.meshes) files.push_back(mesh_input(mesh));
+  try {
+    refuse_shared_files(files);
+  } catch (const std::invalid_argument& error) {
+    return send_json(response, {{"error", std::string("save refused: ") + error.what()}}, 409);
+  }
   // The request was fine: a failed write is the server's problem (500), with the reason.
   try {
     write_atomically(options_.save_path, [&](const std::filesystem::path& temp) {

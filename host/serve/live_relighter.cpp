@@ -5,12 +5,14 @@
 #include <algorithm>
 #include <atomic>
 #include <exception>
+#include <fstream>
 #include <utility>
 
 #include <nlohmann/json.hpp>
 
 #include "color/color_conversion.h"
 #include "common/error.h"
+#include "scene/mesh_files.h"
 
 namespace phongcl {
 
@@ -45,7 +47,12 @@ LiveRelighter::LiveRelighter(RelightSession& session, std::string_view scene_tex
   scene_ = parsed_scene(scene_text);
   session_.check(scene_);
   scene_json_ = normalised_json(scene_text);
-  render_thread_ = std::thread([this] { render_loop(); });
+  render_thread_ = std::thread([this] {
+    render_loop();
+    std::lock_guard lock(mutex_);
+    render_thread_done_ = true;
+    render_ended_.notify_all();
+  });
 }
 
 LiveRelighter::~LiveRelighter() {
@@ -60,14 +67,24 @@ void LiveRelighter::stop() {
   frame_ready_.notify_all();
 }
 
-SceneSnapshot LiveRelighter::scene() const {
-  std::lock_guard lock(mutex_);
-  return {scene_version_, scene_json_, light_groups(scene_.lights, scene_.area_lights)};
+bool LiveRelighter::render_thread_ended_by(std::chrono::steady_clock::time_point deadline) {
+  std::unique_lock lock(mutex_);
+  return render_ended_.wait_until(lock, deadline, [&] { return render_thread_done_; });
 }
 
-// The document as the shader takes it: colours in the working space.
+SceneSnapshot LiveRelighter::scene() const {
+  std::lock_guard lock(mutex_);
+  return {scene_version_, scene_json_, light_groups(scene_.lights, scene_.area_lights), mesh_files(scene_.objects)};
+}
+
+// The document as the shader takes it: colours in the working space. A mesh file that cannot be
+// opened is refused with it; one that opens but is malformed fails the first frame that reads it
+// (meshes are read for shadows traced against the objects), with the reader's error.
 Scene LiveRelighter::parsed_scene(std::string_view text) const {
   Scene scene = parse_scene(text, scene_source_);
+  for (const std::filesystem::path& mesh : mesh_files(scene.objects))
+    if (!std::filesystem::is_regular_file(mesh) || !std::ifstream(mesh, std::ios::binary))
+      throw InputError(mesh, "cannot open this mesh the scene names");
   convert_scene_colors(scene, color_);
   return scene;
 }

@@ -36,6 +36,7 @@ struct SceneSnapshot {
   std::uint64_t scene_version = 0;
   std::string json;  // the document as held, pretty-printed
   std::vector<std::string> light_groups;  // its lights' groups (light_groups())
+  std::vector<std::filesystem::path> meshes;  // the mesh files its objects name (mesh_files())
 };
 
 struct RenderCounters {
@@ -55,8 +56,9 @@ class LiveRelighter {
   LiveRelighter& operator=(const LiveRelighter&) = delete;
 
   SceneSnapshot scene() const;
-  // Parses and validates the whole scene (the CLI's checks, then the G-buffer's material indices);
-  // throws InputError with the one-line message and keeps the held scene otherwise.
+  // Parses and validates the whole scene (the CLI's checks, mesh files that open, then the G-buffer's
+  // material indices); throws InputError with the one-line message and keeps the held scene otherwise.
+  // The next frame shows every change, the objects' (shadow geometry, meshes read again) included.
   std::uint64_t replace_scene(std::string_view text);
   RenderSettings settings() const;
   void replace_settings(const RenderSettings& settings);
@@ -76,6 +78,10 @@ class LiveRelighter {
 
   // Wakes every waiter and ends the render thread; idempotent.
   void stop();
+  // After stop(): whether the render thread has ended by `deadline`. A frame in flight can outlast
+  // any deadline (a mesh of millions of triangles being read, a reader that hangs), and this
+  // object's destructor waits for it: a process that must end on time exits without running it.
+  bool render_thread_ended_by(std::chrono::steady_clock::time_point deadline);
 
  private:
   void render_loop();
@@ -87,7 +93,7 @@ class LiveRelighter {
   const std::filesystem::path scene_source_;
   const ColorConfig color_;
   mutable std::mutex mutex_;
-  std::condition_variable state_changed_, frame_ready_;
+  std::condition_variable state_changed_, frame_ready_, render_ended_;
   // Guarded by mutex_:
   Scene scene_;
   std::string scene_json_;
@@ -95,6 +101,7 @@ class LiveRelighter {
   RenderSettings settings_;
   bool terms_wanted_ = false;  // sticky once a page asks for a term: the terms cost little more
   bool stopping_ = false;
+  bool render_thread_done_ = false;
   std::shared_ptr<const RenderedFrame> latest_;
   bool latest_taken_ = true;  // a request has had latest_ (or there is none yet)
   int waiting_ = 0;           // requests waiting for a frame newer than latest_

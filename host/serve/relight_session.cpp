@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "cl/device.h"
+#include "scene/mesh_files.h"
 
 namespace phongcl {
 
@@ -30,15 +31,27 @@ RelightSession::~RelightSession() = default;
 
 void RelightSession::check(const Scene& scene) const { material_check_.check(gbuffer_, scene.materials.size()); }
 
-// The Relighter keeps its precision, ambient, background, shadow settings and whether it shades the terms
-// from construction: a change of those builds a new one (which packs the G-buffer again); lights, area
-// lights, materials and the eye are updates.
+std::vector<RelightSession::MeshStamp> RelightSession::mesh_stamps(const std::vector<Object>& objects) {
+  std::vector<MeshStamp> stamps;
+  for (const std::filesystem::path& file : mesh_files(objects)) {
+    std::error_code missing;  // stamped alike each time; reading it is the Relighter's, with the error
+    stamps.push_back({std::filesystem::last_write_time(file, missing), std::filesystem::file_size(file, missing)});
+  }
+  return stamps;
+}
+
+// The Relighter keeps its precision, ambient, background, shadow settings, whether it shades the terms
+// and the objects (the shadows' geometry, meshes read from their files) from construction: a change of
+// those, or of a mesh file, builds a new one (which packs the G-buffer again); lights, area lights,
+// materials and the eye are updates.
 Relighter& RelightSession::relighter_for(const Scene& scene, const RenderSettings& settings) {
+  std::vector<MeshStamp> meshes = mesh_stamps(scene.objects);
   const bool same = relighter_ && relighter_settings_.precision == settings.precision &&
                     relighter_settings_.specialise == settings.specialise &&
                     relighter_settings_.terms == settings.terms && relighter_settings_.shadows == settings.shadows &&
                     relighter_->scene().ambient == scene.ambient &&
-                    relighter_->scene().background == scene.background;
+                    relighter_->scene().background == scene.background &&
+                    relighter_->scene().objects == scene.objects && relighter_meshes_ == meshes;
   if (!same) {
     relighter_.reset();  // first: two copies of a large G-buffer need not fit on the device
     RelighterOptions options;
@@ -49,6 +62,7 @@ Relighter& RelightSession::relighter_for(const Scene& scene, const RenderSetting
     options.shadows = settings.shadows;
     relighter_.emplace(scene, gbuffer_, options);
     relighter_settings_ = settings;
+    relighter_meshes_ = std::move(meshes);
   }
   relighter_->set_camera_eye(scene.camera.eye);
   relighter_->set_materials(scene.materials);

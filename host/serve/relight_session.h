@@ -2,6 +2,8 @@
 // The server's only contact with the shading library: the G-buffer resident on the device
 // (phongcl::Relighter), shaded for whatever scene the page holds now (with the AOV terms when the
 // page shows one), and read back under the cursor.
+#include <cstdint>
+#include <filesystem>
 #include <optional>
 #include <string>
 #include <vector>
@@ -73,6 +75,13 @@ class RelightSession {
   std::string device_description() const;
 
  private:
+  // A mesh file as it was when the Relighter took the scene: one rewritten in place is read again.
+  struct MeshStamp {
+    std::filesystem::file_time_type written;
+    std::uintmax_t bytes = 0;
+    bool operator==(const MeshStamp&) const = default;
+  };
+  static std::vector<MeshStamp> mesh_stamps(const std::vector<Object>& objects);
   Relighter& relighter_for(const Scene& scene, const RenderSettings& settings);
 
   GBuffer gbuffer_;
@@ -81,6 +90,7 @@ class RelightSession {
   std::string device_;
   std::optional<Relighter> relighter_;
   RenderSettings relighter_settings_;
+  std::vector<MeshStamp> relighter_meshes_;
 };
 
 }  // namespace phongcl
