@@ -3,6 +3,8 @@
 #include <malloc.h>
 
 #include <algorithm>
+#include <cerrno>
+#include <cstring>
 #include <atomic>
 #include <exception>
 #include <fstream>
@@ -12,6 +14,7 @@
 
 #include "color/color_conversion.h"
 #include "common/error.h"
+#include "common/regular_file.h"
 #include "scene/mesh_files.h"
 
 namespace phongcl {
@@ -82,9 +85,10 @@ SceneSnapshot LiveRelighter::scene() const {
 // (meshes are read for shadows traced against the objects), with the reader's error.
 Scene LiveRelighter::parsed_scene(std::string_view text) const {
   Scene scene = parse_scene(text, scene_source_);
-  for (const std::filesystem::path& mesh : mesh_files(scene.objects))
-    if (!std::filesystem::is_regular_file(mesh) || !std::ifstream(mesh, std::ios::binary))
-      throw InputError(mesh, "cannot open this mesh the scene names");
+  for (const std::filesystem::path& mesh : mesh_files(scene.objects)) {
+    require_regular_file(mesh, "mesh");
+    if (!std::ifstream(mesh, std::ios::binary)) throw InputError(mesh, std::string("cannot read the mesh: ") + std::strerror(errno));
+  }
   convert_scene_colors(scene, color_);
   return scene;
 }
