@@ -201,6 +201,23 @@ TEST(MeshFile, MalformedHeadersSayWhatIsWrong) {
   EXPECT_NE(error_with("float y", "quaternion y").find("'quaternion' is not a PLY type"), std::string::npos);
   EXPECT_NE(error_with("ascii", "utf8").find("header line 2: must be 'format ascii 1.0'"), std::string::npos);
   EXPECT_NE(error_with("3 0 1 2", "3 0 one 2").find("'one' is not an integer"), std::string::npos);
+  // Assimp ends a word at a NUL: this face list was vertex_indices to it, with a face of no corners.
+  EXPECT_NE(error_with("vertex_indices", std::string("vertex_indices\0at", 17)).find("not printable text (0)"),
+            std::string::npos);
+}
+
+// Assimp's PLY reader takes any file named .ply, and a file of an unknown extension by "ply" in
+// its first bytes (it crashed on "plyply\n..."): each is checked as PLY or refused.
+TEST(MeshFile, EveryFileThePlyReaderCouldTakeIsCheckedFirst) {
+  TempDir dir;
+  write_text(dir / "twice.ply", "plyply\n" + triangle_header("ascii", 1).substr(4) + "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+  EXPECT_NE(error_of([&] { read_mesh(dir / "twice.ply"); }).find("twice.ply: header line 1: must be 'ply'"),
+            std::string::npos);
+  write_text(dir / "mesh.xyz1", triangle_header("ascii", 1) + "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+  EXPECT_EQ(read_mesh(dir / "mesh.xyz1").triangles.size(), 1u) << "a PLY file by its content";
+  write_text(dir / "notes.xyz1", "not a mesh, though ply appears in it\n");
+  EXPECT_NE(error_of([&] { read_mesh(dir / "notes.xyz1"); }).find("'.xyz1' is not a mesh format Assimp reads"),
+            std::string::npos);
 }
 
 TEST(MeshFile, WhatIsNotARegularFileIsNamedForWhatItIs) {

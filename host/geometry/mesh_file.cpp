@@ -1,5 +1,6 @@
 #include "geometry/mesh_file.h"
 
+#include <cctype>
 #include <cmath>
 #include <fstream>
 #include <iterator>
@@ -68,12 +69,22 @@ std::string file_bytes(const std::filesystem::path& file) {
   return bytes;
 }
 
-// Whether `file` starts as a PLY file does; it is then checked before Assimp sees it
-// (geometry/ply_check.h) and handed over from memory.
-bool starts_as_ply(const std::filesystem::path& file) {
-  char magic[5] = {};
+// Assimp's PLY reader takes a file by its extension or, when no reader claims the extension, by
+// "ply" among its first bytes. Every file it could take goes through the PLY check first (a first
+// line other than "ply" fails it) and reaches Assimp from memory under the PLY reader's name; a file
+// of another extension goes to that extension's reader, and one of an extension no reader claims
+// is refused, so that no unchecked file reaches the PLY reader.
+enum class MeshFormat { ply, by_extension };
+
+MeshFormat mesh_format(const std::filesystem::path& file, const Assimp::Importer& importer) {
+  std::string extension = file.extension().string();
+  for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  char magic[3] = {};
   std::ifstream(file, std::ios::binary).read(magic, sizeof magic);
-  return is_ply(std::string_view(magic, sizeof magic));
+  if (extension == ".ply" || std::string_view(magic, sizeof magic) == "ply") return MeshFormat::ply;
+  if (!extension.empty() && importer.IsExtensionSupported(extension)) return MeshFormat::by_extension;
+  throw InputError(file, "cannot read the mesh: '" + extension +
+                             "' is not a mesh format Assimp reads (PLY, OBJ, glTF, ...), and it is not a PLY file");
 }
 
 }  // namespace
@@ -88,7 +99,7 @@ TriangleMesh read_mesh(const std::filesystem::path& file) {
   const unsigned steps = aiProcess_ValidateDataStructure | aiProcess_Triangulate | aiProcess_SortByPType |
                          aiProcess_PreTransformVertices;
   const aiScene* scene = nullptr;
-  if (starts_as_ply(file)) {
+  if (mesh_format(file, importer) == MeshFormat::ply) {
     std::string bytes = file_bytes(file);
     const PlyLayout ply = check_ply(bytes, file);
     const bool data_starts_with_newline = ply.data_offset < bytes.size() && bytes[ply.data_offset] == '\n';
@@ -106,7 +117,7 @@ TriangleMesh read_mesh(const std::filesystem::path& file) {
 
 MeshCounts count_mesh(const std::filesystem::path& file) {
   require_regular_file(file, "mesh");
-  if (starts_as_ply(file)) {
+  if (mesh_format(file, Assimp::Importer()) == MeshFormat::ply) {
     const PlyLayout ply = check_ply(file_bytes(file), file);
     return {ply.vertices, ply.triangles};
   }

@@ -116,6 +116,11 @@ class HeaderReader {
 
   // True at end_header.
   bool read_line(std::string_view line) {
+    // Printable text only: Assimp ends a word at a NUL or a form feed as well, so a name like
+    // "vertex_indices\0x" would be one word here and "vertex_indices" there.
+    for (char c : line)
+      if ((c < 0x20 || c > 0x7e) && c != '\t')
+        fail("holds a byte that is not printable text (" + std::to_string(static_cast<unsigned char>(c)) + ")");
     const std::vector<std::string_view> words = words_of(line);
     const std::size_t number = header_.layout.header_lines.size();
     if (number == 1) {
