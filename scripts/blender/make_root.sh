@@ -1,0 +1,75 @@
+#!/usr/bin/env bash
+# Makes a minimal Debian root holding Debian's own Blender, and a wrapper that runs it, so a newer
+# Blender than the host's can render on this machine without changing the host: only the cache
+# directory is written. Usage: make_root.sh SUITE NAME, e.g. `make_root.sh trixie blender4`.
+#   root:    $PHONGCL_CACHE/roots/SUITE   (PHONGCL_CACHE defaults to /var/cache/phongcl)
+#   wrapper: $PHONGCL_CACHE/bin/NAME      (`NAME -b scene.blend --python ...`, arguments passed through)
+# Safe to run again: a root is complete once its marker file exists; a root without one (an interrupted
+# run) is removed and made again. docs/formats.md "From a Blender scene" says how to add a version.
+set -euo pipefail
+suite=${1:?usage: make_root.sh SUITE NAME}
+name=${2:?usage: make_root.sh SUITE NAME}
+cache=${PHONGCL_CACHE:-/var/cache/phongcl}
+mirror=${PHONGCL_DEBIAN_MIRROR:-http://deb.debian.org/debian}
+root="$cache/roots/$suite"
+marker="$root/.phongcl-complete"
+wrapper="$cache/bin/$name"
+
+if [ "$(id -u)" -ne 0 ]; then
+  echo "phongcl setup: making a Debian root needs root (debootstrap, chroot); run as root or with sudo" >&2
+  exit 2
+fi
+
+if [ ! -f "$marker" ]; then
+  start=$(date +%s)
+  if [ -e "$root" ]; then
+    echo "phongcl setup: $root is incomplete (no $(basename "$marker")); making it again"
+    rm -rf --one-file-system "$root"
+  fi
+  mkdir -p "$cache/roots"
+  echo "phongcl setup: making a Debian $suite root in $root (minutes, once per machine)"
+  debootstrap --variant=minbase "$suite" "$root" "$mirror" >"$cache/roots/$suite.debootstrap.log" 2>&1 \
+    || { echo "phongcl setup: debootstrap $suite failed; see $cache/roots/$suite.debootstrap.log" >&2; exit 1; }
+  # unstable's Release file is re-signed daily and can be past its Valid-Until date on a mirror snapshot.
+  echo 'Acquire::Check-Valid-Until "false";' >"$root/etc/apt/apt.conf.d/99phongcl-valid-until"
+  # Blender's OpenCL/CUDA probes and Python want /proc and /dev; mounted for the install only.
+  mount -t proc proc "$root/proc"
+  trap 'umount "$root/proc" 2>/dev/null || true' EXIT
+  chroot "$root" env DEBIAN_FRONTEND=noninteractive apt-get update -qq
+  chroot "$root" env DEBIAN_FRONTEND=noninteractive \
+    apt-get install -y -qq --no-install-recommends blender >"$cache/roots/$suite.apt.log" 2>&1 \
+    || { echo "phongcl setup: installing blender in $root failed; see $cache/roots/$suite.apt.log" >&2; exit 1; }
+  chroot "$root" apt-get clean
+  umount "$root/proc"
+  trap - EXIT
+  chroot "$root" dpkg-query -W -f='${Version}' blender >"$marker"
+  echo "phongcl setup: $suite root ready in $(( $(date +%s) - start )) s, $(du -sh --one-file-system "$root" | cut -f1)," \
+    "blender $(cat "$marker")"
+fi
+
+mkdir -p "$cache/bin"
+cat >"$wrapper.tmp" <<WRAPPER
+#!/usr/bin/env bash
+# Runs Debian $suite's Blender ($(cat "$marker")) from $root; written by scripts/blender/make_root.sh.
+# The current directory's git work tree (or the directory itself), /tmp, \$TMPDIR and the directories in
+# PHONGCL_BLENDER_BINDS (colon-separated) are mapped at the same paths, so paths in arguments work;
+# Blender's user settings go to the root's /root, not the host's home.
+set -euo pipefail
+root=$root
+binds=()
+top=\$(git rev-parse --show-toplevel 2>/dev/null || pwd)
+IFS=: read -r -a extra <<<"\${PHONGCL_BLENDER_BINDS:-}"
+for dir in "\$top" "\$PWD" /tmp "\${TMPDIR:-/tmp}" "\${extra[@]}"; do
+  # / itself would hide the root: only directories below it are mapped.
+  [ -n "\$dir" ] && [ "\$dir" != / ] && [ -d "\$dir" ] && binds+=(--bind "\$dir" "\$dir")
+done
+if command -v bwrap >/dev/null; then
+  exec bwrap --bind "\$root" / --proc /proc --dev /dev --ro-bind /sys /sys "\${binds[@]}" \\
+    --setenv HOME /root --chdir "\$PWD" --die-with-parent /usr/bin/blender "\$@"
+fi
+echo "\$(basename "\$0"): bwrap (package bubblewrap) is needed to run \$root's Blender" >&2
+exit 2
+WRAPPER
+chmod +x "$wrapper.tmp"
+mv "$wrapper.tmp" "$wrapper"
+echo "phongcl setup: $wrapper runs Blender $(cat "$marker") (Debian $suite)"
