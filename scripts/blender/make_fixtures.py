@@ -116,7 +116,7 @@ def add_file_output(scene, directory):
     versions.add_file_output_inputs(node, [(name, versions.render_layer_output(layers, name)) for name in names])
     for name in names:
         tree.links.new(versions.render_layer_output(layers, name), node.inputs[name])
-    return os.path.join(directory, "file_output_[0-9]*")
+    return os.path.join(directory, "file_output_*")  # 3.x/4.x add the frame number, 5.x the extension
 
 
 def output_arguments(prog, width, height, only=False):

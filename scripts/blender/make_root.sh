@@ -12,6 +12,9 @@ name=${2:?usage: make_root.sh SUITE NAME}
 cache=${PHONGCL_CACHE:-/var/cache/phongcl}
 mirror=${PHONGCL_DEBIAN_MIRROR:-http://deb.debian.org/debian}
 root="$cache/roots/$suite"
+# Blender, and the OpenGL/EGL libraries with Mesa's software drivers that 5.x's compositor and EEVEE load
+# even in the background (without them: "Couldn't open libGL.so.1", an abort).
+packages=(blender libegl1 libegl-mesa0 libgl1 libopengl0 libglx-mesa0 libgl1-mesa-dri)
 marker="$root/.phongcl-complete"
 wrapper="$cache/bin/$name"
 
@@ -19,6 +22,19 @@ if [ "$(id -u)" -ne 0 ]; then
   echo "phongcl setup: making a Debian root needs root (debootstrap, chroot); run as root or with sudo" >&2
   exit 2
 fi
+
+install_packages() {  # into the root, without recommends
+  # Package scripts want /proc; mounted for the install only.
+  mount -t proc proc "$root/proc"
+  trap 'umount "$root/proc" 2>/dev/null || true' EXIT
+  chroot "$root" env DEBIAN_FRONTEND=noninteractive apt-get update -qq
+  chroot "$root" env DEBIAN_FRONTEND=noninteractive \
+    apt-get install -y -qq --no-install-recommends "$@" >>"$cache/roots/$suite.apt.log" 2>&1 \
+    || { echo "phongcl setup: installing $* in $root failed; see $cache/roots/$suite.apt.log" >&2; exit 1; }
+  chroot "$root" apt-get clean
+  umount "$root/proc"
+  trap - EXIT
+}
 
 if [ ! -f "$marker" ]; then
   start=$(date +%s)
@@ -32,19 +48,20 @@ if [ ! -f "$marker" ]; then
     || { echo "phongcl setup: debootstrap $suite failed; see $cache/roots/$suite.debootstrap.log" >&2; exit 1; }
   # unstable's Release file is re-signed daily and can be past its Valid-Until date on a mirror snapshot.
   echo 'Acquire::Check-Valid-Until "false";' >"$root/etc/apt/apt.conf.d/99phongcl-valid-until"
-  # Blender's OpenCL/CUDA probes and Python want /proc and /dev; mounted for the install only.
-  mount -t proc proc "$root/proc"
-  trap 'umount "$root/proc" 2>/dev/null || true' EXIT
-  chroot "$root" env DEBIAN_FRONTEND=noninteractive apt-get update -qq
-  chroot "$root" env DEBIAN_FRONTEND=noninteractive \
-    apt-get install -y -qq --no-install-recommends blender >"$cache/roots/$suite.apt.log" 2>&1 \
-    || { echo "phongcl setup: installing blender in $root failed; see $cache/roots/$suite.apt.log" >&2; exit 1; }
-  chroot "$root" apt-get clean
-  umount "$root/proc"
-  trap - EXIT
+  install_packages "${packages[@]}"
   chroot "$root" dpkg-query -W -f='${Version}' blender >"$marker"
   echo "phongcl setup: $suite root ready in $(( $(date +%s) - start )) s, $(du -sh --one-file-system "$root" | cut -f1)," \
     "blender $(cat "$marker")"
+fi
+
+# A root made before a package joined the list gets it now.
+missing=()
+for package in "${packages[@]}"; do
+  chroot "$root" dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q "install ok installed" || missing+=("$package")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "phongcl setup: adding ${missing[*]} to $root"
+  install_packages "${missing[@]}"
 fi
 
 mkdir -p "$cache/bin"
