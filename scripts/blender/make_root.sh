@@ -65,20 +65,36 @@ if [ ${#missing[@]} -gt 0 ]; then
 fi
 
 mkdir -p "$cache/bin"
+repository=$(cd "$(dirname "$0")/../.." && pwd)
 cat >"$wrapper.tmp" <<WRAPPER
 #!/usr/bin/env bash
 # Runs Debian $suite's Blender ($(cat "$marker")) from $root; written by scripts/blender/make_root.sh.
-# The current directory's git work tree (or the directory itself), /tmp, \$TMPDIR and the directories in
-# PHONGCL_BLENDER_BINDS (colon-separated) are mapped at the same paths, so paths in arguments work;
+# Mapped at the same paths, so that paths in arguments work: phongcl's repository ($repository), the
+# current directory's git work tree (or the directory), /tmp, \$TMPDIR, the work tree (or directory) of
+# each argument that names an existing file or directory or a file in one, and the directories in
+# PHONGCL_BLENDER_BINDS (colon-separated); never / or a system directory, which would hide the root's.
 # Blender's user settings go to the root's /root, not the host's home.
 set -euo pipefail
 root=$root
-binds=()
-top=\$(git rev-parse --show-toplevel 2>/dev/null || pwd)
+dirs=($(printf %q "$repository") "\$(git rev-parse --show-toplevel 2>/dev/null || pwd)" "\$PWD" /tmp "\${TMPDIR:-/tmp}")
 IFS=: read -r -a extra <<<"\${PHONGCL_BLENDER_BINDS:-}"
-for dir in "\$top" "\$PWD" /tmp "\${TMPDIR:-/tmp}" "\${extra[@]}"; do
-  # / itself would hide the root: only directories below it are mapped.
-  [ -n "\$dir" ] && [ "\$dir" != / ] && [ -d "\$dir" ] && binds+=(--bind "\$dir" "\$dir")
+dirs+=("\${extra[@]}")
+for arg in "\$@"; do
+  case "\$arg" in -*|"") continue ;; esac
+  if [ -d "\$arg" ]; then dir=\$arg; elif [ -d "\$(dirname -- "\$arg")" ]; then dir=\$(dirname -- "\$arg"); else continue; fi
+  dir=\$(cd "\$dir" && pwd)
+  dirs+=("\$(git -C "\$dir" rev-parse --show-toplevel 2>/dev/null || echo "\$dir")")
+done
+binds=()
+declare -A seen=()
+for dir in "\${dirs[@]}"; do
+  case "\$dir" in
+    ""|/|/usr|/usr/*|/lib*|/bin|/bin/*|/sbin|/sbin/*|/etc|/etc/*|/var|/var/*|/proc*|/dev*|/sys*|/boot*|/run*) continue ;;
+  esac
+  if [ -d "\$dir" ] && [ -z "\${seen[\$dir]:-}" ]; then
+    seen[\$dir]=1
+    binds+=(--bind "\$dir" "\$dir")
+  fi
 done
 if command -v bwrap >/dev/null; then
   exec bwrap --bind "\$root" / --proc /proc --dev /dev --ro-bind /sys /sys "\${binds[@]}" \\
