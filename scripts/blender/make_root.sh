@@ -73,7 +73,7 @@ cat >"$wrapper.tmp" <<WRAPPER
 # current directory's git work tree (or the directory), /tmp, \$TMPDIR, the work tree (or directory) of
 # each argument that names an existing file or directory or a file in one, and the directories in
 # PHONGCL_BLENDER_BINDS (colon-separated); never / or a system directory, which would hide the root's.
-# Blender's user settings go to the root's /root, not the host's home.
+# Blender's user settings go to a scratch /root, not the host's home; the root itself is read-only.
 set -euo pipefail
 root=$root
 dirs=($(printf %q "$repository") "\$(git rev-parse --show-toplevel 2>/dev/null || pwd)" "\$PWD" /tmp "\${TMPDIR:-/tmp}")
@@ -96,8 +96,21 @@ for dir in "\${dirs[@]}"; do
     binds+=(--bind "\$dir" "\$dir")
   fi
 done
+# The root's directories, read-only, on an empty / of its own: the mount points of the directories
+# mapped above are made there, which a user other than root could not do in the root itself. Empty ones
+# (home, opt, ...) are left to be made, and /root, HOME, is a scratch one.
+layout=(--tmpfs /)
+for entry in "\$root"/*; do
+  name=\${entry##*/}
+  case "\$name" in proc|dev|sys|tmp|root) continue ;; esac
+  if [ -L "\$entry" ]; then
+    layout+=(--symlink "\$(readlink "\$entry")" "/\$name")
+  elif [ -d "\$entry" ] && [ -n "\$(ls -A "\$entry")" ]; then
+    layout+=(--ro-bind "\$entry" "/\$name")
+  fi
+done
 if command -v bwrap >/dev/null; then
-  exec bwrap --bind "\$root" / --proc /proc --dev /dev --ro-bind /sys /sys "\${binds[@]}" \\
+  exec bwrap "\${layout[@]}" --tmpfs /root --proc /proc --dev /dev --ro-bind /sys /sys "\${binds[@]}" \\
     --setenv HOME /root --chdir "\$PWD" --die-with-parent /usr/bin/blender "\$@"
 fi
 echo "\$(basename "\$0"): bwrap (package bubblewrap) is needed to run \$root's Blender" >&2
