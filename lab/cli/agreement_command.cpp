@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <memory>
 #include <stdexcept>
+#include <utility>
 
 #include "cli/lab_commands.h"
 #include "common/error.h"
@@ -44,12 +45,27 @@ std::array<std::vector<float>, 3> rgb(Planes&& planes, std::size_t first) {
   return {std::move(planes.values[first]), std::move(planes.values[first + 1]), std::move(planes.values[first + 2])};
 }
 
+// Blender 3.x and 4.x name Cycles' passes in a multilayer EXR by their short names (DiffDir); 5.x by
+// their full ones (Diffuse Direct). The pass prefix `layer + short + "."` or its 5.x form, whichever the
+// file has.
+std::string cycles_pass_prefix(const exr::InputExr& input, const std::string& layer, const std::string& short_name) {
+  static const std::pair<const char*, const char*> kFullNames[] = {
+      {"DiffDir", "Diffuse Direct"}, {"DiffCol", "Diffuse Color"}, {"IndexOB", "Object Index"}};
+  for (const auto& [short_pass, full_pass] : kFullNames) {
+    if (short_name != short_pass) continue;
+    for (const std::string& name : input.channel_names())
+      if (name.rfind(layer + full_pass + ".", 0) == 0) return layer + full_pass + ".";
+  }
+  return layer + short_name + ".";
+}
+
 // The renderer's light: DiffDir x DiffCol, or the named pass; then the object index and depth.
 Planes read_cycles(const std::string& file, const std::string& layer, const std::string& pass) {
-  const std::vector<std::string> masks = {layer + "IndexOB.X", layer + "Depth.Z"};
+  const exr::InputExr input(file);
+  const std::string dir = cycles_pass_prefix(input, layer, "DiffDir"), col = cycles_pass_prefix(input, layer, "DiffCol");
+  const std::vector<std::string> masks = {cycles_pass_prefix(input, layer, "IndexOB") + "X", layer + "Depth.Z"};
   if (pass.empty()) {
-    Planes cycles = read_planes(file, {layer + "DiffDir.R", layer + "DiffDir.G", layer + "DiffDir.B", layer + "DiffCol.R",
-                                       layer + "DiffCol.G", layer + "DiffCol.B", masks[0], masks[1]});
+    Planes cycles = read_planes(file, {dir + "R", dir + "G", dir + "B", col + "R", col + "G", col + "B", masks[0], masks[1]});
     for (std::size_t i = 0; i < cycles.values[0].size(); ++i)
       for (int c = 0; c < 3; ++c) cycles.values[c][i] *= cycles.values[3 + c][i];
     cycles.values.erase(cycles.values.begin() + 3, cycles.values.begin() + 6);

@@ -18,6 +18,7 @@ import sys
 import bpy
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import blender_versions as versions  # noqa: E402
 import export_scene  # noqa: E402
 import make_fixtures  # noqa: E402
 import shadow_scene  # noqa: E402
@@ -41,7 +42,7 @@ def build_area_scene(width, height, samples):
         light.data.shape = shape
         light.data.size, light.data.size_y = size, size_y
         light.data.energy = energy
-        light.data.cycles.cast_shadow = False  # unshadowed light: phongcl's area shadows are hard, Cycles' soft
+        versions.set_casts_shadow(light.data, False)  # unshadowed light: phongcl's area shadows are hard, Cycles' soft
 
     make_fixtures.add_camera(scene, location=(6.5, -6.0, 3.6), target=(0.0, 0.0, 0.5), lens=40.0)
     bpy.context.view_layer.update()

@@ -3,7 +3,9 @@
     blender -b file.blend --python scripts/blender/export_scene.py -- --out scene.json [--render gbuffer.exr]
         [--samples N] [--falloff quadratic|none] [--geometry DIR]
 
-Conventions (docs/formats.md "Renderers' G-buffers", "From a Blender scene"):
+Conventions (docs/formats.md "Renderers' G-buffers", "From a Blender scene"). What differs between Blender
+versions (3.4 through 5.x) is decided in blender_versions.py, each with its source; below, "3.x" and "4.0+"
+name those cases.
 - Camera: eye, forward (-Z) and up (+Y) of the camera's world matrix; the vertical field of view
   from Blender's own view frame (Camera.view_frame), which applies the sensor fit: under AUTO the
   sensor width spans the larger image side, so camera.data.angle_y is not the vertical fov of a
@@ -17,27 +19,33 @@ Conventions (docs/formats.md "Renderers' G-buffers", "From a Blender scene"):
   cos(spot_size/2) and smoothsteps over the spot_blend fraction of 1 - cos(spot_size/2) above it,
   in cosines, as phongcl's penumbra does, so cone_angle_deg is the angle whose cosine ends that
   blend and penumbra_angle_deg the rest of spot_size/2; inside the cone Cycles 3.x also multiplies by
-  that cosine, so Blender 3.x spots get "cosine_power": 1.
+  that cosine, so Blender 3.x spots get "cosine_power": 1 (4.0 dropped the factor). A point or spot of
+  a non-zero radius is exported as a point, with a note.
 - Area lights (square, rectangle, disk; ellipses are skipped with a note): Cycles 3.x gives an area
   light of P watts and area A the radiance P / (4 A) (kernel/light/light.h: eval_fac = 0.25 *
   invarea, strength = colour * energy; measured with Blender 3.4.1 under a square, a rectangle and
-  a disk to 5e-4), and a Lambertian surface receives rho / pi times that radiance times the
-  cosine-weighted solid angle; phongcl's area colour folds the 1/pi in, so it is colour * P / (4 pi A).
+  a disk to 5e-4), Cycles 4.0+ P / (pi A) (kernel/light/area.h), and a Lambertian surface receives
+  rho / pi times that radiance times the cosine-weighted solid angle; phongcl's area colour folds the
+  1/pi in, so it is colour * P / (4 pi A) for 3.x and colour * P / (pi^2 A) for 4.0+.
   The emitting side is the light's -Z, the rect's height runs along its +Y, and the sizes are
   scaled by the object's scale as Cycles does. An area light that casts shadows in Cycles gets
   "shadows": true, but phongcl's is a hard shadow, decided by one ray to the emitter's centre (Cycles'
   is soft): a note says so.
 - Materials by pass index (Material.pass_index): a Principled BSDF becomes "blinn-phong-normalized"
   (phongcl's ks (q+8)/8 (n.h)^q n.l, a BRDF) with kd = base colour * (1 - metallic),
-  ks = mix(0.08 * specular, base colour, metallic) (the BSDF's normal-incidence reflectance) and
+  ks = mix(F0, base colour, metallic) (the BSDF's normal-incidence reflectance; F0 = 0.08 * Specular
+  in 3.x, ((IOR - 1)/(IOR + 1))^2 * 2 * Specular IOR Level * Specular Tint in 4.0+) and
   q = 2 / alpha^2 - 2 with alpha = roughness^2 (Disney's and Cycles' remapping, Burley 2012 and
   Karis 2013, "Specular BRDF Reference"; 2 / alpha^2 - 2 is the Blinn-Phong exponent matching a
   Beckmann lobe of roughness alpha, Walter et al. 2007, eq. 30), capped at 1e6. A Diffuse BSDF
   gives kd = its colour and a material without nodes its viewport colour, both with ks = 0: no
   specular lobe. ka = kd; the ambient is the world colour times its strength (a uniform environment
   lights an unoccluded Lambertian surface with rho * L). Indices no material uses get a grey
-  material.
-- Shadows: a light that casts shadows in Cycles (its cast_shadow setting) gets "shadows": true.
+  material. The shader is the one linked to the active Material Output's Surface; any other shader,
+  a socket fed by a node (a texture; an Environment Texture in the world), and emission are not
+  mapped: a note names the material or world, the node and the value exported instead.
+- Shadows: a light that casts shadows in Cycles (light.cycles.cast_shadow in 3.x, Light.use_shadow in
+  4.0+) gets "shadows": true.
 - Light groups: a light's Object.lightgroup (Blender 3.2+) becomes its "group", area lights' too.
 - --geometry DIR writes every visible mesh that casts shadows (Object.visible_shadow) as a
   world-space binary little-endian PLY in DIR, modifiers applied and triangulated, one file per
@@ -56,6 +64,9 @@ import sys
 
 import bpy
 from mathutils import Vector
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import blender_versions as versions  # noqa: E402  every convention that differs between Blender versions
 
 FALLBACK_MATERIAL = {"name": "unused pass index", "ka": [0.5] * 3, "kd": [0.5] * 3, "ks": [0.0] * 3, "shininess": 10.0}
 
@@ -120,15 +131,13 @@ def spot_cone(light):
     cone = {"type": "spot", "direction": rounded(axis.normalized()),
             "cone_angle_deg": round(math.degrees(2.0 * inner_half), 6),
             "penumbra_angle_deg": round(max(math.degrees(outer_half - inner_half), 0.0), 6)}
-    # Cycles 3.x multiplies a spot's light by cos(angle to its axis) (spot_light_attenuation() in
-    # intern/cycles/kernel/light/common.h returns dot(dir, N)); Blender 4.0 dropped the factor.
-    if bpy.app.version < (4, 0, 0):
-        cone["cosine_power"] = 1
+    if versions.SPOT_COSINE_POWER is not None:
+        cone["cosine_power"] = versions.SPOT_COSINE_POWER
     return cone
 
 
 def with_shadow_and_group(light, entry):
-    if light.data.cycles.cast_shadow:
+    if versions.casts_shadow(light.data):
         entry["shadows"] = True
     # Blender 3.2+ light groups (Object.lightgroup): Cycles writes a Combined pass per group, phongcl
     # --aov a group.<name> layer. Blender allows letters, digits and '_' in the name, as phongcl does.
@@ -142,7 +151,7 @@ def area_light_json(light):
     """A square, rectangle or disk as phongcl's area light (the module's docstring says why the colour)."""
     data = light.data
     if data.shape == "ELLIPSE":
-        note("area light '%s' is an ellipse, which phongcl has not: skipped" % light.name)
+        note("area light '%s' is an ellipse, which phongcl has not: skipped, no light exported for it" % light.name)
         return None
     if getattr(data, "spread", math.pi) < math.pi - 1e-6:
         note("area light '%s' has a spread below 180 degrees, which phongcl has not: skipped" % light.name)
@@ -162,8 +171,11 @@ def area_light_json(light):
     else:
         entry.update({"shape": "rect", "up": rounded(v.normalized()), "size": [round(width, 9), round(height, 9)]})
         area = width * height
-    entry["color"] = rounded(Vector(data.color) * data.energy / (4.0 * math.pi * area))
-    if data.cycles.cast_shadow:
+    if area <= 0.0:
+        note("area light '%s' has no area (size %g x %g): skipped, no light exported for it" % (light.name, width, height))
+        return None
+    entry["color"] = rounded(Vector(data.color) * data.energy * versions.AREA_RADIANCE_PER_WATT / (math.pi * area))
+    if versions.casts_shadow(data):
         note("area light '%s' casts soft shadows in Cycles; phongcl's are hard, from its centre" % light.name)
     return with_shadow_and_group(light, entry)
 
@@ -190,6 +202,9 @@ def lights_json(scene, falloff):
             continue
         position = light.matrix_world.translation
         entry = {"type": "point", "position": rounded(position)}
+        if versions.point_radius(data) > 0.0:
+            note("%s light '%s' has a radius of %.3g m: exported as a point (the same light beyond a few radii, "
+                 "hard shadows)" % (data.type.lower(), light.name, versions.point_radius(data)))
         if data.type == "SPOT":
             entry.update(spot_cone(light))
         intensity = colour * data.energy / (4.0 * math.pi ** 2)
@@ -204,25 +219,52 @@ def lights_json(scene, falloff):
     return lights
 
 
-def shader_node(material, node_type):
-    if material.use_nodes and material.node_tree is not None:
-        for node in material.node_tree.nodes:
-            if node.type == node_type:
-                return node
-    return None
+def surface_shader(material):
+    """The node feeding the material's active Material Output's Surface, or None (with a note) where there
+    is none; None without a note where the material has no node tree (its viewport colour is used)."""
+    tree = versions.node_tree(material)
+    if tree is None:
+        return None
+    outputs = [n for n in tree.nodes if n.type == "OUTPUT_MATERIAL"]
+    output = next((n for n in outputs if n.is_active_output), outputs[0] if outputs else None)
+    if output is None or not output.inputs["Surface"].is_linked:
+        note("material '%s' has no shader linked to a Material Output: exported its viewport colour, no specular"
+             % material.name)
+        return None
+    return output.inputs["Surface"].links[0].from_node
+
+
+def unlinked_value(owner, node, socket_name, what):
+    """A socket's own value, with a note naming the node that feeds it where one does (phongcl reads values,
+    not node graphs)."""
+    socket = node.inputs[socket_name]
+    if socket.is_linked:
+        source = socket.links[0].from_node
+        note("%s: %s's %s is fed by '%s' (%s), which phongcl cannot evaluate: exported the socket's own value %s"
+             % (owner, node.name, socket_name, source.name, source.bl_idname,
+                rounded(socket.default_value[:3] if what == "colour" else [socket.default_value], 4)))
+    return socket.default_value
 
 
 def material_json(material):
-    node = shader_node(material, "BSDF_PRINCIPLED")
-    if node is None:
-        diffuse = shader_node(material, "BSDF_DIFFUSE")
-        base = Vector((diffuse.inputs["Color"].default_value if diffuse else material.diffuse_color)[:3])
+    owner = "material '%s'" % material.name
+    node = surface_shader(material)
+    if node is None or node.type not in ("BSDF_PRINCIPLED", "BSDF_DIFFUSE"):
+        if node is not None:
+            note("%s: its surface shader '%s' (%s) is neither a Principled nor a Diffuse BSDF: exported its "
+                 "viewport colour, no specular" % (owner, node.name, node.bl_idname))
+        base = Vector(material.diffuse_color[:3])
         return {"name": material.name, "ka": rounded(base), "kd": rounded(base), "ks": [0.0] * 3, "shininess": 1.0}
-    inputs = node.inputs
-    base = Vector(inputs["Base Color"].default_value[:3])
-    metallic, specular, roughness = (inputs[n].default_value for n in ("Metallic", "Specular", "Roughness"))
+    if node.type == "BSDF_DIFFUSE":
+        base = Vector(unlinked_value(owner, node, "Color", "colour")[:3])
+        return {"name": material.name, "ka": rounded(base), "kd": rounded(base), "ks": [0.0] * 3, "shininess": 1.0}
+    base = Vector(unlinked_value(owner, node, "Base Color", "colour")[:3])
+    metallic = unlinked_value(owner, node, "Metallic", "value")
+    roughness = unlinked_value(owner, node, "Roughness", "value")
+    if versions.principled_emits(node):
+        note("%s: the Principled BSDF emits light, which phongcl's materials do not: emission left out" % owner)
     kd = base * (1.0 - metallic)
-    ks = Vector((0.08 * specular,) * 3).lerp(base, metallic)
+    ks = Vector(versions.principled_f0(node)).lerp(base, metallic)
     alpha = max(roughness, 1e-3) ** 2
     shininess = min(max(2.0 / alpha ** 2 - 2.0, 0.0), 1e6)
     return {"name": material.name, "ka": rounded(kd), "kd": rounded(kd), "ks": rounded(ks), "shininess": round(shininess, 4),
@@ -246,14 +288,23 @@ def materials_json(scene):
 
 
 def ambient_json(scene):
+    """The world's uniform colour times its strength. A Background colour fed by a node (an Environment
+    Texture, an HDRI, most often) is not uniform: phongcl has no environment light, so the socket's own
+    colour is exported, with a note."""
     world = scene.world
     if world is None:
         return [0.0, 0.0, 0.0]
-    if world.use_nodes and world.node_tree is not None:
-        for node in world.node_tree.nodes:
-            if node.type == "BACKGROUND":
-                return rounded(Vector(node.inputs["Color"].default_value[:3]) * node.inputs["Strength"].default_value)
-    return rounded(world.color)
+    tree = versions.node_tree(world)
+    if tree is None:
+        return rounded(world.color)
+    backgrounds = [n for n in tree.nodes if n.type == "BACKGROUND"]
+    if not backgrounds:
+        note("world '%s' has no Background node: exported no ambient light" % world.name)
+        return [0.0, 0.0, 0.0]
+    owner = "world '%s'" % world.name
+    background = backgrounds[0]
+    colour = Vector(unlinked_value(owner, background, "Color", "colour")[:3])
+    return rounded(colour * unlinked_value(owner, background, "Strength", "value"))
 
 
 def write_ply(path, vertices, triangles):
@@ -355,9 +406,7 @@ def enable_passes(view_layer, position=True, material_index=True):
 
 
 def multilayer_exr(settings):
-    settings.file_format = "OPEN_EXR_MULTILAYER"
-    settings.color_depth = "32"
-    settings.exr_codec = "ZIP"
+    versions.set_multilayer_exr(settings)
 
 
 def render_gbuffer(scene, path, samples=None):

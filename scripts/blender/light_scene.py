@@ -18,6 +18,7 @@ import bpy
 from mathutils import Vector
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import blender_versions as versions  # noqa: E402
 import export_scene  # noqa: E402
 import make_fixtures  # noqa: E402
 import shadow_scene  # noqa: E402
@@ -51,7 +52,7 @@ def build_light_scene(width, height):
         light = bpy.context.object
         light.name = name
         light.data.energy = power
-        light.data.cycles.cast_shadow = False
+        versions.set_casts_shadow(light.data, False)
         if kind != "SUN":
             light.data.shadow_soft_size = 0.0  # a point: exact at one sample
         else:

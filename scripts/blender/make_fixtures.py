@@ -25,13 +25,13 @@ import bpy
 from mathutils import Vector
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import blender_versions as versions  # noqa: E402
 import export_scene  # noqa: E402
 
 
 def material(name, colour, roughness, pass_index):
     m = bpy.data.materials.new(name)
-    m.use_nodes = True
-    bsdf = m.node_tree.nodes["Principled BSDF"]
+    bsdf = versions.use_nodes(m).nodes["Principled BSDF"]
     bsdf.inputs["Base Color"].default_value = (*colour, 1.0)
     bsdf.inputs["Roughness"].default_value = roughness
     m.pass_index = pass_index
@@ -44,8 +44,7 @@ def empty_scene(width, height, sky=(0.05, 0.05, 0.06), strength=1.0):
     scene = bpy.context.scene
     scene.render.resolution_x, scene.render.resolution_y, scene.render.resolution_percentage = width, height, 100
     world = bpy.data.worlds.new("World")
-    world.use_nodes = True
-    background = world.node_tree.nodes["Background"]
+    background = versions.use_nodes(world).nodes["Background"]
     background.inputs["Color"].default_value = (*sky, 1.0)
     background.inputs["Strength"].default_value = strength
     scene.world = world
@@ -108,17 +107,16 @@ def render(scene, path):
 
 def add_file_output(scene, directory):
     """A File Output node writing the render layer's passes as a multilayer EXR; returns its file pattern."""
-    scene.use_nodes = True
-    tree = scene.node_tree
-    layers = tree.nodes["Render Layers"]
+    tree = versions.compositor_tree(scene)
+    layers = versions.render_layers_node(tree)
     node = tree.nodes.new("CompositorNodeOutputFile")
     export_scene.multilayer_exr(node.format)
-    node.base_path = os.path.join(directory, "file_output_")
-    node.layer_slots.clear()
-    for name in ("Image", "Alpha", "Depth", "Normal", "Position", "IndexMA", "DiffCol", "GlossCol"):
-        node.layer_slots.new(name)
-        tree.links.new(layers.outputs[name], node.inputs[name])
-    return os.path.join(directory, "file_output_[0-9]*")
+    versions.set_file_output_path(node, directory, "file_output_")
+    names = ("Image", "Alpha", "Depth", "Normal", "Position", "IndexMA", "DiffCol", "GlossCol")
+    versions.add_file_output_inputs(node, [(name, versions.render_layer_output(layers, name)) for name in names])
+    for name in names:
+        tree.links.new(versions.render_layer_output(layers, name), node.inputs[name])
+    return os.path.join(directory, "file_output_*")  # 3.x/4.x add the frame number, 5.x the extension
 
 
 def output_arguments(prog, width, height, only=False):
@@ -147,7 +145,7 @@ def make_cycles_and_file_output(scene, out):
     render(scene, os.path.join(out, "cycles.exr"))
     written = glob.glob(pattern)
     shutil.move(written[0], os.path.join(out, "file_output.exr"))
-    scene.use_nodes = False
+    versions.disable_compositor(scene)
 
 
 def make_supersampled(scene, out):
@@ -184,7 +182,7 @@ def make_cycles_depth(scene, out):
 
 
 def make_eevee(scene, out):
-    scene.render.engine = "BLENDER_EEVEE"
+    scene.render.engine = versions.EEVEE_ENGINE
     scene.eevee.taa_render_samples = 16
     view_layer = bpy.context.view_layer
     view_layer.use_pass_position = False

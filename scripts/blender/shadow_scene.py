@@ -15,6 +15,7 @@ import sys
 import bpy
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import blender_versions as versions  # noqa: E402
 import export_scene  # noqa: E402
 import make_fixtures  # noqa: E402
 
@@ -25,8 +26,7 @@ def diffuse_material(name, colour, pass_index):
     """Lambert: a Diffuse BSDF of roughness 0 (the exporter reads kd from diffuse_color)."""
     m = bpy.data.materials.new(name)
     m.diffuse_color = (*colour, 1.0)
-    m.use_nodes = True
-    nodes = m.node_tree.nodes
+    nodes = versions.use_nodes(m).nodes
     nodes.remove(nodes["Principled BSDF"])
     bsdf = nodes.new("ShaderNodeBsdfDiffuse")
     bsdf.inputs["Color"].default_value = (*colour, 1.0)

@@ -18,7 +18,7 @@ if [ -n "${PHONGCL_AREA_CHECK_KEEP:-}" ]; then
   export POCL_CACHE_DIR="$work/pocl-cache"
 fi
 
-blender -b --factory-startup --python scripts/blender/area_scene.py -- --out "$work" --samples "$samples" \
+"$blender" -b --factory-startup --python-exit-code 1 --python scripts/blender/area_scene.py -- --out "$work" --samples "$samples" \
   >"$work/blender.log" 2>&1 || { tail -20 "$work/blender.log"; echo "$check: area_scene.py failed" >&2; exit 1; }
 
 summary=""

@@ -13,7 +13,8 @@ check=62-blender-lights
 build="${PHONGCL_BUILD_DIR:-build}"
 phongcl="$build/phongcl"
 [ -x "$phongcl" ] || { echo "$check: no $phongcl (build first)" >&2; exit 1; }
-command -v blender >/dev/null || { echo "$check: blender is not installed (scripts/setup.sh blender)" >&2; exit 1; }
+blender="${BLENDER:-blender}"  # BLENDER=/var/cache/phongcl/bin/blender5 checks another version (scripts/setup.sh blender5)
+command -v "$blender" >/dev/null || { echo "$check: $blender is not installed (scripts/setup.sh blender)" >&2; exit 1; }
 
 work="${PHONGCL_LIGHT_CHECK_KEEP:-}"
 if [ -z "$work" ]; then
@@ -23,7 +24,7 @@ fi
 mkdir -p "$work"
 export POCL_CACHE_DIR="${POCL_CACHE_DIR:-$work/pocl-cache}"
 
-blender -b --factory-startup --python scripts/blender/light_scene.py -- --out "$work" >"$work/blender.log" 2>&1 ||
+"$blender" -b --factory-startup --python-exit-code 1 --python scripts/blender/light_scene.py -- --out "$work" >"$work/blender.log" 2>&1 ||
   { tail -20 "$work/blender.log"; echo "$check: light_scene.py failed" >&2; exit 1; }
 
 # One scene per light, the other lights removed (Cycles rendered each alone), and "all.json" with

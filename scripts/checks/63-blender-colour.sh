@@ -23,7 +23,7 @@ check_frame() {  # name, scene, G-buffer
   background=$(background_of "$scene")
   "$phongcl" shade --scene "$scene" --gbuffer "$gbuffer" --out "$work/$name.exr" >"$work/$name-shade.log" ||
     { cat "$work/$name-shade.log"; fail "shading $name"; }
-  blender -b --factory-startup --python scripts/blender/display_reference.py -- --exr "$work/$name.exr" \
+  "$blender" -b --factory-startup --python-exit-code 1 --python scripts/blender/display_reference.py -- --exr "$work/$name.exr" \
     --background "$background" --cases "$cases" --out "$work/$name-blender" >"$work/$name-blender.log" 2>&1 ||
     { tail -20 "$work/$name-blender.log"; fail "Blender's PNGs of $name"; }
   grep -v '^\s*\(#\|$\)' "$cases" | while IFS='|' read -r case view look exposure; do

@@ -11,7 +11,8 @@ cd "$(dirname "$0")/../.."
 build="${PHONGCL_BUILD_DIR:-build}"
 phongcl="$build/phongcl"
 [ -x "$phongcl" ] || { echo "65-blender-shadows: no $phongcl (build first)" >&2; exit 1; }
-command -v blender >/dev/null || { echo "65-blender-shadows: blender is not installed (scripts/setup.sh blender)" >&2; exit 1; }
+blender="${BLENDER:-blender}"  # BLENDER=/var/cache/phongcl/bin/blender5 checks another version (scripts/setup.sh blender5)
+command -v "$blender" >/dev/null || { echo "65-blender-shadows: $blender is not installed (scripts/setup.sh blender)" >&2; exit 1; }
 read -r width height <<<"${PHONGCL_SHADOW_CHECK_SIZE:-160 120}"
 
 work="${PHONGCL_SHADOW_CHECK_KEEP:-}"
@@ -22,7 +23,7 @@ fi
 mkdir -p "$work"
 export POCL_CACHE_DIR="${POCL_CACHE_DIR:-$work/pocl-cache}"
 
-blender -b --factory-startup --python scripts/blender/shadow_scene.py -- --out "$work" --width "$width" \
+"$blender" -b --factory-startup --python-exit-code 1 --python scripts/blender/shadow_scene.py -- --out "$work" --width "$width" \
   --height "$height" >"$work/blender.log" 2>&1 ||
   { tail -20 "$work/blender.log"; echo "65-blender-shadows: shadow_scene.py failed" >&2; exit 1; }
 

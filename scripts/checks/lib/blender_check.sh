@@ -3,7 +3,8 @@
 # exit, and PoCL's cache inside it unless one is set.
 phongcl="${PHONGCL_BUILD_DIR:-build}/phongcl"
 [ -x "$phongcl" ] || { echo "$check: no $phongcl (build first)" >&2; exit 1; }
-command -v blender >/dev/null || { echo "$check: blender is not installed (scripts/setup.sh blender)" >&2; exit 1; }
+blender="${BLENDER:-blender}"  # BLENDER=/var/cache/phongcl/bin/blender5 checks another version (scripts/setup.sh blender5)
+command -v "$blender" >/dev/null || { echo "$check: $blender is not installed (scripts/setup.sh blender)" >&2; exit 1; }
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
 export POCL_CACHE_DIR="${POCL_CACHE_DIR:-$work/pocl-cache}"
