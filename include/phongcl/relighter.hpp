@@ -55,7 +55,9 @@ class Relighter {
 
   // A new scene and G-buffer (the next frame of a sequence), keeping the device, the built kernels
   // and the device buffers. InputError when the G-buffer uses a material index the scene lacks;
-  // std::runtime_error when the device cannot run the precision. The previous frame is kept on either.
+  // std::runtime_error when the device cannot run the precision, or when the frame would need more
+  // memory than the machine has available or the address-space limit leaves (naming the largest
+  // need; set_lights and set_materials check the same). The previous frame is kept on each.
   void set_frame(const Scene& scene, GBuffer&& gbuffer);
 
   // Each takes effect at the next shade(). std::invalid_argument for non-finite values, negative
