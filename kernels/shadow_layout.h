@@ -34,7 +34,7 @@ typedef struct {
 
 /* A triangle: its three corners (rows), counter-clockwise seen from the front, and in column 3 the
  * point f of its plane nearest the eye, worked out in double: the plane is x.f = f.f (a plane
- * through the eye moved 2^-64 along its normal; f = 0 for a degenerate triangle).
+ * within 2^-64 of the eye moved to 2^-64 along its normal; f = 0 for a degenerate triangle).
  * A sphere in its own space under any affine map (an ellipsoid in the world): the map from an
  * eye-relative point x to the unit sphere's space, u = A x + b, row i of A in row[i][0..2] and b_i
  * in row[i][3]; the surface is |u| = 1. */

@@ -20,15 +20,15 @@ float round_up(double x) {
 
 // The point of the triangle's plane nearest the eye (eye-relative), in double: far more exactly than
 // the kernel could place the plane from its float corners, whose products of the triangle's size
-// would lose its place near the eye. A plane through the eye is moved 2^-64 along its normal (the
-// point gives the normal's direction); a degenerate triangle gets 0.
+// would lose its place near the eye. A plane within 2^-64 of the eye is moved there along its normal
+// (the point gives the normal's direction, and float keeps it); a degenerate triangle gets 0.
 glm::dvec3 plane_foot(const std::array<glm::dvec3, 3>& corners, const glm::dvec3& eye) {
   const glm::dvec3 normal = glm::cross(corners[1] - corners[0], corners[2] - corners[0]);
   const double length = glm::length(normal);
   if (!(length > 0.0)) return glm::dvec3(0.0);
   const glm::dvec3 unit = normal / length;
   const double distance = glm::dot(unit, corners[0] - eye);
-  return unit * (distance != 0.0 ? distance : 0x1p-64);
+  return unit * (std::abs(distance) >= 0x1p-64 ? distance : 0x1p-64);
 }
 
 // The triangle's corners, the sphere's map to the unit sphere (kernels/shadow_layout.h), eye-relative.
