@@ -86,7 +86,7 @@ static inline realv edge_side(vec3 d, vec3 p, vec3 q) {
  * (shadow_layout.h): from the float corners, a plane's place near the eye sums products of the
  * triangle's size, and a tilted quad 2e8 across would move by units. Both faces block light; a
  * degenerate triangle (f = 0) blocks nothing. */
-static inline intv meets_triangle(__global const ShadowPrimitive* triangle, const ShadowRay* ray) {
+static inline intv meets_large_triangle(__global const ShadowPrimitive* triangle, const ShadowRay* ray) {
 #pragma clang fp contract(off) reassociate(off)
   const vec3 o = ray->origin, d = ray->direction;
   const real ax = triangle->row[0][0], ay = triangle->row[0][1], az = triangle->row[0][2];
@@ -109,6 +109,33 @@ static inline intv meets_triangle(__global const ShadowPrimitive* triangle, cons
   const realv approach = nx * d.x + ny * d.y + nz * d.z;
   const realv ahead = to_plane * SELECT(approach < 0, -1, 1);
   return inside & LANE_MASK(ahead > 0 && ahead < ray->t_max * fabs(approach));
+}
+
+/* Moller-Trumbore without a division: u, v and t are compared against det scaled, sign folded in.
+ * Both faces block light. A degenerate triangle (det = 0) blocks nothing. Its products of the
+ * triangle's size lose the plane's place near the eye for triangles much larger than the scene
+ * around the eye: the host marks only those within PHONGCL_SMALL_TRIANGLE_REACH for it. */
+static inline intv meets_small_triangle(__global const ShadowPrimitive* triangle, const ShadowRay* ray) {
+  const real v0x = triangle->row[0][0], v0y = triangle->row[0][1], v0z = triangle->row[0][2];
+  const real e1x = triangle->row[1][0] - v0x, e1y = triangle->row[1][1] - v0y, e1z = triangle->row[1][2] - v0z;
+  const real e2x = triangle->row[2][0] - v0x, e2y = triangle->row[2][1] - v0y, e2z = triangle->row[2][2] - v0z;
+  const vec3 d = ray->direction;
+  const realv px = d.y * e2z - d.z * e2y, py = d.z * e2x - d.x * e2z, pz = d.x * e2y - d.y * e2x;
+  const realv det = e1x * px + e1y * py + e1z * pz;
+  const realv sx = ray->origin.x - v0x, sy = ray->origin.y - v0y, sz = ray->origin.z - v0z;
+  const realv qx = sy * e1z - sz * e1y, qy = sz * e1x - sx * e1z, qz = sx * e1y - sy * e1x;
+  const realv flip = SELECT(det < 0, -1, 1);
+  const realv u = (sx * px + sy * py + sz * pz) * flip;
+  const realv v = (d.x * qx + d.y * qy + d.z * qz) * flip;
+  const realv t = (e2x * qx + e2y * qy + e2z * qz) * flip;
+  const realv size = fabs(det);
+  return LANE_MASK(size > 0 && u >= 0 && v >= 0 && u + v <= size && t > 0 && t < ray->t_max * size);
+}
+
+/* Which test a triangle takes is the host's (shadow_layout.h): the same for every lane. */
+static inline intv meets_triangle(__global const ShadowPrimitive* triangle, const ShadowRay* ray) {
+  if (as_uint(triangle->row[0][3]) == PHONGCL_SMALL_TRIANGLE) return meets_small_triangle(triangle, ray);
+  return meets_large_triangle(triangle, ray);
 }
 
 /* The unit sphere in u = A x + b: f(t) = |u(o) + t A d|^2 - 1 = a t^2 + 2 b' t + c, with

@@ -1,6 +1,8 @@
 #include "geometry/device_geometry.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 namespace phongcl {
@@ -39,6 +41,13 @@ ShadowPrimitive pack_item(const SceneBvh& scene, std::uint32_t item, const glm::
     const auto corners = shapes.corners(item);
     for (int row = 0; row < 3; ++row)
       for (int axis = 0; axis < 3; ++axis) primitive.row[row][axis] = static_cast<float>(corners[row][axis] - eye[axis]);
+    double reach = 0.0;
+    for (const glm::dvec3& corner : corners) reach = std::max(reach, glm::length(corner - eye));
+    if (reach <= PHONGCL_SMALL_TRIANGLE_REACH) {
+      const std::uint32_t small = PHONGCL_SMALL_TRIANGLE;
+      std::memcpy(&primitive.row[0][3], &small, sizeof small);
+      return primitive;
+    }
     const glm::dvec3 foot = plane_foot(corners, eye);
     for (int axis = 0; axis < 3; ++axis) primitive.row[axis][3] = static_cast<float>(foot[axis]);
     return primitive;
