@@ -57,9 +57,65 @@ static inline intv meets_box(__global const BvhNode* node, int c, const ShadowRa
   return LANE_MASK(t_near <= t_far * BVH_FAR_SCALE);
 }
 
-/* Möller-Trumbore without a division: u, v and t are compared against det scaled, sign folded in.
- * Both faces block light. A degenerate triangle (det = 0) blocks nothing. */
-static inline intv meets_triangle(__global const ShadowPrimitive* triangle, const ShadowRay* ray) {
+/* The power of two that brings a positive `largest` into [1, 2), from its exponent bits: scaling by
+ * it is exact, so it changes no sign, and it keeps a triangle's products finite whatever its size
+ * (float: `largest` below 2^127; a subnormal or zero one gets 2^127). Double holds the products of
+ * any float coordinates as they are (2^128 cubed is far below 2^1024). */
+#if PHONGCL_DOUBLE
+#define UNIT_SCALE(largest) ((real)1)
+#define UNIT_SCALE_LANES(largest) ((realv)1)
+#else
+#define UNIT_SCALE(largest) as_float((254 - min(as_int(largest) >> 23, 253)) << 23)
+#define UNIT_SCALE_LANES(largest) AS_FLOATV((254 - min(AS_INTV(largest) >> 23, (intv)253)) << 23)
+#endif
+
+/* d . (p x q), p and q an edge's corners relative to the ray's origin: which side of the edge the
+ * ray's line passes (Plücker's edge function). The triangle across an edge evaluates the same
+ * products in the other order (q x p), and without fused multiply-adds that is the exact negation:
+ * a ray through a shared edge meets one of its triangles or both, never neither (watertight, as in
+ * Woop, Benthin and Wald 2013). */
+static inline realv edge_side(vec3 d, vec3 p, vec3 q) {
+#pragma clang fp contract(off) reassociate(off)
+  return d.x * (p.y * q.z - p.z * q.y) + d.y * (p.z * q.x - p.x * q.z) + d.z * (p.x * q.y - p.y * q.x);
+}
+
+/* The ray's line passes through the triangle where its three edge functions agree in sign, the
+ * corners taken relative to the origin and scaled by a power of two, so that no product overflows
+ * whatever the triangle's size. The ray crosses the triangle's plane x.f = f.f at
+ * t = (f.f - f.o) / f.d, f the plane's point nearest the eye, which the host works out in double
+ * (shadow_layout.h): from the float corners, a plane's place near the eye sums products of the
+ * triangle's size, and a tilted quad 2e8 across would move by units. Both faces block light; a
+ * degenerate triangle (f = 0) blocks nothing. */
+static inline intv meets_large_triangle(__global const ShadowPrimitive* triangle, const ShadowRay* ray) {
+#pragma clang fp contract(off) reassociate(off)
+  const vec3 o = ray->origin, d = ray->direction;
+  const real ax = triangle->row[0][0], ay = triangle->row[0][1], az = triangle->row[0][2];
+  const real bx = triangle->row[1][0], by = triangle->row[1][1], bz = triangle->row[1][2];
+  const real cx = triangle->row[2][0], cy = triangle->row[2][1], cz = triangle->row[2][2];
+  const real largest = fmax(fmax(fmax(fabs(ax), fabs(ay)), fmax(fabs(az), fabs(bx))),
+                            fmax(fmax(fabs(by), fabs(bz)), fmax(fabs(cx), fmax(fabs(cy), fabs(cz)))));
+  /* |corner - o| < 2 max(|corner|, |o|), so below 4 once scaled. */
+  const realv scale = UNIT_SCALE_LANES(fmax((realv)largest, largest_magnitude(o)));
+  const vec3 a = make_vec3((ax - o.x) * scale, (ay - o.y) * scale, (az - o.z) * scale);
+  const vec3 b = make_vec3((bx - o.x) * scale, (by - o.y) * scale, (bz - o.z) * scale);
+  const vec3 c = make_vec3((cx - o.x) * scale, (cy - o.y) * scale, (cz - o.z) * scale);
+  const realv u = edge_side(d, b, c), v = edge_side(d, c, a), w = edge_side(d, a, b);
+  const intv inside = LANE_MASK((u >= 0 && v >= 0 && w >= 0) || (u <= 0 && v <= 0 && w <= 0));
+  const real fx = triangle->row[0][3], fy = triangle->row[1][3], fz = triangle->row[2][3];
+  /* The plane's equation scaled by a power of two: f.f would overflow from |f| = 2^64. */
+  const real unit = UNIT_SCALE(fmax(fabs(fx), fmax(fabs(fy), fabs(fz))));
+  const real nx = fx * unit, ny = fy * unit, nz = fz * unit;
+  const realv to_plane = (nx * fx + ny * fy + nz * fz) - (nx * o.x + ny * o.y + nz * o.z);
+  const realv approach = nx * d.x + ny * d.y + nz * d.z;
+  const realv ahead = to_plane * SELECT(approach < 0, -1, 1);
+  return inside & LANE_MASK(ahead > 0 && ahead < ray->t_max * fabs(approach));
+}
+
+/* Moller-Trumbore without a division: u, v and t are compared against det scaled, sign folded in.
+ * Both faces block light. A degenerate triangle (det = 0) blocks nothing. Its products of the
+ * triangle's size lose the plane's place near the eye for triangles much larger than the scene
+ * around the eye: the host marks only those within PHONGCL_SMALL_TRIANGLE_REACH for it. */
+static inline intv meets_small_triangle(__global const ShadowPrimitive* triangle, const ShadowRay* ray) {
   const real v0x = triangle->row[0][0], v0y = triangle->row[0][1], v0z = triangle->row[0][2];
   const real e1x = triangle->row[1][0] - v0x, e1y = triangle->row[1][1] - v0y, e1z = triangle->row[1][2] - v0z;
   const real e2x = triangle->row[2][0] - v0x, e2y = triangle->row[2][1] - v0y, e2z = triangle->row[2][2] - v0z;
@@ -74,6 +130,12 @@ static inline intv meets_triangle(__global const ShadowPrimitive* triangle, cons
   const realv t = (e2x * qx + e2y * qy + e2z * qz) * flip;
   const realv size = fabs(det);
   return LANE_MASK(size > 0 && u >= 0 && v >= 0 && u + v <= size && t > 0 && t < ray->t_max * size);
+}
+
+/* Which test a triangle takes is the host's (shadow_layout.h): the same for every lane. */
+static inline intv meets_triangle(__global const ShadowPrimitive* triangle, const ShadowRay* ray) {
+  if (as_uint(triangle->row[0][3]) == PHONGCL_SMALL_TRIANGLE) return meets_small_triangle(triangle, ray);
+  return meets_large_triangle(triangle, ray);
 }
 
 /* The unit sphere in u = A x + b: f(t) = |u(o) + t A d|^2 - 1 = a t^2 + 2 b' t + c, with

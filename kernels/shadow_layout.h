@@ -19,6 +19,8 @@
  * (a leaf) or planes the number of them above. An empty child (beside a root that is one leaf) is a
  * run of no triangles, with an empty box. */
 enum { BVH_INNER = 0, BVH_TRIANGLES = 1, BVH_SPHERES = 2, BVH_PLANES = 3 };
+#define PHONGCL_SMALL_TRIANGLE 0xffffffffu
+#define PHONGCL_SMALL_TRIANGLE_REACH 4096.0
 #define PHONGCL_BVH_KIND_BITS 2
 #define PHONGCL_BVH_KIND_MASK 3u
 
@@ -32,7 +34,12 @@ typedef struct {
   unsigned int kind_count[2]; /* kind | count << PHONGCL_BVH_KIND_BITS */
 } BvhNode;
 
-/* A triangle: its three corners (rows, w unused), counter-clockwise seen from the front.
+/* A triangle: its three corners (rows), counter-clockwise seen from the front, and in column 3 the
+ * point f of its plane nearest the eye, worked out in double: the plane is x.f = f.f (a plane
+ * within 2^-64 of the eye moved to 2^-64 along its normal; f = 0 for a degenerate triangle). A
+ * triangle whose corners all lie within PHONGCL_SMALL_TRIANGLE_REACH of the eye has instead
+ * PHONGCL_SMALL_TRIANGLE's bits in row[0][3] (a NaN no plane has): the kernel takes the quicker
+ * Moller-Trumbore test for it, which float holds there (kernels/bvh.h).
  * A sphere in its own space under any affine map (an ellipsoid in the world): the map from an
  * eye-relative point x to the unit sphere's space, u = A x + b, row i of A in row[i][0..2] and b_i
  * in row[i][3]; the surface is |u| = 1. */

@@ -5,6 +5,7 @@
 // Embree peer is held to the same reference on the same rays.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <memory>
 #include <random>
 
@@ -150,6 +151,41 @@ TEST(ShadowRays, AMillionUnitsFromTheOriginAgreesToo) { expect_kernel_matches_re
 // room into the next pair's list: every tile size leaves each pixel's count of blocked lights as
 // the traversal's. (At the scene's own 1920x1080, 514 pixels differed in tiles of 16 when a list
 // could outgrow its room; at 960x540 none did.)
+// A level quad of two triangles whose shared diagonal crosses the frame, from half size 1e4 to 1e30
+// (the scene reader's bound): rays from the ground below it, on the diagonal and within a few units
+// of it (a corner 1e8 out is rounded by 8 in float), all end above it and are all blocked: no ray
+// slips between the triangles, and none of their products overflows.
+TEST(ShadowRays, RaysThroughAHugeQuadsSharedEdgeAreAllBlocked) {
+  REQUIRE_DEVICE(device);
+  const glm::dvec3 eye(0.3, 2, 10);
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> along(-5, 5), beside(-4, 4);
+  for (double half : {1e4, 1e8, 1e12, 1e19, 1e30}) {
+    const glm::dvec3 a(-half, 1, -half), b(half, 1, -half), c(half, 1, half), d(-half, 1, half);
+    Object first{.kind = Object::Kind::triangle, .vertices = {a, b, c}}, second{.kind = Object::Kind::triangle, .vertices = {a, c, d}};
+    const SceneBvh bvh = build_scene_bvh(flatten_objects({first, second}), PHONGCL_BVH_MAX_DEPTH);
+    ShadowRaySet rays;
+    rays.size = 1024;
+    for (auto* plane : {&rays.ox, &rays.oy, &rays.oz, &rays.dx, &rays.dy, &rays.dz, &rays.t_max}) plane->resize(rays.size);
+    for (std::size_t i = 0; i < rays.size; ++i) {
+      const double x = along(random), off = i % 2 == 0 ? 0.0 : beside(random) * (i % 4 == 1 ? 1.0 : 1e-3);
+      const glm::dvec3 origin(x + off, 0, x - off);
+      // Toward a light 5 above, or a sun low along x (its ray reaches the quad's plane within 3 units).
+      const bool sun = i % 3 == 0;
+      const glm::dvec3 direction = sun ? glm::normalize(glm::dvec3(1, 0.4, -0.3)) : glm::dvec3(0.4, 5, -0.3);
+      rays.ox[i] = static_cast<float>(origin.x - eye.x), rays.oy[i] = static_cast<float>(origin.y - eye.y);
+      rays.oz[i] = static_cast<float>(origin.z - eye.z);
+      rays.dx[i] = static_cast<float>(direction.x), rays.dy[i] = static_cast<float>(direction.y);
+      rays.dz[i] = static_cast<float>(direction.z), rays.t_max[i] = sun ? 0x1p100f : 1.0f;
+    }
+    for (int lanes : {16, 1}) {
+      OpenClShadowRays tracer(device->compute, device->cache, pack_device_geometry(bvh, eye), lanes);
+      const std::vector<float> blocked = tracer.trace(rays);
+      EXPECT_EQ(std::count(blocked.begin(), blocked.end(), 0.0f), 0) << "half size " << half << ", " << lanes << " lanes";
+    }
+  }
+}
+
 TEST(ShadowRays, TiledCullingOnManyShapesLeavesEveryCountAsTheTraversals) {
   REQUIRE_DEVICE(device);
   const Scene scene = with_generated_lights(load_scene(std::filesystem::path(PHONGCL_SOURCE_DIR) / "scenes/large/scene.json"), 16);

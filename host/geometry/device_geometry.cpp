@@ -1,6 +1,8 @@
 #include "geometry/device_geometry.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 namespace phongcl {
@@ -18,6 +20,19 @@ float round_up(double x) {
   return f;
 }
 
+// The point of the triangle's plane nearest the eye (eye-relative), in double: far more exactly than
+// the kernel could place the plane from its float corners, whose products of the triangle's size
+// would lose its place near the eye. A plane within 2^-64 of the eye is moved there along its normal
+// (the point gives the normal's direction, and float keeps it); a degenerate triangle gets 0.
+glm::dvec3 plane_foot(const std::array<glm::dvec3, 3>& corners, const glm::dvec3& eye) {
+  const glm::dvec3 normal = glm::cross(corners[1] - corners[0], corners[2] - corners[0]);
+  const double length = glm::length(normal);
+  if (!(length > 0.0)) return glm::dvec3(0.0);
+  const glm::dvec3 unit = normal / length;
+  const double distance = glm::dot(unit, corners[0] - eye);
+  return unit * (std::abs(distance) >= 0x1p-64 ? distance : 0x1p-64);
+}
+
 // The triangle's corners, the sphere's map to the unit sphere (kernels/shadow_layout.h), eye-relative.
 ShadowPrimitive pack_item(const SceneBvh& scene, std::uint32_t item, const glm::dvec3& eye) {
   ShadowPrimitive primitive{};
@@ -26,6 +41,15 @@ ShadowPrimitive pack_item(const SceneBvh& scene, std::uint32_t item, const glm::
     const auto corners = shapes.corners(item);
     for (int row = 0; row < 3; ++row)
       for (int axis = 0; axis < 3; ++axis) primitive.row[row][axis] = static_cast<float>(corners[row][axis] - eye[axis]);
+    double reach = 0.0;
+    for (const glm::dvec3& corner : corners) reach = std::max(reach, glm::length(corner - eye));
+    if (reach <= PHONGCL_SMALL_TRIANGLE_REACH) {
+      const std::uint32_t small = PHONGCL_SMALL_TRIANGLE;
+      std::memcpy(&primitive.row[0][3], &small, sizeof small);
+      return primitive;
+    }
+    const glm::dvec3 foot = plane_foot(corners, eye);
+    for (int axis = 0; axis < 3; ++axis) primitive.row[axis][3] = static_cast<float>(foot[axis]);
     return primitive;
   }
   // u = (W (x + eye) - c) / r for the world-to-object map W: A = W's linear part / r, b = (W eye - c) / r.

@@ -1,10 +1,15 @@
 #include "scene/object_json.h"
 
+#include <algorithm>
+
 #include "common/error.h"
 #include "scene/transform.h"
 
 namespace phongcl {
 namespace {
+
+// The largest |coordinate| of a triangle's corner (docs/shadows.md).
+constexpr double kLargestCoordinate = 1e30;
 
 int read_material(const JsonObject& object, std::size_t material_count) {
   int material = Object{}.material;
@@ -38,7 +43,15 @@ void read_triangle(const JsonObject& object, Object& triangle) {
   const JsonValue vertices = object.at("vertices");
   const std::vector<JsonValue> corners = vertices.elements();
   if (corners.size() != 3) vertices.fail("must be an array of 3 points");
-  for (std::size_t i = 0; i < 3; ++i) triangle.vertices[i] = corners[i].vec3();
+  for (std::size_t i = 0; i < 3; ++i) {
+    triangle.vertices[i] = corners[i].vec3();
+    // A directional light's shadow ray ends at 2^100 (1.27e30), and the shadow tests are checked
+    // to 1e30 (stability catalogue's huge occluders).
+    const glm::dvec3 size = glm::abs(triangle.vertices[i]);
+    if (std::max({size.x, size.y, size.z}) > kLargestCoordinate)
+      corners[i].fail("has a coordinate beyond +-" + format_number(kLargestCoordinate) +
+                      " (shadow rays reach 2^100, about 1.27e30)");
+  }
   // A zero-area triangle can never be hit; say so rather than render nothing.
   const auto& v = triangle.vertices;
   if (glm::cross(v[1] - v[0], v[2] - v[0]) == glm::dvec3(0.0)) vertices.fail("must not be collinear");

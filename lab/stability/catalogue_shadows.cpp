@@ -149,6 +149,30 @@ std::vector<StabilityCase> shadow_cases(const std::filesystem::path& scratch) {
       lit_scene({mesh(scratch / "ceiling.ply")}, {point_light({0, 10, 0})}),
       {{{0.3f, 0, -0.7f}, up, {false}}, {{3, 1.9f, 0}, up, {false}}, {{1, 5, 0}, up, {true}}}));
 
+  // A quad of two triangles over the ground shadows the same pixels at every size: level at height
+  // 1 from half size 1e4 to 1e30 (from 1e19 the products of its float corners overflow), and
+  // tilted by slopes 1/4 and 1/8 through (0, 1, 0) to 1e12 (from its float corners, the plane's
+  // place near the eye moves by units at 1e8). The pixels are a sixth of a triangle's size from
+  // any edge, lit by a light overhead and a low sun whose rays run mostly along x, so both cross
+  // the quad's plane far from its corners.
+  for (const char* half_size : {"1e4", "1e8", "1e12", "1e19", "1e30"}) {
+    for (const bool tilted : {false, true}) {
+      const double h = std::stod(half_size);
+      if (tilted && h > 1e12) continue;
+      const auto corner = [&](double x, double z) { return glm::dvec3(x, tilted ? 1 - x / 4 - z / 8 : 1, z); };
+      const glm::dvec3 p0 = corner(-h / 2, -h), p1 = corner(h, -h), p2 = corner(h, h), p3 = corner(-h / 2, h);
+      cases.push_back(shadow_case(
+          std::string("huge occluder: ") + (tilted ? "tilted" : "level") + " quad of half size " + half_size,
+          "a two-triangle quad over the ground shadows as a small one does, whatever its size",
+          lit_scene({plane(up, 0), triangle(p0, p1, p2), triangle(p0, p2, p3)},
+                    {point_light({0.3, 5, 0.2}), directional_light({-1, -0.4, 0.3})}),
+          // (The tilted quad is at height 0.85 over the third and fourth pixels, and under the ground
+          // at the fifth, which only the level one shadows.)
+          {{{0, 0, 0}, up, {false, false}}, {{-2, 0, 1}, up, {false, false}}, {{0.5f, 0.5f, 0.2f}, up, {false, false}},
+           {{0.5f, 2, 0.2f}, up, {true, true}}, {{6, 0, 4}, up, {tilted, tilted}}}));
+    }
+  }
+
   // A sphere on the ground a million units from the origin, the eye beside it: positions are
   // 0.0625 apart there and rays leave their surfaces eps = 2^-20 (|P - eye| + |eye|) = 1.4 units
   // out, so the pixels are well inside the shadow and well outside it.
