@@ -201,6 +201,12 @@ TEST(MeshFile, MalformedHeadersSayWhatIsWrong) {
   EXPECT_NE(error_with("float y", "quaternion y").find("'quaternion' is not a PLY type"), std::string::npos);
   EXPECT_NE(error_with("ascii", "utf8").find("header line 2: must be 'format ascii 1.0'"), std::string::npos);
   EXPECT_NE(error_with("3 0 1 2", "3 0 one 2").find("'one' is not an integer"), std::string::npos);
+  // Assimp reads an ASCII record from a line of its own (it aborted on a face on a vertex's line).
+  EXPECT_NE(error_with("0 1 0\n3", "0 1 0 3").find("vertex 2 of 3: its line holds more values"), std::string::npos);
+  EXPECT_NE(error_with("0 1 0\n", "0 1\n0\n").find("its line ends before its values do"), std::string::npos);
+  // Assimp neither stops nor moves on past 19 digits: the values after were read from the wrong place.
+  EXPECT_NE(error_with("0 1 0\n", "0" + std::string(30, '5') + " 1 0\n").find("has more than 18 digits in a row"),
+            std::string::npos);
   // Assimp ends a word at a NUL: this face list was vertex_indices to it, with a face of no corners.
   EXPECT_NE(error_with("vertex_indices", std::string("vertex_indices\0at", 17)).find("not printable text (0)"),
             std::string::npos);

@@ -44,7 +44,7 @@ struct Element {
   // alone; in ASCII a character and a separator per value.
   std::uint64_t least_record_bytes(bool binary) const {
     std::uint64_t bytes = 0;
-    for (const Property &p : properties) bytes += binary ? (p.list_count ? p.list_count->bytes : p.value.bytes) : 2;
+    for (const Property& p : properties) bytes += binary ? (p.list_count ? p.list_count->bytes : p.value.bytes) : 2;
     return bytes;
   }
 };
@@ -85,7 +85,7 @@ std::optional<Number> parse_whole(std::string_view word) {
 
 class HeaderReader {
  public:
-  HeaderReader(std::string_view bytes, const std::filesystem::path &file) : bytes_(bytes), file_(file) {}
+  HeaderReader(std::string_view bytes, const std::filesystem::path& file) : bytes_(bytes), file_(file) {}
 
   Header read() {
     for (std::size_t at = 0;;) {
@@ -110,7 +110,7 @@ class HeaderReader {
   }
 
  private:
-  [[noreturn]] void fail(const std::string &problem) const {
+  [[noreturn]] void fail(const std::string& problem) const {
     throw InputError(file_, "header line " + std::to_string(header_.layout.header_lines.size()) + ": " + problem);
   }
 
@@ -146,7 +146,7 @@ class HeaderReader {
     return false;
   }
 
-  void read_format(const std::vector<std::string_view> &words) {
+  void read_format(const std::vector<std::string_view>& words) {
     const bool known = words.size() == 3 && words[0] == "format" && words[2] == "1.0" &&
                        (words[1] == "ascii" || words[1] == "binary_little_endian" || words[1] == "binary_big_endian");
     if (!known)
@@ -157,7 +157,7 @@ class HeaderReader {
     header_.big_endian = words[1] == "binary_big_endian";
   }
 
-  void read_element(const std::vector<std::string_view> &words) {
+  void read_element(const std::vector<std::string_view>& words) {
     if (words.size() != 3) fail("an element is 'element NAME COUNT'");
     const auto count = parse_whole<std::uint64_t>(words[2]);
     if (!count) fail("element " + shown(words[1]) + " has count " + shown(words[2]) + ", not a whole number >= 0");
@@ -171,7 +171,7 @@ class HeaderReader {
          "uint, float, double, or int8 to float64)");
   }
 
-  void read_property(const std::vector<std::string_view> &words) {
+  void read_property(const std::vector<std::string_view>& words) {
     if (header_.elements.empty()) fail("a property before any element");
     Property property;
     if (words.size() == 5 && words[1] == "list") {
@@ -192,10 +192,10 @@ class HeaderReader {
   }
 
   void check_vertices() {
-    for (const Element &element : header_.elements) {
+    for (const Element& element : header_.elements) {
       if (element.name != "vertex") continue;
       int axes = 0;
-      for (const Property &p : element.properties)
+      for (const Property& p : element.properties)
         axes += !p.list_count && (p.name == "x" || p.name == "y" || p.name == "z");
       if (axes == 3) {
         header_.layout.vertices = element.count;
@@ -206,26 +206,29 @@ class HeaderReader {
   }
 
   std::string_view bytes_;
-  const std::filesystem::path &file_;
+  const std::filesystem::path& file_;
   Header header_;
 };
 
 // The data after the header, walked value by value as Assimp will read it.
 class DataWalk {
  public:
-  DataWalk(const Header &header, std::string_view data, const std::filesystem::path &file)
+  DataWalk(const Header& header, std::string_view data, const std::filesystem::path& file)
       : header_(header), data_(data), file_(file) {}
 
   std::uint64_t triangles() {
     check_sizes();
-    for (const Element &element : header_.elements)
-      for (std::uint64_t record = 0; record < element.count; ++record)
-        for (const Property &property : element.properties) walk(element, record, property);
+    for (const Element& element : header_.elements)
+      for (std::uint64_t record = 0; record < element.count; ++record) {
+        if (!header_.layout.binary) start_line(element, record);
+        for (const Property& property : element.properties) walk(element, record, property);
+        if (!header_.layout.binary) end_line(element, record);
+      }
     return triangles_;
   }
 
  private:
-  [[noreturn]] void fail(const Element &element, std::uint64_t record, const std::string &problem) const {
+  [[noreturn]] void fail(const Element& element, std::uint64_t record, const std::string& problem) const {
     throw InputError(
         file_, element.name + " " + std::to_string(record) + " of " + std::to_string(element.count) + ": " + problem);
   }
@@ -235,7 +238,7 @@ class DataWalk {
   void check_sizes() const {
     const bool binary = header_.layout.binary;
     long double least = 0;
-    for (const Element &element : header_.elements) {
+    for (const Element& element : header_.elements) {
       const std::uint64_t record = element.least_record_bytes(binary);
       if (record == 0 && element.count > 0)
         throw InputError(file_, "element " + shown(element.name) + " declares " + std::to_string(element.count) +
@@ -252,7 +255,7 @@ class DataWalk {
     }
   }
 
-  void walk(const Element &element, std::uint64_t record, const Property &property) {
+  void walk(const Element& element, std::uint64_t record, const Property& property) {
     if (!property.list_count) return value(element, record, property.value);
     const std::uint64_t count = list_count(element, record, *property.list_count);
     if (property.corners && count == 0) fail(element, record, "a list of " + property.name + " with no corners");
@@ -264,7 +267,7 @@ class DataWalk {
     for (std::uint64_t item = 0; item < count; ++item) value(element, record, property.value);
   }
 
-  std::uint64_t list_count(const Element &element, std::uint64_t record, ScalarType type) {
+  std::uint64_t list_count(const Element& element, std::uint64_t record, ScalarType type) {
     if (!header_.layout.binary) {
       const std::string_view word = token(element, record);
       const auto count = parse_whole<std::uint64_t>(word);
@@ -281,7 +284,7 @@ class DataWalk {
     return bits;
   }
 
-  void value(const Element &element, std::uint64_t record, ScalarType type) {
+  void value(const Element& element, std::uint64_t record, ScalarType type) {
     if (header_.layout.binary) {
       take(element, record, type.bytes);
       return;
@@ -293,23 +296,46 @@ class DataWalk {
     if (!number) fail(element, record, shown(word) + " is not " + (type.is_integer ? "an integer" : "a number"));
   }
 
-  std::string_view take(const Element &element, std::uint64_t record, std::size_t bytes) {
+  std::string_view take(const Element& element, std::uint64_t record, std::size_t bytes) {
     if (data_.size() - at_ < bytes) fail(element, record, "the file ends inside it (cut short)");
     const std::string_view taken = data_.substr(at_, bytes);
     at_ += bytes;
     return taken;
   }
 
-  std::string_view token(const Element &element, std::uint64_t record) {
-    const std::size_t start = data_.find_first_not_of(" \t\r\n", at_);
-    if (start == std::string_view::npos) fail(element, record, "the file ends inside it (cut short)");
-    at_ = std::min(data_.find_first_of(" \t\r\n", start), data_.size());
-    return data_.substr(start, at_ - start);
+  // Assimp reads an ASCII record from a line of its own: values of the next record on the same
+  // line, or a record spread over lines, misalign every value after them (it aborted, or allocated
+  // gigabytes, on such files). Empty lines between records are passed over.
+  void start_line(const Element& element, std::uint64_t record) {
+    at_ = std::min(data_.find_first_not_of(" \t\r\n", at_), data_.size());
+    if (at_ == data_.size()) fail(element, record, "the file ends before it (cut short)");
   }
 
-  const Header &header_;
+  void end_line(const Element& element, std::uint64_t record) {
+    at_ = std::min(data_.find_first_not_of(" \t\r", at_), data_.size());
+    if (at_ < data_.size() && data_[at_] != '\n')
+      fail(element, record, "its line holds more values than its element declares (a record is one line)");
+  }
+
+  // An ASCII value, on the record's line. Assimp reads a number's digits into 64 bits and, past 19
+  // of them, neither stops nor moves on: every value after it is read from the wrong place.
+  std::string_view token(const Element& element, std::uint64_t record) {
+    constexpr std::size_t kMaxDigitsInARow = 18;
+    const std::size_t start = std::min(data_.find_first_not_of(" \t\r", at_), data_.size());
+    if (start == data_.size() || data_[start] == '\n')
+      fail(element, record, "its line ends before its values do (a record is one line)");
+    at_ = std::min(data_.find_first_of(" \t\r\n", start), data_.size());
+    const std::string_view word = data_.substr(start, at_ - start);
+    std::size_t digits = 0;
+    for (char c : word)
+      if ((digits = c >= '0' && c <= '9' ? digits + 1 : 0) > kMaxDigitsInARow)
+        fail(element, record, shown(word) + " has more than " + std::to_string(kMaxDigitsInARow) + " digits in a row");
+    return word;
+  }
+
+  const Header& header_;
   std::string_view data_;
-  const std::filesystem::path &file_;
+  const std::filesystem::path& file_;
   std::size_t at_ = 0;
   std::uint64_t triangles_ = 0;
 };
@@ -318,7 +344,7 @@ class DataWalk {
 
 bool is_ply(std::string_view bytes) { return bytes.starts_with("ply\n") || bytes.starts_with("ply\r\n"); }
 
-PlyLayout check_ply(std::string_view bytes, const std::filesystem::path &file) {
+PlyLayout check_ply(std::string_view bytes, const std::filesystem::path& file) {
   Header header = HeaderReader(bytes, file).read();
   header.layout.triangles = DataWalk(header, bytes.substr(header.layout.data_offset), file).triangles();
   return std::move(header.layout);

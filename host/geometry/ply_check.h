@@ -18,8 +18,8 @@ struct PlyLayout {
   std::vector<std::string> header_lines;  // without their line ends
   std::size_t data_offset = 0;            // where the data starts
   bool binary = false;
-  bool crlf = false;               // the header's lines end in "\r\n"
-  std::uint64_t vertices = 0;      // the vertex element's count
+  bool crlf = false;            // the header's lines end in "\r\n"
+  std::uint64_t vertices = 0;   // the vertex element's count
   std::uint64_t triangles = 0;  // what the faces' corner lists triangulate into
 };
 
@@ -34,6 +34,6 @@ bool is_ply(std::string_view bytes);
 // end_header, an unknown keyword or type, a count that is not a whole number,
 // no vertex x, y and z, an element or list running past the end of the file, a
 // face with no corners.
-PlyLayout check_ply(std::string_view bytes, const std::filesystem::path &file);
+PlyLayout check_ply(std::string_view bytes, const std::filesystem::path& file);
 
 }  // namespace phongcl
