@@ -69,22 +69,21 @@ std::string file_bytes(const std::filesystem::path& file) {
   return bytes;
 }
 
+std::string lowercase_extension(const std::filesystem::path& file) {
+  std::string extension = file.extension().string();
+  for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return extension;
+}
+
 // Assimp's PLY reader takes a file by its extension or, when no reader claims the extension, by
 // "ply" among its first bytes. Every file it could take goes through the PLY check first (a first
 // line other than "ply" fails it) and reaches Assimp from memory under the PLY reader's name; a file
 // of another extension goes to that extension's reader, and one of an extension no reader claims
-// is refused, so that no unchecked file reaches the PLY reader.
-enum class MeshFormat { ply, by_extension };
-
-MeshFormat mesh_format(const std::filesystem::path& file, const Assimp::Importer& importer) {
-  std::string extension = file.extension().string();
-  for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+// is refused (read_mesh), so that no unchecked file reaches the PLY reader.
+bool read_as_ply(const std::filesystem::path& file) {
   char magic[3] = {};
   std::ifstream(file, std::ios::binary).read(magic, sizeof magic);
-  if (extension == ".ply" || std::string_view(magic, sizeof magic) == "ply") return MeshFormat::ply;
-  if (!extension.empty() && importer.IsExtensionSupported(extension)) return MeshFormat::by_extension;
-  throw InputError(file, "cannot read the mesh: '" + extension +
-                             "' is not a mesh format Assimp reads (PLY, OBJ, glTF, ...), and it is not a PLY file");
+  return lowercase_extension(file) == ".ply" || std::string_view(magic, sizeof magic) == "ply";
 }
 
 }  // namespace
@@ -99,13 +98,17 @@ TriangleMesh read_mesh(const std::filesystem::path& file) {
   const unsigned steps = aiProcess_ValidateDataStructure | aiProcess_Triangulate | aiProcess_SortByPType |
                          aiProcess_PreTransformVertices;
   const aiScene* scene = nullptr;
-  if (mesh_format(file, importer) == MeshFormat::ply) {
+  if (read_as_ply(file)) {
     std::string bytes = file_bytes(file);
     const PlyLayout ply = check_ply(bytes, file);
     const bool data_starts_with_newline = ply.data_offset < bytes.size() && bytes[ply.data_offset] == '\n';
     if (ply.binary && !ply.crlf && data_starts_with_newline) bytes = with_crlf_header(ply, bytes);
     scene = importer.ReadFileFromMemory(bytes.data(), bytes.size(), steps, "ply");
   } else {
+    const std::string extension = lowercase_extension(file);
+    if (extension.empty() || !importer.IsExtensionSupported(extension))
+      throw InputError(file, "cannot read the mesh: '" + extension +
+                                 "' is not a mesh format Assimp reads (PLY, OBJ, glTF, ...), and it is not a PLY file");
     scene = importer.ReadFile(file.string(), steps);
   }
   if (scene == nullptr) throw InputError(file, one_line(importer.GetErrorString()));
@@ -117,7 +120,7 @@ TriangleMesh read_mesh(const std::filesystem::path& file) {
 
 MeshCounts count_mesh(const std::filesystem::path& file) {
   require_regular_file(file, "mesh");
-  if (mesh_format(file, Assimp::Importer()) == MeshFormat::ply) {
+  if (read_as_ply(file)) {
     const PlyLayout ply = check_ply(file_bytes(file), file);
     return {ply.vertices, ply.triangles};
   }

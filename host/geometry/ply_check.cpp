@@ -342,8 +342,6 @@ class DataWalk {
 
 }  // namespace
 
-bool is_ply(std::string_view bytes) { return bytes.starts_with("ply\n") || bytes.starts_with("ply\r\n"); }
-
 PlyLayout check_ply(std::string_view bytes, const std::filesystem::path& file) {
   Header header = HeaderReader(bytes, file).read();
   header.layout.triangles = DataWalk(header, bytes.substr(header.layout.data_offset), file).triangles();

@@ -27,9 +27,6 @@ struct PlyLayout {
 // not a header.
 inline constexpr std::size_t kMaxPlyHeaderBytes = std::size_t{1} << 20;
 
-// Whether `bytes` start as a PLY file does ("ply" and a line end).
-bool is_ply(std::string_view bytes);
-
 // Throws InputError naming `file` and the first problem: a header without
 // end_header, an unknown keyword or type, a count that is not a whole number,
 // no vertex x, y and z, an element or list running past the end of the file, a
