@@ -48,9 +48,9 @@ void check_memory(const std::string& task, const std::vector<MemoryNeed>& needs,
   if (needs.empty() || total <= static_cast<double>(limit.bytes)) return;
   const MemoryNeed& largest =
       *std::max_element(needs.begin(), needs.end(), [](const auto& a, const auto& b) { return a.bytes < b.bytes; });
-  throw std::runtime_error(task + " needs about " + format_bytes(total) + ", " + format_bytes(largest.bytes) + " of it for " +
-                           largest.what + ": more than the " + format_bytes(static_cast<double>(limit.bytes)) + " of " +
-                           limit.source);
+  throw std::runtime_error(task + " needs about " + format_bytes(total) + ", " + format_bytes(largest.bytes) +
+                           " of it for " + largest.what + ": more than the " +
+                           format_bytes(static_cast<double>(limit.bytes)) + " of " + limit.source);
 }
 
 }  // namespace phongcl

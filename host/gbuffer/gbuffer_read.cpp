@@ -1,7 +1,6 @@
 // Reading a G-buffer EXR in any layout into planes: resolve the layout's channels against the
 // file, report everything missing at once, then read and mark background.
 #include <algorithm>
-#include <cstdio>
 #include <map>
 #include <new>
 #include <string>
@@ -9,6 +8,7 @@
 
 #include "common/error.h"
 #include "common/joined.h"
+#include "common/memory_limit.h"
 #include "exr/exr_channels.h"
 #include "gbuffer/edge_policy.h"
 #include "gbuffer/gbuffer.h"
@@ -178,10 +178,8 @@ void allocate_planes(const std::vector<Plane*>& planes, const GBuffer& g, const 
   try {
     for (Plane* plane : planes) plane->assign(g.pixel_count(), 0.0f);
   } catch (const std::bad_alloc&) {
-    const double gigabytes = static_cast<double>(planes.size() * g.pixel_count() * sizeof(float)) / 1e9;
-    char size[32];
-    std::snprintf(size, sizeof size, "%.1f", gigabytes);
-    throw InputError(file, "cannot allocate " + std::string(size) + " GB for " + std::to_string(planes.size()) +
+    const double bytes = static_cast<double>(planes.size() * g.pixel_count() * sizeof(float));
+    throw InputError(file, "cannot allocate " + format_bytes(bytes) + " for " + std::to_string(planes.size()) +
                                " planes of " + std::to_string(g.width) + "x" + std::to_string(g.height) + " pixels");
   }
 }
