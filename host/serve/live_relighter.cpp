@@ -3,9 +3,9 @@
 #include <malloc.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cerrno>
 #include <cstring>
-#include <atomic>
 #include <exception>
 #include <fstream>
 #include <utility>
@@ -87,7 +87,8 @@ Scene LiveRelighter::parsed_scene(std::string_view text) const {
   Scene scene = parse_scene(text, scene_source_);
   for (const std::filesystem::path& mesh : mesh_files(scene.objects)) {
     require_regular_file(mesh, "mesh");
-    if (!std::ifstream(mesh, std::ios::binary)) throw InputError(mesh, std::string("cannot read the mesh: ") + std::strerror(errno));
+    if (!std::ifstream(mesh, std::ios::binary))
+      throw InputError(mesh, std::string("cannot read the mesh: ") + std::strerror(errno));
   }
   convert_scene_colors(scene, color_);
   return scene;
