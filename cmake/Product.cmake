@@ -11,7 +11,7 @@ phongcl_room(cl       DEPS phongcl_common phongcl_opencl phongcl_kernels)
 phongcl_room(geometry DEPS phongcl_scene phongcl_kernels assimp::assimp)
 phongcl_room(shading  DEPS phongcl_cl phongcl_scene phongcl_gbuffer phongcl_image phongcl_geometry phongcl_kernels OpenMP::OpenMP_CXX)
 phongcl_room(raycast  DEPS phongcl_scene phongcl_gbuffer phongcl_geometry)
-phongcl_room(color    DEPS phongcl_image phongcl_scene phongcl_gbuffer PkgConfig::OCIO OpenMP::OpenMP_CXX)
+phongcl_room(color    DEPS phongcl_image phongcl_scene phongcl_gbuffer PkgConfig::OCIO yaml-cpp OpenMP::OpenMP_CXX)
 # The display transforms' AVX2 loops, chosen at run time where the CPU has AVX2 and FMA
 # (host/color/pixel_kernels.h): the rest of the product stays baseline x86-64. Multiply-adds are fused
 # where the code says so (_mm256_fmadd_ps), not wherever the compiler may.

@@ -16,8 +16,8 @@ namespace {
 
 std::string xy(const std::array<float, 2>& c) { return "(" + std::to_string(c[0]).substr(0, 6) + ", " + std::to_string(c[1]).substr(0, 6) + ")"; }
 
-void run_colors(const std::string& which) {
-  const ColorConfig config = ColorConfig::load(which);
+void run_colors(const std::string& which, const std::string& blender) {
+  const ColorConfig config = ColorConfig::load(which, blender);
   std::cout << "phongcl colors: " << config.description() << "\n"
             << "  working    " << config.working_space() << " (scene_linear)";
   if (const auto c = config.working_chromaticities())
@@ -32,6 +32,7 @@ void run_colors(const std::string& which) {
   const std::vector<std::string> looks = config.looks();
   std::cout << "  looks      " << (looks.empty() ? "none" : joined(looks)) << "\n"
             << "  spaces     " << joined(config.color_spaces()) << "\n";
+  for (const std::string& note : config.omitted()) std::cout << "  note       " << note << "\n";
   // How each view of the default display runs (color/view_pipeline.h): compiled, or OpenColorIO's
   // processor. A view that cannot be built is listed with its reason, the rest still are, and the
   // command fails after the listing.
@@ -56,9 +57,11 @@ void run_colors(const std::string& which) {
 
 void add_colors_command(CLI::App& app) {
   auto which = std::make_shared<std::string>();
+  auto blender = std::make_shared<std::string>();
   CLI::App* command = app.add_subcommand("colors", "List an OpenColorIO config's displays, views, looks and colour spaces");
   command->add_option("--ocio", *which, "Config: a file, blender (an installed Blender's) or builtin (default: $OCIO, else builtin)");
-  command->callback([which] { run_colors(*which); });
+  command->add_option("--blender", *blender, kBlenderOptionHelp);
+  command->callback([which, blender] { run_colors(*which, *blender); });
 }
 
 }  // namespace phongcl::cli

@@ -12,4 +12,9 @@ void add_serve_command(CLI::App& app);
 void add_colors_command(CLI::App& app);
 void add_png_command(CLI::App& app);
 
+// --blender's help, the same wherever --ocio is.
+inline constexpr const char* kBlenderOptionHelp =
+    "The Blender executable whose OCIO config --ocio blender loads, e.g. a wrapper of scripts/setup.sh blender5 "
+    "(default: $BLENDER, else an installed blender)";
+
 }  // namespace phongcl::cli

@@ -5,6 +5,7 @@
 #include <string>
 #include <tuple>
 
+#include "cli/commands.h"
 #include "color/color_conversion.h"
 #include "common/error.h"
 #include "gbuffer/file_camera.h"
@@ -39,13 +40,14 @@ void SceneInputs::add_options(CLI::App& command) {
   command.add_option("--ocio", ocio,
                      "OpenColorIO config: a config file, blender (an installed Blender's) or builtin (default: the OCIO "
                      "environment variable's, else builtin; phongcl colors lists what one holds)");
+  command.add_option("--blender", blender, kBlenderOptionHelp);
   command.add_option("--gbuffer-space", gbuffer_space,
                      "Colour space of the G-buffer's colour passes (DiffCol, GlossCol, per-pixel ka/kd/ks, the beauty pass), "
                      "converted to the working space (default: already in it)");
 }
 
 std::shared_ptr<const ColorConfig> SceneInputs::color_config() const {
-  if (!color_) color_ = std::make_shared<const ColorConfig>(ColorConfig::load(ocio));
+  if (!color_) color_ = std::make_shared<const ColorConfig>(ColorConfig::load(ocio, blender));
   return color_;
 }
 

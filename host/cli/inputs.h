@@ -1,7 +1,7 @@
 #pragma once
 // The scene and G-buffer options that shade, reference and bench share: --scene/--gbuffer, how
 // to read a renderer's G-buffer (--layout, --view-layer, --channel, --space, --depth-convention,
-// --kd-from, --ks-from), and the colour spaces in (--ocio, --gbuffer-space).
+// --kd-from, --ks-from), and the colour spaces in (--ocio, --blender, --gbuffer-space).
 #include <cstdint>
 #include <filesystem>
 #include <memory>
@@ -36,6 +36,7 @@ struct SceneInputs {
   std::string kd_from = "auto", ks_from = "auto";
   std::uint64_t max_pixels = ReadOptions{}.max_pixels;
   std::string ocio;           // --ocio: "", "builtin", "blender" or a config file (color/color_config.h)
+  std::string blender;        // --blender: the Blender executable whose config --ocio blender loads
   std::string gbuffer_space;  // --gbuffer-space: the colour passes' space; empty: the working space
 
   void add_options(CLI::App& command);

@@ -14,7 +14,7 @@ namespace phongcl::cli {
 namespace {
 
 struct PngArguments {
-  std::string input, output, ocio, tone_map;
+  std::string input, output, ocio, blender, tone_map;
   DisplaySettings display;
   std::vector<double> background{0.0, 0.0, 0.0};
 };
@@ -22,7 +22,7 @@ struct PngArguments {
 void run_png(const PngArguments& args) {
   refuse_shared_files({{"input", args.input, false, {}}, {"output", args.output, true, {}}});
   check_destination(args.output);
-  const ColorConfig config = ColorConfig::load(args.ocio);
+  const ColorConfig config = ColorConfig::load(args.ocio, args.blender);
   DisplaySettings settings = with_tone_map(args.display, args.tone_map);
   settings.background = {args.background[0], args.background[1], args.background[2]};
   const DisplayTransform display(config, settings);
@@ -42,6 +42,7 @@ void add_png_command(CLI::App& app) {
   command->add_option("input", args->input, "EXR (R G B, and A if present; linear, premultiplied)")->required();
   command->add_option("output", args->output, "PNG to write (atomically)")->required();
   command->add_option("--ocio", args->ocio, "OpenColorIO config: a file, blender or builtin (default: $OCIO, else builtin)");
+  command->add_option("--blender", args->blender, kBlenderOptionHelp);
   add_display_options(*command, args->display, args->tone_map);
   command->add_option("--background", args->background, "Working-space colour under transparent pixels: R G B (default 0 0 0)")
       ->expected(3);

@@ -5,12 +5,20 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
-#include <functional>
 #include <filesystem>
+#include <fstream>
+#include <functional>
+#include <iostream>
+#include <iterator>
+#include <mutex>
+#include <regex>
+#include <set>
+#include <sstream>
 #include <string_view>
 
 #include "color/builtin_config.h"
 #include "color/chromaticities.h"
+#include "color/config_downlevel.h"
 #include "color/config_impl.h"
 #include "common/error.h"
 #include "common/regular_file.h"
@@ -30,51 +38,104 @@ std::string one_line(std::string text) {
   return text;
 }
 
-// Where Blender keeps its datafiles: BLENDER_SYSTEM_DATAFILES, distributions' shared directory
-// (Debian's without a version, others' with one), and beside a `blender` on PATH (official builds
-// keep <version>/datafiles next to the binary).
-std::vector<fs::path> blender_config_candidates() {
-  std::vector<fs::path> candidates;
-  const auto add_datafiles = [&](const fs::path& datafiles) { candidates.push_back(datafiles / "colormanagement" / "config.ocio"); };
-  if (const char* datafiles = std::getenv("BLENDER_SYSTEM_DATAFILES")) add_datafiles(datafiles);
-  std::vector<fs::path> roots{"/usr/share/blender", "/usr/local/share/blender"};
+// Where an installed Blender executable keeps its datafiles: official builds beside the binary in
+// <version>/datafiles, distributions (and scripts/blender/make_root.sh's wrappers) in ../share/blender,
+// Debian's without a version, others' with one.
+std::vector<fs::path> datafiles_beside(const fs::path& binary) {
+  std::error_code error;
+  const fs::path real = fs::canonical(binary, error);
+  if (error) return {};
+  std::vector<fs::path> datafiles;
+  for (const fs::path& root : {real.parent_path(), real.parent_path().parent_path() / "share" / "blender"}) {
+    datafiles.push_back(root / "datafiles");
+    for (const auto& entry : fs::directory_iterator(root, error))
+      if (entry.is_directory(error)) datafiles.push_back(entry.path() / "datafiles");
+  }
+  return datafiles;
+}
+
+// Where Blender's datafiles are, for `blender`: the executable named, else BLENDER_SYSTEM_DATAFILES,
+// the Blender that the BLENDER environment variable names (as the project's Blender scripts take it),
+// distributions' shared directories and beside a `blender` on PATH.
+std::vector<fs::path> blender_datafiles(const std::string& blender) {
+  if (!blender.empty()) return datafiles_beside(blender);
+  std::vector<fs::path> datafiles;
+  if (const char* system = std::getenv("BLENDER_SYSTEM_DATAFILES")) datafiles.emplace_back(system);
+  std::vector<fs::path> binaries;
+  if (const char* named = std::getenv("BLENDER"); named != nullptr && *named != '\0') binaries.emplace_back(named);
+  binaries.emplace_back("/usr/bin/blender");
+  binaries.emplace_back("/usr/local/bin/blender");
   if (const char* path = std::getenv("PATH")) {
     std::string_view rest(path);
     while (!rest.empty()) {
       const std::size_t colon = rest.find(':');
-      const fs::path binary = fs::path(rest.substr(0, colon)) / "blender";
-      std::error_code error;
-      if (::access(binary.c_str(), X_OK) == 0) {
-        const fs::path real = fs::canonical(binary, error);
-        if (!error) {
-          roots.push_back(real.parent_path());
-          roots.push_back(real.parent_path().parent_path() / "share" / "blender");
-        }
-      }
+      if (const fs::path binary = fs::path(rest.substr(0, colon)) / "blender"; ::access(binary.c_str(), X_OK) == 0)
+        binaries.push_back(binary);
       if (colon == std::string_view::npos) break;
       rest.remove_prefix(colon + 1);
     }
   }
-  for (const fs::path& root : roots) {
-    add_datafiles(root / "datafiles");
-    std::error_code error;
-    for (const auto& entry : fs::directory_iterator(root, error))
-      if (entry.is_directory(error)) add_datafiles(entry.path() / "datafiles");  // <version>/datafiles
+  for (const fs::path& binary : binaries)
+    for (fs::path& found : datafiles_beside(binary)) datafiles.push_back(std::move(found));
+  return datafiles;
+}
+
+// A config for a newer OpenColorIO (color/config_downlevel.h), read from its YAML with what this
+// library cannot run left out, its files found beside it. The keys this library does not know
+// (Blender 5's interop_id and interchange) are collected for one line rather than a warning each.
+OCIO::ConstConfigRcPtr downlevelled(const fs::path& file, const DownlevelledConfig& config, std::vector<std::string>& notes) {
+  static std::mutex logging;
+  const std::lock_guard lock(logging);
+  std::set<std::string> unknown_keys;
+  OCIO::SetLoggingFunction([&](const char* message) {
+    const std::regex unknown_key("unknown key '([^']*)'");
+    if (std::cmatch match; std::regex_search(message, match, unknown_key))
+      unknown_keys.insert(match[1]);
+    else
+      std::cerr << message;
+  });
+  std::istringstream yaml(config.yaml);
+  OCIO::ConfigRcPtr ocio;
+  try {
+    ocio = OCIO::Config::CreateFromStream(yaml)->createEditableCopy();
+  } catch (...) {
+    OCIO::ResetToDefaultLoggingFunction();
+    throw;
   }
-  return candidates;
+  OCIO::ResetToDefaultLoggingFunction();
+  ocio->setWorkingDir(fs::absolute(file).parent_path().c_str());
+  notes = config.omitted;
+  if (!unknown_keys.empty())
+    notes.push_back("keys ignored, unknown to OpenColorIO " + std::string(OCIO::GetVersion()) + ": " +
+                    joined({unknown_keys.begin(), unknown_keys.end()}));
+  return ocio;
 }
 
 std::shared_ptr<ColorConfig::Impl> from_file(const fs::path& file) {
   require_regular_file(file, "OCIO config");
   auto impl = std::make_shared<ColorConfig::Impl>();
   try {
-    impl->ocio = OCIO::Config::CreateFromFile(file.c_str());
+    try {
+      impl->ocio = OCIO::Config::CreateFromFile(file.c_str());
+    } catch (const OCIO::Exception&) {
+      std::ifstream stream(file);
+      const std::string text{std::istreambuf_iterator<char>(stream), std::istreambuf_iterator<char>()};
+      std::optional<DownlevelledConfig> older;
+      try {
+        older = downlevel_config(text);
+      } catch (const std::runtime_error&) {
+      }
+      if (!older) throw;  // OpenColorIO's own complaint says more than the YAML parser's
+      impl->ocio = downlevelled(file, *older, impl->notes);
+    }
     impl->ocio->validate();
   } catch (const OCIO::Exception& error) {
     throw InputError(file, "not a usable OCIO config: " + one_line(error.what()));
   }
   const std::string name = impl->ocio->getName();
   impl->description = file.string() + (name.empty() ? "" : " (" + name + ")");
+  if (!impl->notes.empty())
+    impl->description += ", read by OpenColorIO " + std::string(OCIO::GetVersion()) + " without what it cannot run";
   return impl;
 }
 
@@ -105,13 +166,16 @@ std::optional<Matrix3> as_linear_matrix(const OCIO::ConstCPUProcessorRcPtr& cpu)
 
 }  // namespace
 
-fs::path ColorConfig::blender_config_file() {
-  const std::vector<fs::path> candidates = blender_config_candidates();
-  for (const fs::path& candidate : candidates)
-    if (fs::is_regular_file(candidate)) return candidate;
+fs::path ColorConfig::blender_config_file(const std::string& blender) {
+  for (const fs::path& datafiles : blender_datafiles(blender))
+    if (const fs::path candidate = datafiles / "colormanagement" / "config.ocio"; fs::is_regular_file(candidate))
+      return candidate;
+  if (!blender.empty())
+    throw InputError(blender, "no Blender OCIO config beside it (looked for datafiles/colormanagement/config.ocio beside "
+                              "the executable, in <version>/ there and in ../share/blender)");
   throw InputError("--ocio blender: no Blender OCIO config found (looked for datafiles/colormanagement/config.ocio in "
-                   "BLENDER_SYSTEM_DATAFILES, /usr/share/blender, /usr/local/share/blender and beside blender on PATH); "
-                   "give the path of Blender's config.ocio");
+                   "BLENDER_SYSTEM_DATAFILES, beside $BLENDER, /usr/bin/blender, /usr/local/bin/blender and blender on "
+                   "PATH); name the Blender with --blender PATH, or give the path of its config.ocio");
 }
 
 ColorConfig ColorConfig::builtin() {
@@ -121,9 +185,11 @@ ColorConfig ColorConfig::builtin() {
   return ColorConfig(std::move(impl));
 }
 
-ColorConfig ColorConfig::load(const std::string& which) {
+ColorConfig ColorConfig::load(const std::string& which, const std::string& blender) {
+  if (!blender.empty() && which != "blender")
+    throw InputError("--blender " + blender + " names the Blender whose config --ocio blender loads; --ocio is '" + which + "'");
   if (which == "builtin") return builtin();
-  if (which == "blender") return ColorConfig(from_file(blender_config_file()));
+  if (which == "blender") return ColorConfig(from_file(blender_config_file(blender)));
   if (!which.empty()) return ColorConfig(from_file(which));
   const char* environment = std::getenv("OCIO");
   if (environment == nullptr || *environment == '\0') return builtin();
@@ -135,6 +201,8 @@ ColorConfig ColorConfig::load(const std::string& which) {
 }
 
 std::string ColorConfig::description() const { return impl_->description; }
+
+const std::vector<std::string>& ColorConfig::omitted() const { return impl_->notes; }
 
 std::string ColorConfig::working_space() const {
   const OCIO::ConstColorSpaceRcPtr space = impl_->ocio->getColorSpace(OCIO::ROLE_SCENE_LINEAR);

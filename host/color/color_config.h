@@ -19,14 +19,19 @@ class ColorConfig {
  public:
   // `which`: "" means the OCIO environment variable's config when it is set, else the built-in one;
   // "builtin" the built-in one (color/builtin_config.h); "blender" an installed Blender's (its
-  // datafiles' colormanagement/config.ocio); anything else a config file. InputError naming the
-  // file (or the variable) and OpenColorIO's complaint when it cannot be loaded.
-  static ColorConfig load(const std::string& which = "");
+  // datafiles' colormanagement/config.ocio): the Blender executable `blender` names, else the one
+  // blender_config_file() finds; anything else a config file. InputError naming the file (or the
+  // variable) and OpenColorIO's complaint when it cannot be loaded.
+  static ColorConfig load(const std::string& which = "", const std::string& blender = "");
   static ColorConfig builtin();
-  // The config.ocio of an installed Blender ("blender" above); InputError saying where it looked.
-  static std::filesystem::path blender_config_file();
+  // The config.ocio of the Blender executable `blender`, or when empty of an installed Blender
+  // (BLENDER_SYSTEM_DATAFILES, $BLENDER, /usr/bin/blender, blender on PATH); InputError saying where it looked.
+  static std::filesystem::path blender_config_file(const std::string& blender = "");
 
   std::string description() const;  // "built-in" or the file, and the config's name
+  // For a config written for a newer OpenColorIO (Blender 5's): what was left out because this
+  // OpenColorIO cannot run it, one line per view and per kind of entry, each saying why. Empty otherwise.
+  const std::vector<std::string>& omitted() const;
   std::string working_space() const;
   std::vector<std::string> displays() const;
   std::string default_display() const;

@@ -6,6 +6,7 @@
 #include <mutex>
 #include <string>
 #include <tuple>
+#include <vector>
 
 #include <OpenColorIO/OpenColorIO.h>
 
@@ -18,6 +19,7 @@ class ViewPipeline;
 struct ColorConfig::Impl {
   OCIO_NAMESPACE::ConstConfigRcPtr ocio;
   std::string description;
+  std::vector<std::string> notes;  // what was left out of a newer OpenColorIO's config, and why
   // Compiled (display, view, look) triples: building one costs milliseconds, and a server changes
   // exposure on every slider step but view rarely.
   mutable std::mutex mutex;

@@ -75,9 +75,13 @@ DisplayTransform::DisplayTransform(const ColorConfig& config, const DisplaySetti
   display_ = settings.display.empty() ? config.default_display() : settings.display;
   const std::vector<std::string> views = config.views(display_);  // checks the display
   view_ = settings.view.empty() ? config.default_view(display_) : settings.view;
-  if (std::find(views.begin(), views.end(), view_) == views.end())
+  if (std::find(views.begin(), views.end(), view_) == views.end()) {
+    const std::string left_out = "view '" + view_ + "' of display '" + display_ + "' left out";
+    for (const std::string& note : config.omitted())
+      if (note.rfind(left_out, 0) == 0) throw InputError(config.description() + ": " + note);
     throw InputError(config.description() + ": display '" + display_ + "' has no view '" + view_ + "' (views: " +
                      joined(views) + ")");
+  }
   look_ = settings.look == "None" ? "" : settings.look;
   const std::vector<std::string> looks = config.looks();
   if (!look_.empty() && look_.find(',') == std::string::npos && std::find(looks.begin(), looks.end(), look_) == looks.end())
