@@ -110,6 +110,24 @@ def compositor_tree(scene, create=True):
     return scene.node_tree if scene.use_nodes else None
 
 
+# 5.0 also replaced the Composite node by the compositor group's Group Output, and named the Alpha Over
+# node's inputs Background and Foreground (3.x and 4.x: Fac, Image, Image; release notes 5.0, Python API,
+# "Compositor").
+def composite_input(tree):
+    """The socket whose image a render of the scene writes."""
+    if at_least(5):
+        tree.interface.new_socket("Image", in_out="OUTPUT", socket_type="NodeSocketColor")
+        return tree.nodes.new("NodeGroupOutput").inputs[0]
+    return tree.nodes.new("CompositorNodeComposite").inputs[0]
+
+
+def alpha_over_inputs(node):
+    """An Alpha Over node's (background, foreground) inputs."""
+    if at_least(5):
+        return node.inputs["Background"], node.inputs["Foreground"]
+    return node.inputs[1], node.inputs[2]
+
+
 def disable_compositor(scene):
     if at_least(5):
         scene.compositing_node_group = None

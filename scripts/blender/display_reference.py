@@ -16,6 +16,9 @@ import sys
 
 import bpy
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import blender_versions  # noqa: E402
+
 
 def read_cases(path):
     cases = []
@@ -37,17 +40,17 @@ def compositing_scene(exr, background):
     camera = bpy.data.objects.new("camera", bpy.data.cameras.new("camera"))
     scene.collection.objects.link(camera)
     scene.camera = camera
-    scene.use_nodes = True
-    tree = scene.node_tree
+    tree = blender_versions.compositor_tree(scene)
     tree.nodes.clear()
     plate = tree.nodes.new("CompositorNodeRGB")
     plate.outputs[0].default_value = (*background, 1.0)
     source = tree.nodes.new("CompositorNodeImage")
     source.image = image
     over = tree.nodes.new("CompositorNodeAlphaOver")
-    tree.links.new(plate.outputs[0], over.inputs[1])
-    tree.links.new(source.outputs["Image"], over.inputs[2])
-    tree.links.new(over.outputs[0], tree.nodes.new("CompositorNodeComposite").inputs[0])
+    under, above = blender_versions.alpha_over_inputs(over)
+    tree.links.new(plate.outputs[0], under)
+    tree.links.new(source.outputs["Image"], above)
+    tree.links.new(over.outputs[0], blender_versions.composite_input(tree))
     scene.display_settings.display_device = "sRGB"
     scene.view_settings.gamma = 1.0
     scene.render.dither_intensity = 0.0

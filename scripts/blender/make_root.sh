@@ -3,7 +3,10 @@
 # Blender than the host's can render on this machine without changing the host: only the cache
 # directory is written. Usage: make_root.sh SUITE NAME, e.g. `make_root.sh trixie blender4`.
 #   root:    $PHONGCL_CACHE/roots/SUITE   (PHONGCL_CACHE defaults to /var/cache/phongcl)
-#   wrapper: $PHONGCL_CACHE/bin/NAME      (`NAME -b scene.blend --python ...`, arguments passed through)
+#   wrapper: $PHONGCL_CACHE/bin/NAME      (`NAME -b scene.blend --python ...`, arguments passed through),
+#            a link to $PHONGCL_CACHE/blenders/NAME/bin/blender, laid out as an installed Blender is:
+#            its ../share/blender is the root's, so `phongcl --ocio blender --blender NAME` finds the
+#            root's OCIO config, and so does `--ocio blender` with that bin directory on PATH.
 # Safe to run again: a root is complete once its marker file exists; a root without one (an interrupted
 # run) is removed and made again. docs/formats.md "From a Blender scene" says how to add a version.
 set -euo pipefail
@@ -16,7 +19,8 @@ root="$cache/roots/$suite"
 # even in the background (without them: "Couldn't open libGL.so.1", an abort).
 packages=(blender libegl1 libegl-mesa0 libgl1 libopengl0 libglx-mesa0 libgl1-mesa-dri)
 marker="$root/.phongcl-complete"
-wrapper="$cache/bin/$name"
+install="$cache/blenders/$name"
+wrapper="$install/bin/blender"
 
 if [ "$(id -u)" -ne 0 ]; then
   echo "phongcl setup: making a Debian root needs root (debootstrap, chroot); run as root or with sudo" >&2
@@ -64,7 +68,8 @@ if [ ${#missing[@]} -gt 0 ]; then
   install_packages "${missing[@]}"
 fi
 
-mkdir -p "$cache/bin"
+mkdir -p "$cache/bin" "$install/bin"
+ln -sfn "$root/usr/share" "$install/share"
 repository=$(cd "$(dirname "$0")/../.." && pwd)
 cat >"$wrapper.tmp" <<WRAPPER
 #!/usr/bin/env bash
@@ -118,4 +123,5 @@ exit 2
 WRAPPER
 chmod +x "$wrapper.tmp"
 mv "$wrapper.tmp" "$wrapper"
-echo "phongcl setup: $wrapper runs Blender $(cat "$marker") (Debian $suite)"
+ln -sfn "../blenders/$name/bin/blender" "$cache/bin/$name"
+echo "phongcl setup: $cache/bin/$name runs Blender $(cat "$marker") (Debian $suite)"
