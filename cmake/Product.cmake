@@ -17,6 +17,8 @@ phongcl_room(color    DEPS phongcl_image phongcl_scene phongcl_gbuffer PkgConfig
 # where the code says so (_mm256_fmadd_ps), not wherever the compiler may.
 set_source_files_properties(host/color/pixel_kernels_avx2.cpp TARGET_DIRECTORY phongcl_color PROPERTIES COMPILE_OPTIONS "-mavx2;-mfma;-ffp-contract=off")
 phongcl_room(sequence DEPS phongcl_shading Threads::Threads)
+# Relighting over a render: its light-group passes kept, scaled or replaced by the shading of the group.
+phongcl_room(composite DEPS phongcl_shading phongcl_image phongcl_exr phongcl_scene)
 
 # One shared library of every product room's objects. Its public face is include/phongcl/ (and the
 # room headers those include, installed beside them); dependencies stay private but for GLM, whose
@@ -45,7 +47,7 @@ add_library(phongcl_cli_support STATIC host/cli/format.cpp host/cli/inputs.cpp h
 target_link_libraries(phongcl_cli_support PUBLIC phongcl_internal CLI11::CLI11)
 
 file(GLOB PHONGCL_CLI_COMMANDS CONFIGURE_DEPENDS host/cli/*_command.cpp)
-add_executable(phongcl host/cli/main.cpp host/cli/lab_handover.cpp host/cli/shade_sequence.cpp
+add_executable(phongcl host/cli/main.cpp host/cli/lab_handover.cpp host/cli/shade_over.cpp host/cli/shade_sequence.cpp
                host/cli/sequence_progress.cpp ${PHONGCL_CLI_COMMANDS})
 target_link_libraries(phongcl PRIVATE phongcl_cli_support)
 # Installed, it finds libphongcl beside it in ../lib.

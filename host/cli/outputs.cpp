@@ -155,8 +155,10 @@ std::string ImageOutputs::write_images(const Image& image, const glm::dvec3& bac
   return exr_file + pixel_type_name(half) + (png_written.empty() ? "" : ", " + png_written);
 }
 
-void refuse_outputs_over_inputs(const SceneInputs& inputs, const ImageOutputs& outputs, const Scene* scene) {
+void refuse_outputs_over_inputs(const SceneInputs& inputs, const ImageOutputs& outputs, const Scene* scene,
+                                std::vector<NamedFile> other_inputs) {
   std::vector<NamedFile> files = inputs.named_files(scene);
+  for (NamedFile& file : other_inputs) files.push_back(std::move(file));
   for (NamedFile& file : outputs.named_files()) files.push_back(std::move(file));
   refuse_shared_files(files);
 }

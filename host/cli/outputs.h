@@ -64,7 +64,9 @@ struct ImageOutputs {
 };
 
 // Refuses (refuse_shared_files) a run whose output is one of its inputs or another output: the
-// options' files, and with `scene` (parsed) its meshes and, without --gbuffer, its "gbuffer" entry.
-void refuse_outputs_over_inputs(const SceneInputs& inputs, const ImageOutputs& outputs, const Scene* scene = nullptr);
+// options' files, and with `scene` (parsed) its meshes and, without --gbuffer, its "gbuffer" entry,
+// and the command's `other_inputs` (shade's --over).
+void refuse_outputs_over_inputs(const SceneInputs& inputs, const ImageOutputs& outputs, const Scene* scene = nullptr,
+                                std::vector<NamedFile> other_inputs = {});
 
 }  // namespace phongcl::cli

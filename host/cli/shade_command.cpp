@@ -11,6 +11,7 @@
 #include "cli/format.h"
 #include "cli/inputs.h"
 #include "cli/outputs.h"
+#include "cli/shade_over.h"
 #include "cli/shade_sequence.h"
 #include "exr/exr_channels.h"
 
@@ -31,6 +32,7 @@ struct ShadeArguments {
   int shadow_steps = ShadowSettings{}.steps;
   std::string shadow_thickness = format_shadow_thickness(ShadowSettings{}.thickness);
   bool explain = false;
+  std::string over;  // a render to composite over (cli/shade_over.h)
   SequenceOptions sequence;
 };
 
@@ -52,7 +54,7 @@ RelighterOptions relighter_options(const ShadeArguments& args) {
   RelighterOptions options{args.device, parse_precision(args.precision), !args.no_specialise, args.lanes};
   options.culling = parse_culling(args.culling);
   options.tile_size = args.tile;
-  options.terms = args.outputs.wants_terms();
+  options.terms = args.outputs.wants_terms() || !args.over.empty();
   options.shadows = {parse_shadow_mode(args.shadows), args.shadow_steps, parse_shadow_thickness(args.shadow_thickness)};
   check_options(options);
   return options;
@@ -61,13 +63,15 @@ RelighterOptions relighter_options(const ShadeArguments& args) {
 void run_shade(const ShadeArguments& args) {
   const RelighterOptions options = relighter_options(args);  // checked before anything is read
   if (args.sequence.wanted(args.inputs, args.outputs)) {
+    if (!args.over.empty()) throw std::invalid_argument("--over composites one frame over one render, not a sequence");
     run_shade_sequence(args.inputs, args.outputs, options, args.sequence);
     return;
   }
+  const std::vector<NamedFile> over = args.over.empty() ? std::vector<NamedFile>{} : std::vector<NamedFile>{{"--over", args.over}};
   const auto start = Clock::now();
   ImageOutputs outputs = args.outputs;
   outputs.color = args.inputs.color_config();
-  refuse_outputs_over_inputs(args.inputs, outputs);
+  refuse_outputs_over_inputs(args.inputs, outputs, nullptr, over);
   outputs.check_destinations();
   args.sequence.start_exr_threads();
   // The G-buffer is read while the OpenCL platform starts: neither needs the other. OpenCL stays on
@@ -79,7 +83,7 @@ void run_shade(const ShadeArguments& args) {
   };
   std::future<Inputs> reading = std::async(std::launch::async, [&] {
     Scene scene = args.inputs.load_scene();
-    refuse_outputs_over_inputs(args.inputs, outputs, &scene);
+    refuse_outputs_over_inputs(args.inputs, outputs, &scene, over);
     LoadedGBuffer loaded = args.inputs.load_described_gbuffer(scene);
     return Inputs{std::move(scene), std::move(loaded), milliseconds_since(start)};
   });
@@ -91,8 +95,12 @@ void run_shade(const ShadeArguments& args) {
   relighter.set_frame(scene, std::move(inputs.loaded.gbuffer));
   const GBuffer& gbuffer = relighter.gbuffer();
   TermImages terms;
-  const Image image = options.terms ? relighter.shade(terms) : relighter.shade();
+  const Image shaded = options.terms ? relighter.shade(terms) : relighter.shade();
   const ShadeReport result = relighter.last_report();
+  const auto composite_start = Clock::now();
+  const OverResult composite = args.over.empty() ? OverResult{} : shade_over(args.over, scene, relighter);
+  const double composite_ms = milliseconds_since(composite_start);
+  const Image& image = args.over.empty() ? shaded : composite.image;
   const auto write_start = Clock::now();
   outputs.compression = args.sequence.output_compression(gbuffer.compression);
   const std::string written = outputs.write(image, scene.background, terms);
@@ -129,6 +137,7 @@ void run_shade(const ShadeArguments& args) {
               << c.max_lights_per_tile << "; " << milliseconds(c.culling_ms) << " (inside kernel time)\n";
   }
   if (!result.shadows.empty()) std::cout << "  shadows    " << result.shadows << "\n";
+  if (!args.over.empty()) std::cout << "  over       " << composite.summary << "; " << milliseconds(composite_ms) << "\n";
   if (result.shadows_culled) {
     const ShadowCullingStats& c = result.shadow_culling;
     std::cout << "             " << with_commas(c.pairs) << " (tile, light) pairs: candidates per pair mean " << std::fixed
@@ -188,6 +197,10 @@ void add_shade_command(CLI::App& app) {
             }
           },
           "LENGTH|PERCENT"));
+  command->add_option("--over", args->over,
+                      "A render with light-group passes (Blender's Combined_<group>) to relight: its Combined pass with "
+                      "each light group the scene changed since \"rendered\" scaled (colour only) or re-shaded by "
+                      "phongcl; the rest exactly as rendered (docs/compositing.md)");
   args->sequence.add_options(*command);
   command->add_flag("--explain", args->explain, "Print what was compiled in and out, and why, and the build options");
   command->callback([args] { run_shade(*args); });

@@ -82,6 +82,12 @@ void convert_scene_colors(Scene& scene, const ColorConfig& config) {
   for (std::size_t i = 0; i < scene.lights.size(); ++i) convert(scene.lights[i].color, "lights[" + std::to_string(i) + "].color");
   for (std::size_t i = 0; i < scene.area_lights.size(); ++i)
     convert(scene.area_lights[i].color, "area light " + std::to_string(i) + "'s color");
+  if (scene.rendered) {
+    for (std::size_t i = 0; i < scene.rendered->lights.size(); ++i)
+      convert(scene.rendered->lights[i].color, "rendered.lights[" + std::to_string(i) + "].color");
+    for (std::size_t i = 0; i < scene.rendered->area_lights.size(); ++i)
+      convert(scene.rendered->area_lights[i].color, "rendered area light " + std::to_string(i) + "'s color");
+  }
   for (std::size_t i = 0; i < scene.materials.size(); ++i) {
     const std::string name = "materials[" + std::to_string(i) + "].";
     convert(scene.materials[i].ka, name + "ka");

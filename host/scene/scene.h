@@ -40,6 +40,7 @@ struct Light {
 
   bool has_range() const { return range > 0.0; }
   bool reaches(int material) const;  // light linking
+  bool operator==(const Light&) const = default;
 };
 
 // The specular lobe (docs/shading.md "Specular models"): Phong's (v.r)^q, the default;
@@ -101,6 +102,14 @@ struct Object {
   bool operator==(const Object&) const = default;
 };
 
+// The lights as the renderer had them when it rendered the passes a composite starts from (a scene
+// file's "rendered", written by scripts/blender/export_scene.py beside the lights the artist edits):
+// what decides which light groups changed (composite/group_edits.h).
+struct RenderedLights {
+  std::vector<Light> lights;
+  std::vector<AreaLight> area_lights;
+};
+
 struct Scene {
   Camera camera;
   bool has_camera = true;  // false when the file has no "camera" (shade may take it from the G-buffer)
@@ -110,6 +119,7 @@ struct Scene {
   std::vector<AreaLight> area_lights;  // the file's lights of type "area", in file order
   std::vector<Material> materials;
   std::vector<Object> objects;
+  std::optional<RenderedLights> rendered;  // "rendered": {"lights": [...]}; absent: none stated
   // "color_space": the OCIO colour space the colours above are in (lights, materials, ambient,
   // background); empty: the working space. Front ends convert them (color/color_conversion.h) and
   // empty it; the Relighter refuses a scene whose colours are not converted yet.

@@ -177,6 +177,14 @@ std::filesystem::path read_gbuffer_path(const JsonValue& value, const std::files
   return path.is_absolute() ? path : source.parent_path() / path;
 }
 
+void read_lights(const JsonValue& list, std::size_t material_count, std::vector<Light>& lights,
+                 std::vector<AreaLight>& area_lights) {
+  for (const JsonValue& light : list.elements()) {
+    if (is_area_light(light)) area_lights.push_back(read_area_light(light.object()));
+    else lights.push_back(read_light(light, material_count));
+  }
+}
+
 }  // namespace
 
 Scene parse_scene(std::string_view json_text, const std::filesystem::path& source) {
@@ -185,7 +193,7 @@ Scene parse_scene(std::string_view json_text, const std::filesystem::path& sourc
 
 Scene read_scene(const nlohmann::json& document, const std::filesystem::path& source) {
   const JsonObject top = JsonValue(document, "", source).object();
-  top.expect_keys({"camera", "background", "ambient", "lights", "materials", "objects", "gbuffer", "color_space"});
+  top.expect_keys({"camera", "background", "ambient", "lights", "materials", "objects", "gbuffer", "color_space", "rendered"});
   Scene scene;
   scene.source = source;
   if (auto value = top.find("camera")) scene.camera = read_camera(value->object());
@@ -195,11 +203,13 @@ Scene read_scene(const nlohmann::json& document, const std::filesystem::path& so
   if (auto value = top.find("materials"))
     for (const JsonValue& material : value->elements()) scene.materials.push_back(read_material(material));
   // After materials: lights (linking) and objects refer to them by index.
-  if (auto value = top.find("lights"))
-    for (const JsonValue& light : value->elements()) {
-      if (is_area_light(light)) scene.area_lights.push_back(read_area_light(light.object()));
-      else scene.lights.push_back(read_light(light, scene.materials.size()));
-    }
+  if (auto value = top.find("lights")) read_lights(*value, scene.materials.size(), scene.lights, scene.area_lights);
+  if (auto value = top.find("rendered")) {
+    const JsonObject rendered = value->object();
+    rendered.expect_keys({"lights"});
+    scene.rendered.emplace();
+    read_lights(rendered.at("lights"), scene.materials.size(), scene.rendered->lights, scene.rendered->area_lights);
+  }
   if (auto value = top.find("objects")) scene.objects = read_objects(*value, scene.materials.size());
   if (auto value = top.find("gbuffer")) scene.gbuffer = read_gbuffer_path(*value, source);
   if (auto value = top.find("color_space")) {
