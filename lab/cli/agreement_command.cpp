@@ -96,7 +96,8 @@ void run_agreement(const AgreementArguments& args) {
     throw std::invalid_argument("agreement: give --cycles, --shaded and --unshadowed once per light, in the same order"
                                 " (--unshadowed not with --median-at-most or --p99-at-most)");
   const std::string layer = args.view_layer.empty() ? "" : args.view_layer + ".";
-  const std::vector<std::string> shaded_channels = {args.layer + ".R", args.layer + ".G", args.layer + ".B"};
+  const std::string shaded_layer = args.layer.empty() ? "" : args.layer + ".";
+  const std::vector<std::string> shaded_channels = {shaded_layer + "R", shaded_layer + "G", shaded_layer + "B"};
   std::vector<LightImages> lights;
   std::vector<bool> mask;
   int width = 0, height = 0;
@@ -146,7 +147,8 @@ void add_agreement_command(CLI::App& app) {
   command->add_option("--shaded", args->shaded, "phongcl --aov file of the same light (per light)")->required();
   command->add_option("--unshadowed", args->unshadowed,
                       "phongcl --aov file of the same light, shadows off (per light; not with --median-at-most)");
-  command->add_option("--layer", args->layer, "The --aov files' layer to compare: diffuse (default) or group.<name>");
+  command->add_option("--layer", args->layer, "The --aov files' layer to compare: diffuse (default) or group.<name>; '' the image's own R, G, B "
+                      "(a shaded or composited --out)");
   command->add_option("--cycles-pass", args->cycles_pass,
                       "The Cycles pass to compare with (Combined_<light group>; default DiffDir x DiffCol)");
   command->add_option("--median-at-most", args->median_at_most,

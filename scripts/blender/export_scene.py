@@ -46,7 +46,10 @@ name those cases.
   mapped: a note names the material or world, the node and the value exported instead.
 - Shadows: a light that casts shadows in Cycles (light.cycles.cast_shadow in 3.x, Light.use_shadow in
   4.0+) gets "shadows": true.
-- Light groups: a light's Object.lightgroup (Blender 3.2+) becomes its "group", area lights' too.
+- Light groups: a light's Object.lightgroup (Blender 3.2+) becomes its "group", area lights' too; --render
+  adds each to the view layer's light groups, so Cycles writes its Combined_<group> pass.
+- "rendered" keeps a copy of the lights as exported: edit "lights", and `phongcl shade --over` composites
+  over the render with only the changed groups replaced (docs/compositing.md).
 - --geometry DIR writes every visible mesh that casts shadows (Object.visible_shadow) as a
   world-space binary little-endian PLY in DIR, modifiers applied and triangulated, one file per
   object and material slot (DIR/<object>.<slot>.ply), and lists each as a {"type": "mesh"} object
@@ -369,12 +372,16 @@ def export_geometry(scene, directory, json_directory):
 
 
 def scene_json(scene, falloff="none", gbuffer=None, objects=None):
+    lights = lights_json(scene, falloff)
     document = {"camera": camera_json(scene), "background": [0.0, 0.0, 0.0], "ambient": ambient_json(scene),
-                "lights": lights_json(scene, falloff), "materials": materials_json(scene)}
+                "lights": lights, "materials": materials_json(scene)}
     if objects:
         document["objects"] = objects
     if gbuffer:
         document["gbuffer"] = gbuffer
+    # The lights as rendered, kept apart from those the artist edits: `phongcl shade --over` tells by
+    # them which light groups changed since the render.
+    document["rendered"] = {"lights": json.loads(json.dumps(lights))}
     return document
 
 
@@ -386,6 +393,9 @@ def write_json(document, path):
         if isinstance(value, list) and value and isinstance(value[0], dict):
             items = ",\n".join("    " + json.dumps(item) for item in value)
             lines.append('  "%s": [\n%s\n  ]' % (key, items))
+        elif key == "rendered":
+            items = ",\n".join("      " + json.dumps(item) for item in value["lights"])
+            lines.append('  "rendered": {"lights": [\n%s\n  ]}' % items if items else '  "rendered": {"lights": []}')
         else:
             lines.append("  %s: %s" % (json.dumps(key), json.dumps(value)))
     with open(temp, "w") as out:
@@ -405,6 +415,19 @@ def enable_passes(view_layer, position=True, material_index=True):
         view_layer.use_pass_material_index = True
 
 
+def add_light_group_passes(scene, view_layer):
+    """Cycles writes a Combined_<group> pass for each light group of the view layer (Blender 3.2+); a
+    light's group that the layer lacks is added, so every exported "group" has its pass."""
+    if not hasattr(view_layer, "lightgroups"):
+        return
+    for light in scene.objects:
+        group = getattr(light, "lightgroup", "") if light.type == "LIGHT" and not light.hide_render else ""
+        if group and group not in view_layer.lightgroups:
+            view_layer.lightgroups.add(name=group)
+            note("light group '%s' of light '%s' added to view layer '%s', so that its pass is rendered"
+                 % (group, light.name, view_layer.name))
+
+
 def multilayer_exr(settings):
     versions.set_multilayer_exr(settings)
 
@@ -416,6 +439,7 @@ def render_gbuffer(scene, path, samples=None):
     if samples:
         scene.cycles.samples = samples
     enable_passes(bpy.context.view_layer)
+    add_light_group_passes(scene, bpy.context.view_layer)
     multilayer_exr(scene.render.image_settings)
     scene.render.use_file_extension = False
     scene.render.filepath = os.path.abspath(path)
