@@ -10,7 +10,8 @@
 namespace phongcl {
 
 Query::Query(const HttpRequest& request, const std::vector<std::string_view>& allowed) : request_(request) {
-  for (const auto& [name, value] : request.params) {
+  for (const auto& param : request.params) {
+    const std::string& name = param.first;
     bool known = false;
     for (std::string_view a : allowed) known = known || a == name;
     if (!known) {
@@ -19,7 +20,7 @@ Query::Query(const HttpRequest& request, const std::vector<std::string_view>& al
       throw BadRequest("unknown parameter '" + name + "'" +
                        (expected.empty() ? " (this endpoint takes none)" : " (expected " + expected + ")"));
     }
-    const auto named = [&](const auto& param) { return param.first == name; };
+    const auto named = [&](const auto& other) { return other.first == name; };
     if (std::count_if(request.params.begin(), request.params.end(), named) > 1)
       throw BadRequest("parameter '" + name + "' given more than once");
   }
