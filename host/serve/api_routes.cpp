@@ -37,7 +37,7 @@ double elapsed_ms(Clock::time_point since) {
 // U+FFFD rather than an exception from nlohmann.
 std::string json_text(const json& body) { return body.dump(-1, ' ', false, json::error_handler_t::replace) + "\n"; }
 
-void send_json(httplib::Response& response, const json& body, int status = 200) {
+void send_json(HttpResponse& response, const json& body, int status = 200) {
   response.status = status;
   response.set_content(json_text(body), "application/json");
 }
@@ -196,11 +196,9 @@ json settings_json(const RenderSettings& settings) {
 
 }  // namespace
 
-std::string error_json(const std::string& message) { return json_text({{"error", message}}); }
-
-void ApiRoutes::add_to(httplib::Server& server) {
-  auto route = [this](void (ApiRoutes::*handler)(const httplib::Request&, httplib::Response&)) {
-    return [this, handler](const httplib::Request& request, httplib::Response& response) {
+void ApiRoutes::add_to(HttpRouter& router) {
+  auto route = [this](void (ApiRoutes::*handler)(const HttpRequest&, HttpResponse&)) {
+    return [this, handler](const HttpRequest& request, HttpResponse& response) {
       // Nothing leaves a handler: whatever a request sends, the server answers it and goes on.
       try {
         (this->*handler)(request, response);
@@ -220,39 +218,39 @@ void ApiRoutes::add_to(httplib::Server& server) {
       }
     };
   };
-  server.Get("/api/scene", route(&ApiRoutes::get_scene));
-  server.Put("/api/scene", route(&ApiRoutes::put_scene));
-  server.Get("/api/settings", route(&ApiRoutes::get_settings));
-  server.Put("/api/settings", route(&ApiRoutes::put_settings));
-  server.Get("/api/image", route(&ApiRoutes::get_image));
-  server.Get("/api/frame", route(&ApiRoutes::get_frame));
-  server.Get("/api/stats", route(&ApiRoutes::get_stats));
-  server.Get("/api/pick", route(&ApiRoutes::get_pick));
-  server.Post("/api/save", route(&ApiRoutes::post_save));
-  server.Get("/api/beauty", route(&ApiRoutes::get_beauty));
-  server.Get("/api/colors", route(&ApiRoutes::get_colors));
-  server.Get("/api/color", route(&ApiRoutes::get_color));
+  router.add("GET", "/api/scene", route(&ApiRoutes::get_scene));
+  router.add("PUT", "/api/scene", route(&ApiRoutes::put_scene));
+  router.add("GET", "/api/settings", route(&ApiRoutes::get_settings));
+  router.add("PUT", "/api/settings", route(&ApiRoutes::put_settings));
+  router.add("GET", "/api/image", route(&ApiRoutes::get_image));
+  router.add("GET", "/api/frame", route(&ApiRoutes::get_frame));
+  router.add("GET", "/api/stats", route(&ApiRoutes::get_stats));
+  router.add("GET", "/api/pick", route(&ApiRoutes::get_pick));
+  router.add("POST", "/api/save", route(&ApiRoutes::post_save));
+  router.add("GET", "/api/beauty", route(&ApiRoutes::get_beauty));
+  router.add("GET", "/api/colors", route(&ApiRoutes::get_colors));
+  router.add("GET", "/api/color", route(&ApiRoutes::get_color));
 }
 
-void ApiRoutes::get_scene(const httplib::Request& request, httplib::Response& response) {
+void ApiRoutes::get_scene(const HttpRequest& request, HttpResponse& response) {
   Query query(request, {});
   const SceneSnapshot scene = live_.scene();
   response.set_header("X-Scene-Version", std::to_string(scene.scene_version));
   response.set_content(scene.json, "application/json");
 }
 
-void ApiRoutes::put_scene(const httplib::Request& request, httplib::Response& response) {
+void ApiRoutes::put_scene(const HttpRequest& request, HttpResponse& response) {
   Query query(request, {});
   const std::uint64_t version = live_.replace_scene(request.body);
   send_json(response, {{"scene_version", version}});
 }
 
-void ApiRoutes::get_settings(const httplib::Request& request, httplib::Response& response) {
+void ApiRoutes::get_settings(const HttpRequest& request, HttpResponse& response) {
   Query query(request, {});
   send_json(response, settings_json(live_.settings()));
 }
 
-void ApiRoutes::put_settings(const httplib::Request& request, httplib::Response& response) {
+void ApiRoutes::put_settings(const HttpRequest& request, HttpResponse& response) {
   Query query(request, {});
   const RenderSettings settings = parse_settings(request.body, live_.settings(), live_.scene().light_groups);
   live_.replace_settings(settings);
@@ -272,7 +270,7 @@ ApiRoutes::WaitingPlace::~WaitingPlace() {
   --routes_.waiting_;
 }
 
-void ApiRoutes::get_image(const httplib::Request& request, httplib::Response& response) {
+void ApiRoutes::get_image(const HttpRequest& request, HttpResponse& response) {
   const ImageRequest wanted = image_request(Query(request, kImageParameters), live_.session().width(), live_.color_config());
   const WaitingPlace place(*this);
   const auto frame = live_.current_frame(wanted.term.needs_terms(), options_.frame_timeout);
@@ -280,7 +278,7 @@ void ApiRoutes::get_image(const httplib::Request& request, httplib::Response& re
   send_frame(wanted, *frame, response);
 }
 
-void ApiRoutes::get_frame(const httplib::Request& request, httplib::Response& response) {
+void ApiRoutes::get_frame(const HttpRequest& request, HttpResponse& response) {
   const Query query(request, kPollParameters);
   const ImageRequest wanted = image_request(query, live_.session().width(), live_.color_config());
   const auto after = static_cast<std::uint64_t>(query.integer("after", 0, std::numeric_limits<long long>::max(), 0));
@@ -295,7 +293,7 @@ void ApiRoutes::get_frame(const httplib::Request& request, httplib::Response& re
   send_frame(wanted, *frame, response);
 }
 
-void ApiRoutes::get_beauty(const httplib::Request& request, httplib::Response& response) {
+void ApiRoutes::get_beauty(const HttpRequest& request, HttpResponse& response) {
   const ImageRequest wanted = image_request(Query(request, kBeautyParameters), live_.session().width(), live_.color_config());
   const Image* beauty = live_.session().beauty();
   if (!beauty)
@@ -303,7 +301,7 @@ void ApiRoutes::get_beauty(const httplib::Request& request, httplib::Response& r
   send_image(wanted, *beauty, glm::dvec3(0.0), response);  // opaque: nothing shows through
 }
 
-void ApiRoutes::send_frame(const ImageRequest& wanted, const RenderedFrame& frame, httplib::Response& response) {
+void ApiRoutes::send_frame(const ImageRequest& wanted, const RenderedFrame& frame, HttpResponse& response) {
   response.set_header("X-Frame-Version", std::to_string(frame.version));
   response.set_header("X-Scene-Version", std::to_string(frame.scene_version));
   if (!frame.error.empty()) return send_json(response, {{"error", frame.error}}, 422);
@@ -314,7 +312,7 @@ void ApiRoutes::send_frame(const ImageRequest& wanted, const RenderedFrame& fram
 
 // The image in the request's format, display settings and width, over `background`.
 void ApiRoutes::send_image(const ImageRequest& wanted, const Image& image, const glm::dvec3& background,
-                           httplib::Response& response) {
+                           HttpResponse& response) {
   const ColorConfig& color = live_.color_config();
   DisplaySettings settings = wanted.display;
   settings.background = background;
@@ -335,7 +333,7 @@ void ApiRoutes::send_image(const ImageRequest& wanted, const Image& image, const
   response.set_content(bytes, content_type(wanted.format));
 }
 
-void ApiRoutes::get_stats(const httplib::Request& request, httplib::Response& response) {
+void ApiRoutes::get_stats(const HttpRequest& request, HttpResponse& response) {
   Query query(request, {});
   const auto frame = live_.latest_frame();
   const RenderCounters counters = live_.counters();
@@ -368,7 +366,7 @@ void ApiRoutes::get_stats(const httplib::Request& request, httplib::Response& re
   send_json(response, stats);
 }
 
-void ApiRoutes::get_pick(const httplib::Request& request, httplib::Response& response) {
+void ApiRoutes::get_pick(const HttpRequest& request, HttpResponse& response) {
   Query query(request, {"x", "y"});
   if (!query.text("x") || !query.text("y")) throw BadRequest("parameters 'x' and 'y' (pixel, row 0 at the top) are required");
   const RelightSession& session = live_.session();
@@ -385,7 +383,7 @@ void ApiRoutes::get_pick(const httplib::Request& request, httplib::Response& res
 }
 
 // The config's displays with their views, its looks and colour spaces, and the colour pickers' space.
-void ApiRoutes::get_colors(const httplib::Request& request, httplib::Response& response) {
+void ApiRoutes::get_colors(const HttpRequest& request, HttpResponse& response) {
   Query query(request, {});
   const ColorConfig& color = live_.color_config();
   json displays = json::array();
@@ -402,7 +400,7 @@ void ApiRoutes::get_colors(const httplib::Request& request, httplib::Response& r
 
 // One colour from one of the config's spaces into another: the page's colour pickers show and
 // send values through it.
-void ApiRoutes::get_color(const httplib::Request& request, httplib::Response& response) {
+void ApiRoutes::get_color(const HttpRequest& request, HttpResponse& response) {
   Query query(request, {"rgb", "from", "to"});
   const auto rgb = query.text("rgb"), from = query.text("from"), to = query.text("to");
   if (!rgb || !from || !to) throw BadRequest("parameters 'rgb' (r,g,b), 'from' and 'to' (colour spaces) are required");
@@ -413,7 +411,7 @@ void ApiRoutes::get_color(const httplib::Request& request, httplib::Response& re
   send_json(response, {{"rgb", vec3_json(converted)}});
 }
 
-void ApiRoutes::post_save(const httplib::Request& request, httplib::Response& response) {
+void ApiRoutes::post_save(const HttpRequest& request, HttpResponse& response) {
   Query query(request, {});
   if (options_.save_path.empty())
     return send_json(response, {{"error", "no --save path: start phongcl serve with --save FILE to save on the server"}}, 409);

@@ -5,8 +5,7 @@
 #include <mutex>
 #include <string>
 
-#include <httplib.h>
-
+#include "serve/http_router.h"
 #include "serve/live_relighter.h"
 #include "serve/query.h"
 #include "serve/relight_server.h"
@@ -18,23 +17,23 @@ struct ImageRequest;
 class ApiRoutes {
  public:
   ApiRoutes(LiveRelighter& live, const ServeOptions& options) : live_(live), options_(options) {}
-  void add_to(httplib::Server& server);
+  void add_to(HttpRouter& router);
 
  private:
-  void get_scene(const httplib::Request& request, httplib::Response& response);
-  void put_scene(const httplib::Request& request, httplib::Response& response);
-  void get_settings(const httplib::Request& request, httplib::Response& response);
-  void put_settings(const httplib::Request& request, httplib::Response& response);
-  void get_image(const httplib::Request& request, httplib::Response& response);
-  void get_frame(const httplib::Request& request, httplib::Response& response);
-  void get_stats(const httplib::Request& request, httplib::Response& response);
-  void get_pick(const httplib::Request& request, httplib::Response& response);
-  void post_save(const httplib::Request& request, httplib::Response& response);
-  void get_beauty(const httplib::Request& request, httplib::Response& response);
-  void get_colors(const httplib::Request& request, httplib::Response& response);
-  void get_color(const httplib::Request& request, httplib::Response& response);
-  void send_frame(const ImageRequest& wanted, const RenderedFrame& frame, httplib::Response& response);
-  void send_image(const ImageRequest& wanted, const Image& image, const glm::dvec3& background, httplib::Response& response);
+  void get_scene(const HttpRequest& request, HttpResponse& response);
+  void put_scene(const HttpRequest& request, HttpResponse& response);
+  void get_settings(const HttpRequest& request, HttpResponse& response);
+  void put_settings(const HttpRequest& request, HttpResponse& response);
+  void get_image(const HttpRequest& request, HttpResponse& response);
+  void get_frame(const HttpRequest& request, HttpResponse& response);
+  void get_stats(const HttpRequest& request, HttpResponse& response);
+  void get_pick(const HttpRequest& request, HttpResponse& response);
+  void post_save(const HttpRequest& request, HttpResponse& response);
+  void get_beauty(const HttpRequest& request, HttpResponse& response);
+  void get_colors(const HttpRequest& request, HttpResponse& response);
+  void get_color(const HttpRequest& request, HttpResponse& response);
+  void send_frame(const ImageRequest& wanted, const RenderedFrame& frame, HttpResponse& response);
+  void send_image(const ImageRequest& wanted, const Image& image, const glm::dvec3& background, HttpResponse& response);
 
   // Holds one of HttpLimits::max_waiting places for a request that waits for a frame, or throws
   // Unavailable (503) when all are taken: waiting requests never take every worker.
@@ -56,8 +55,5 @@ class ApiRoutes {
   std::mutex encode_mutex_;
   std::map<std::string, double> last_encode_ms_;  // by format; guarded by encode_mutex_
 };
-
-// {"error": message}
-std::string error_json(const std::string& message);
 
 }  // namespace phongcl

@@ -1,7 +1,7 @@
 #pragma once
 // What one client may hold of `phongcl serve`, stated once (docs/reliability.md quotes them). A
 // connection costs a thread only while a complete request is being answered: reading requests and
-// writing responses happen in one poll loop (serve/connection_room.h), so clients that send slowly,
+// writing responses happen on one I/O thread (serve/http_server.h), so clients that send slowly,
 // read slowly or stay idle hold a socket and a buffer, never a worker.
 #include <chrono>
 #include <cstddef>
@@ -29,8 +29,8 @@ struct HttpLimits {
   // Request heads (request line and headers) and bodies above these are refused (431, 413).
   std::size_t max_head_bytes = 64u << 10;
   std::size_t max_body_bytes = kMaxRequestBytes;
-  // Bytes held for all connections together (requests being read, responses being written): above
-  // it, connections stop being read and the responses waiting longest are dropped.
+  // Bytes held for all connections together (request bodies, responses being written): a request
+  // whose body would pass it gets 503, and a response that passes it drops those waiting longest.
   std::size_t max_buffered_bytes = std::size_t{512} << 20;
   // After stop(): responses in flight get this long to be written, then every connection closes.
   milliseconds stop_time{1'500};

@@ -1,5 +1,6 @@
 #include "serve/query.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdlib>
@@ -8,8 +9,9 @@
 
 namespace phongcl {
 
-Query::Query(const httplib::Request& request, const std::vector<std::string_view>& allowed) : request_(request) {
-  for (const auto& [name, value] : request.params) {
+Query::Query(const HttpRequest& request, const std::vector<std::string_view>& allowed) : request_(request) {
+  for (const auto& param : request.params) {
+    const std::string& name = param.first;
     bool known = false;
     for (std::string_view a : allowed) known = known || a == name;
     if (!known) {
@@ -18,13 +20,16 @@ Query::Query(const httplib::Request& request, const std::vector<std::string_view
       throw BadRequest("unknown parameter '" + name + "'" +
                        (expected.empty() ? " (this endpoint takes none)" : " (expected " + expected + ")"));
     }
-    if (request.get_param_value_count(name) > 1) throw BadRequest("parameter '" + name + "' given more than once");
+    const auto named = [&](const auto& other) { return other.first == name; };
+    if (std::count_if(request.params.begin(), request.params.end(), named) > 1)
+      throw BadRequest("parameter '" + name + "' given more than once");
   }
 }
 
 std::optional<std::string> Query::text(const std::string& name) const {
-  if (!request_.has_param(name)) return std::nullopt;
-  return request_.get_param_value(name);
+  for (const auto& [given, value] : request_.params)
+    if (given == name) return value;
+  return std::nullopt;
 }
 
 long long Query::integer(const std::string& name, long long min, long long max, long long fallback) const {

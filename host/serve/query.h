@@ -6,22 +6,21 @@
 #include <string_view>
 #include <vector>
 
-#include <httplib.h>
-
 #include "serve/http_errors.h"
+#include "serve/http_message.h"
 
 namespace phongcl {
 
 class Query {
  public:
   // Throws BadRequest naming the first parameter not in `allowed`, or one given twice.
-  Query(const httplib::Request& request, const std::vector<std::string_view>& allowed);
+  Query(const HttpRequest& request, const std::vector<std::string_view>& allowed);
   std::optional<std::string> text(const std::string& name) const;
   long long integer(const std::string& name, long long min, long long max, long long fallback) const;
   double number(const std::string& name, double min, double max, double fallback) const;
 
  private:
-  const httplib::Request& request_;
+  const HttpRequest& request_;
 };
 
 }  // namespace phongcl

@@ -5,16 +5,18 @@
 #include <chrono>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
+#include <string_view>
 
-#include "serve/connection_room.h"
 #include "serve/http_limits.h"
+#include "serve/http_router.h"
+#include "serve/http_server.h"
 #include "serve/live_relighter.h"
 
 namespace phongcl {
 
 class ApiRoutes;
-class RoutedServer;
 
 struct ServeOptions {
   std::string host = "127.0.0.1";
@@ -38,16 +40,19 @@ class RelightServer {
   void run();
   // Wakes waiting requests and makes run() return; safe from any thread, idempotent.
   void stop();
-  // Answers one request whole (as the connection room hands it to a worker), without a socket:
-  // the HTTP fuzzer's way in. Never throws.
-  void answer(Exchange& exchange);
-  RoomCounters counters() const;
+  // One request's bytes to its response's, as a connection would answer them, without a socket:
+  // the HTTP fuzzer's way in. Nothing while the bytes are not a whole request. Never throws.
+  std::optional<std::string> answer(std::string_view request_bytes);
+  ConnectionCounters counters() const;
 
  private:
+  HttpResponse answer(const HttpRequest& request);
+
   LiveRelighter& live_;
   ServeOptions options_;
   std::unique_ptr<ApiRoutes> api_;
-  std::unique_ptr<RoutedServer> http_;
+  HttpRouter router_;
+  HttpServer http_;
 };
 
 }  // namespace phongcl

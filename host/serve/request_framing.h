@@ -1,46 +1,54 @@
 #pragma once
-// Where a request ends, read from its head before it is handed to the HTTP library: the connection
-// room buffers a whole request (head and body) before a worker sees it, and refuses at once what
-// no endpoint reads.
-#include <cstddef>
+// What the connection reads and writes, apart from the socket: Boost.Beast's parser held to
+// HttpLimits, the refusals a request gets before any handler sees it, and a response as Beast
+// writes it. serve/http_server.h reads sockets with it; answer_bytes() is the same path for bytes
+// in memory (the HTTP fuzzer's way in).
+#include <functional>
+#include <optional>
 #include <string>
 #include <string_view>
-#include <vector>
+
+#include <boost/beast/core/error.hpp>
+#include <boost/beast/http/message.hpp>
+#include <boost/beast/http/parser.hpp>
+#include <boost/beast/http/string_body.hpp>
 
 #include "serve/http_limits.h"
+#include "serve/http_message.h"
 
 namespace phongcl {
 
-struct RequestFraming {
-  enum class State { incomplete, complete, refused };
-  State state = State::incomplete;
-  std::size_t head_bytes = 0;  // the request line and headers, with the blank line after them
-  std::size_t body_bytes = 0;  // Content-Length
-  bool expects_continue = false;  // "Expect: 100-continue": the client waits for an interim 100
-  struct Line {
-    std::size_t begin, end;  // a header line, with its line break
-  };
-  // Header lines the library must not see: Expect (the room answers 100-continue; the library
-  // would send a second interim 100, or one for a value it URL-decodes to that) and Range (every
-  // response is whole, as RFC 9110 allows; the library would cut an error's JSON body down to the
-  // range asked for).
-  std::vector<Line> unread_lines;
-  int status = 0;              // refused: 400, 411, 413, 415 or 431
-  std::string error;           // refused: why, in one line
-  std::size_t total() const { return head_bytes + body_bytes; }
-};
+using RequestParser = boost::beast::http::request_parser<boost::beast::http::string_body>;
+using WireResponse = boost::beast::http::response<boost::beast::http::string_body>;
+using Answer = std::function<HttpResponse(const HttpRequest&)>;
 
-// `input` is what a connection has received of its next request (it may hold more after it).
-// complete once head and body are in; refused for a head over max_head_bytes (431), a malformed
-// or repeated Content-Length (400), a chunked or otherwise encoded body (411), a body over
-// max_body_bytes (413), or a form-encoded body (415: every endpoint reads JSON).
-RequestFraming frame_request(std::string_view input, const HttpLimits& limits);
+// Request targets longer than this are refused (414): the API's longest is a few hundred bytes.
+inline constexpr std::size_t kMaxTargetBytes = 8u << 10;
 
-// Takes a complete request off the front of `input`, without its unread header lines.
-std::string take_request(std::string& input, const RequestFraming& framing);
+// Sets the parser's head and body limits.
+void hold_to_limits(RequestParser& parser, const HttpLimits& limits);
 
-// A whole response with a JSON body {"error": message}, for the room's own refusals. `close`
-// adds "Connection: close".
-std::string error_response(int status, const std::string& message, bool close);
+// The refusal for what the parser reported: 431 (head too large), 413 (body too large), 411
+// (Transfer-Encoding), 400 (anything else malformed); none when the error is the connection's
+// (closed, reset, cancelled), not the request's.
+std::optional<HttpResponse> refusal_for(boost::beast::error_code error, const HttpLimits& limits);
+
+// Once the head is in, what no endpoint reads: a chunked body (411), a form-encoded one (415:
+// every endpoint reads JSON), a target over kMaxTargetBytes (414).
+std::optional<HttpResponse> refusal_for_head(const RequestParser& parser);
+
+// "Expect: 100-continue" (exactly, in any case): the client waits for an interim 100 before the body.
+bool expects_continue(const RequestParser& parser);
+
+// The parsed request, for the routes.
+HttpRequest request_of(RequestParser& parser);
+
+// `response` as the connection sends it: to HEAD without its body; "Connection: close" unless
+// `keep_alive`; "Retry-After: 1" on every 503.
+WireResponse wire_response(HttpResponse response, bool head, bool keep_alive);
+
+// One request's bytes to its response's, as a connection reading them would send it (refusals
+// included); nothing while the bytes are not a whole request yet.
+std::optional<std::string> answer_bytes(std::string_view bytes, const HttpLimits& limits, const Answer& answer);
 
 }  // namespace phongcl
