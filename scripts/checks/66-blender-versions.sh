@@ -14,9 +14,9 @@ checks=(60-blender 61-blender-notes 62-blender-area 62-blender-lights 63-blender
 
 summary=()
 for version in $versions; do
-  start=$SECONDS
+  start=$(date +%s)
   scripts/setup.sh "$version"
-  made=$((SECONDS - start))
+  made=$(($(date +%s) - start))
   blender="$cache/bin/$version"
   release=$("$blender" --version 2>/dev/null | sed -n 's/^Blender \([0-9.]*\).*/\1/p' | head -1)
   [ -n "$release" ] || { echo "$check: $blender does not run" >&2; exit 1; }
@@ -24,6 +24,6 @@ for version in $versions; do
     echo "== $check: $name on Blender $release"
     BLENDER="$blender" bash "scripts/checks/$name.sh" || { echo "$check: $name failed on Blender $release" >&2; exit 1; }
   done
-  summary+=("Blender $release: root in ${made} s, checks in $((SECONDS - start - made)) s")
+  summary+=("Blender $release: root in ${made} s, checks in $(($(date +%s) - start - made)) s")
 done
 echo "$check: every Blender check passed on $(IFS=';'; echo "${summary[*]}" | sed 's/;/; /g')"
