@@ -52,16 +52,29 @@ py::dict describe(const ColorConfig& config) {
 void bind_images(py::module_& module) {
   module.def(
       "write_exr",
-      [](const std::filesystem::path& path, const FloatArray& image, bool half, bool keep_color_where_transparent) {
+      [](const std::filesystem::path& path, const py::object& image, bool half, bool keep_color_where_transparent) {
         ExrWriteOptions options;
         options.type = half ? ExrPixelType::half : ExrPixelType::float32;
         options.keep_color_where_transparent = keep_color_where_transparent;
-        write_exr(image_from(image), path, options);
+        if (!py::isinstance<py::dict>(image)) return write_exr(image_from(image.cast<FloatArray>()), path, options);
+        // Layers, as renderers write passes: each array's channels under <name>.R, .G, .B (and .A when it has 4).
+        const py::dict named = image.cast<py::dict>();
+        std::vector<Image> images;
+        images.reserve(named.size());  // the layers point into it
+        std::vector<ExrLayer> layers;
+        for (const auto& [name, array] : named) {
+          const FloatArray pixels = array.cast<FloatArray>();
+          images.push_back(image_from(pixels));
+          layers.push_back({name.cast<std::string>(), &images.back(), pixels.shape(2) == 4});
+        }
+        write_layered_exr(layers, path, options);
       },
       py::arg("path"), py::arg("image"), py::arg("half") = false, py::arg("keep_color_where_transparent") = false,
       "Writes an (H, W, 4) RGBA (or (H, W, 3) RGB) array as an EXR with channels R G B A, float32 or half, "
-      "atomically (a temporary file, then a rename). Premultiplied, as OpenEXR's convention has it: RGB is written "
-      "as 0 where alpha is 0 (the shader leaves the background colour there) unless keep_color_where_transparent.");
+      "atomically (a temporary file, then a rename); or a dict of layer names to such arrays as one multilayer EXR "
+      "(channels <name>.R, .G, .B, and .A for 4 channels), as a renderer writes its passes. Premultiplied, as "
+      "OpenEXR's convention has it: RGB is written as 0 where alpha is 0 (the shader leaves the background colour "
+      "there) unless keep_color_where_transparent.");
   module.def(
       "write_png",
       [](const std::filesystem::path& path, const FloatArray& image, double exposure, const std::string& view,

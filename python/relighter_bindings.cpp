@@ -7,6 +7,7 @@
 #include <pybind11/stl.h>
 
 #include "bindings.h"
+#include "composite/relight_over.h"
 
 namespace phongcl::python {
 
@@ -47,6 +48,34 @@ py::array_t<float> shade(Relighter& relighter, const std::optional<py::array>& o
 py::array_t<float> array_of(const Image& image) {
   py::array_t<float> out({py::ssize_t{image.height}, py::ssize_t{image.width}, py::ssize_t{4}});
   std::copy(image.rgba.begin(), image.rgba.end(), out.mutable_data());
+  return out;
+}
+
+// The composite over a render (composite/relight_over.h) of the relighter's scene as edited so far, or
+// of `scene`: the image, and per light group what became of it.
+py::dict shade_over(Relighter& relighter, const std::string& render, const std::optional<Scene>& scene) {
+  const Scene edited = scene ? *scene : relighter.scene();
+  RelitOver relit;
+  {
+    py::gil_scoped_release release;
+    relit = relight_over(relighter, render, edited);
+  }
+  py::dict groups;
+  for (const GroupEdit& edit : relit.edits) {
+    py::dict group;
+    group["change"] = to_string(edit.change);
+    if (edit.change == GroupChange::scaled) group["scale"] = py::make_tuple(edit.scale.r, edit.scale.g, edit.scale.b);
+    if (const auto fit = relit.composite.fits.find(edit.group); fit != relit.composite.fits.end()) {
+      const GroupFit& f = fit->second;
+      group["diffuse_gain"] = py::make_tuple(f.diffuse_gain.r, f.diffuse_gain.g, f.diffuse_gain.b);
+      group["specular_gain"] = py::make_tuple(f.specular_gain.r, f.specular_gain.g, f.specular_gain.b);
+      group["residual"] = f.residual;
+    }
+    groups[py::str(edit.group)] = group;
+  }
+  py::dict out;
+  out["image"] = array_of(relit.composite.image);
+  out["groups"] = groups;
   return out;
 }
 
@@ -147,6 +176,12 @@ void bind_relighter(py::module_& module) {
            "Shades the frame with its terms (needs terms=True): a dict of float32 (H, W, 4) arrays, 'image', "
            "'ambient', 'diffuse', 'specular', and 'groups', each light group's name to its diffuse + specular "
            "(ambient + the groups + the ungrouped lights' light = image). Releases the GIL while shading.")
+      .def("shade_over", &shade_over, py::arg("render"), py::arg("scene") = py::none(),
+           "Relights the render itself (needs terms=True; docs/compositing.md): the EXR `render`'s Combined pass with "
+           "each light group that the scene (default: this relighter's, as set_lights left it) changed since its "
+           "\"rendered\" lights scaled or changed by phongcl's change of it. A dict: 'image' float32 (H, W, 4), and "
+           "'groups', each group's name to {'change': 'unchanged', 'scaled' or 're-shaded', with 'scale', or the "
+           "fit's 'diffuse_gain', 'specular_gain' and 'residual'}. Raises InputError naming the file or scene.")
       .def(
           "set_lights", [](Relighter& r, const py::object& lights) { r.set_lights(lights_from_python(lights)); },
           py::arg("lights"),

@@ -1,13 +1,10 @@
 #include "cli/shade_over.h"
 
-#include <algorithm>
 #include <cstdio>
 #include <map>
-#include <optional>
-#include <stdexcept>
+#include <utility>
 
-#include "common/error.h"
-#include "composite/composite.h"
+#include "composite/relight_over.h"
 
 namespace phongcl::cli {
 
@@ -33,55 +30,15 @@ std::string describe(const GroupEdit& edit, const std::map<std::string, GroupFit
          factors(fit->second.specular_gain) + ", residual " + residual + ")";
 }
 
-// phongcl's diffuse and specular light of the lights of `group` alone, or none when it has none.
-std::optional<GroupTerms> shade_group(Relighter& relighter, const std::string& group, const std::vector<Light>& lights,
-                                      const std::vector<AreaLight>& area_lights) {
-  std::vector<Light> its_lights;
-  std::vector<AreaLight> its_area_lights;
-  for (const Light& light : lights)
-    if (light.group == group) its_lights.push_back(light);
-  for (const AreaLight& light : area_lights)
-    if (light.group == group) its_area_lights.push_back(light);
-  if (its_lights.empty() && its_area_lights.empty()) return std::nullopt;
-  relighter.set_lights(its_lights);
-  relighter.set_area_lights(its_area_lights);
-  TermImages terms;
-  relighter.shade(terms);
-  return GroupTerms{std::move(terms.diffuse), std::move(terms.specular)};
-}
-
 }  // namespace
 
 OverResult shade_over(const std::string& render_file, const Scene& scene, Relighter& relighter) {
-  const std::vector<GroupEdit> edits = group_edits(scene);
-  const RenderedLights& rendered = *scene.rendered;
-  const std::vector<std::string> rendered_groups = light_groups(rendered.lights, rendered.area_lights);
-  // Passes are read for the groups whose rendered light is scaled or changed; those changed are shaded.
-  std::vector<std::string> needed;
-  std::map<std::string, ChangedGroup> changed;
-  for (const GroupEdit& edit : edits) {
-    if (edit.change != GroupChange::unchanged &&
-        std::find(rendered_groups.begin(), rendered_groups.end(), edit.group) != rendered_groups.end())
-      needed.push_back(edit.group);
-  }
-  const RenderPasses passes = read_render_passes(render_file, needed);
-  for (const GroupEdit& edit : edits)
-    if (edit.change == GroupChange::reshaded)
-      changed[edit.group] = {shade_group(relighter, edit.group, rendered.lights, rendered.area_lights),
-                             shade_group(relighter, edit.group, scene.lights, scene.area_lights)};
-  OverResult result;
-  Composite composite;
-  try {
-    composite = composite_over(passes, edits, changed);
-  } catch (const std::invalid_argument& error) {
-    throw InputError(render_file, error.what());
-  }
-  result.image = std::move(composite.image);
-  const std::string layer = passes.layer.empty() ? "" : " (view layer " + passes.layer.substr(0, passes.layer.size() - 1) + ")";
+  RelitOver relit = relight_over(relighter, render_file, scene);
   std::string groups;
-  for (const GroupEdit& edit : edits) groups += (groups.empty() ? "" : ", ") + describe(edit, composite.fits);
-  result.summary = render_file + layer + (groups.empty() ? ": no light groups, the render as it is" : ": " + groups);
-  return result;
+  for (const GroupEdit& edit : relit.edits) groups += (groups.empty() ? "" : ", ") + describe(edit, relit.composite.fits);
+  const std::string layer = relit.view_layer.empty() ? "" : " (view layer " + relit.view_layer + ")";
+  return {std::move(relit.composite.image),
+          render_file + layer + (groups.empty() ? ": no light groups, the render as it is" : ": " + groups)};
 }
 
 }  // namespace phongcl::cli

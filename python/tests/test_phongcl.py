@@ -360,3 +360,40 @@ def test_a_sequence_hands_each_frame_to_one_relighter(scene, gbuffer):
     with pytest.raises(phongcl.InputError, match="material"):
         relighter.set_frame(phongcl.Scene.from_dict(document), gbuffer)  # the G-buffer uses indices up to 4
     np.testing.assert_array_equal(relighter.shade(), first)
+
+
+@needs_device
+def test_shade_over_a_render_changes_only_the_edited_groups(tmp_path, gbuffer):
+    # A "render" that phongcl made itself, passes written as Blender's: over it, no edit is the render, a
+    # brighter group its pass scaled, and a moved light phongcl's own shading of the edit (the fit is 1).
+    description = json.loads(DEFAULT.read_text())
+    for light, group in zip(description["lights"], ["key", "fill", "rim"]):
+        light["group"] = group
+    description["rendered"] = {"lights": json.loads(json.dumps(description["lights"]))}
+    description["gbuffer"] = str(DEFAULT_GBUFFER)
+    scene = phongcl.Scene.from_dict(description)
+    relighter = phongcl.Relighter(scene, gbuffer, terms=True)
+    shaded = relighter.shade_terms()
+    passes = {"ViewLayer.Combined": shaded["image"]}
+    for name, layer in shaded["groups"].items():
+        passes["ViewLayer.Combined_" + name] = layer[..., :3]
+    render = tmp_path / "render.exr"
+    phongcl.write_exr(str(render), passes, keep_color_where_transparent=True)
+
+    same = relighter.shade_over(str(render))
+    np.testing.assert_array_equal(same["image"], shaded["image"])
+    assert {name: group["change"] for name, group in same["groups"].items()} == {
+        "key": "unchanged", "fill": "unchanged", "rim": "unchanged"}
+
+    lights = relighter.scene.lights
+    lights[0].position = [lights[0].position[0] + 0.5, lights[0].position[1], lights[0].position[2]]
+    lights[1].color = [2 * c for c in lights[1].color]
+    relighter.set_lights(lights)
+    over = relighter.shade_over(str(render))
+    assert over["groups"]["key"]["change"] == "re-shaded"
+    np.testing.assert_allclose(over["groups"]["key"]["diffuse_gain"], (1, 1, 1), rtol=1e-4)
+    assert over["groups"]["fill"] == {"change": "scaled", "scale": (2.0, 2.0, 2.0)}
+    np.testing.assert_allclose(over["image"], relighter.shade(), rtol=1e-5, atol=1e-6)
+
+    with pytest.raises(phongcl.InputError, match="missing.exr"):
+        relighter.shade_over(str(tmp_path / "missing.exr"))
