@@ -12,7 +12,8 @@
  * With LIGHT_GROUPS the lights are summed group by group, and each group's terms also written apart.
  * Only what the scene needs is compiled in: the host's recipe defines every flag of features.h.
  * Every buffer is planar with frame.plane_stride values per plane, a multiple of PHONGCL_LANES (the
- * host pads each tile with background pixels).
+ * host pads each tile with background pixels). The tables come in a few blocks, one buffer each,
+ * FrameScalars saying where each table starts (layout.h; docs/kernel.md).
  */
 #include "area_light.h"
 #include "features.h"
@@ -57,16 +58,16 @@ typedef struct {
   int point_count, directional_count;                /* lights to loop over (of point_list when culled) */
   int point_holding;                                 /* TILED_CULLING: the first this many of point_list hold
                                                         all of the tile in their bounds */
-  __global const AreaLightRecord* area;              /* AREA_LIGHTS: rects and disks */
+  UNIFORM_SPACE const AreaLightRecord* area;         /* AREA_LIGHTS: rects and disks */
   int area_count;
-  __global const uint* point_casters;                /* SHADOWS: where point light i casts shadows, 1 + its
+  UNIFORM_SPACE const uint* point_casters;                /* SHADOWS: where point light i casts shadows, 1 + its
                                                         place in the culling's casters (shadow.h), else 0 */
-  __global const uint* directional_casters;          /* SHADOWS: the same per directional light */
-  __global const uint* area_casters;                 /* SHADOWS: the same per area light */
+  UNIFORM_SPACE const uint* directional_casters;          /* SHADOWS: the same per directional light */
+  UNIFORM_SPACE const uint* area_casters;                 /* SHADOWS: the same per area light */
   const ShadowInputs* shadows;                       /* SHADOWS: what the shadow rays test (shadow.h) */
-  __global const uint* point_groups;                 /* LIGHT_GROUPS: point light i's group, LIGHT_GROUPS for none */
-  __global const uint* directional_groups;           /* LIGHT_GROUPS: the same per directional light */
-  __global const uint* area_groups;                  /* LIGHT_GROUPS: the same per area light */
+  UNIFORM_SPACE const uint* point_groups;                 /* LIGHT_GROUPS: point light i's group, LIGHT_GROUPS for none */
+  UNIFORM_SPACE const uint* directional_groups;           /* LIGHT_GROUPS: the same per directional light */
+  UNIFORM_SPACE const uint* area_groups;                  /* LIGHT_GROUPS: the same per area light */
 } Lights;
 
 /* A work-item's slots of the G-buffer planes. */
@@ -108,9 +109,9 @@ typedef struct {
 } PendingLobes;
 
 /* Whether a kind of light leaves its powers to sum_pending_lobes: in vectors of lanes, unless the
- * kernel holds a few of them (`count` in the code), whose skips a predictor learns (the branch was
- * 3-6% faster with 2 and 4 lights of each kind, the pending lobes 6% with 8 and 12% with 128). One
- * lane per work-item (GPUs) keeps the branch: a GPU would keep the lobes in scratch memory. */
+ * kernel holds a few of them (`count` in the code), whose skips a predictor learns (docs/kernel.md,
+ * "Measured"). One lane per work-item (GPUs) keeps the branch: a GPU would keep the lobes in scratch
+ * memory. */
 #define DEFERS_LOBES(count) (PHONGCL_LANES > 1 && ((count) == 0 || (count) > 4))
 
 /* Adds Li spec factor, spec the lobe's power: 0 where factor is (F may be +Inf where spec is 0). */
@@ -235,7 +236,7 @@ static inline void add_directional_light(LightSums* sums, PendingLobes* pending,
  * centre is blocked, as a point light's there would be (lanes whose horizon hides the centre trace
  * nothing and stay lit). Selects, not products, as shadowed_weight's. */
 static inline void shadow_area_light(realv* irradiance, realv* highlight, const Surface* surface, const Lights* lights,
-                                     __global const AreaLightRecord* light, uint casts) {
+                                     UNIFORM_SPACE const AreaLightRecord* light, uint casts) {
   const intv lit = LANE_MASK(*irradiance > 0) | LANE_MASK(*highlight > 0);
   const intv pending = lit & LANE_MASK(surface->material != PHONGCL_BACKGROUND);
   const intv blocked = light_blocked(lights->shadows, surface->p, surface->n, area_vector(light->center), 0,
@@ -247,7 +248,7 @@ static inline void shadow_area_light(realv* irradiance, realv* highlight, const 
 /* What an area light adds: Li E and Li S (area_light.h), with r = 2(n.v)n - v, times its visibility
  * with SHADOWS. */
 static inline void add_area_light(LightSums* sums, const Surface* surface, const Lights* lights, int k) {
-  __global const AreaLightRecord* light = &lights->area[k];
+  UNIFORM_SPACE const AreaLightRecord* light = &lights->area[k];
   if (beyond_range_in_every_lane(sub3(area_vector(light->center), surface->p), (realv)light->inverse_range)) return;
   const vec3 n = surface->n, v = surface->v;
   const realv two_n_dot_v = 2 * dot3(n, v);
@@ -457,70 +458,78 @@ static inline void store_pixels(const PixelOutputs* out, const Terms* terms, int
   }
 }
 
-/* The host sets these arguments by name (host/shading/phong_arguments.h): a new one is a parameter
- * here and a field and a line there. */
+/* A table of one of the kernel's blocks, at its word offset (FrameScalars' *Tables say where). */
+#define TABLE(space, type, block, offset) ((space const type*)((block) + (offset)))
+
+/* The host sets these arguments by name (host/shading/phong_arguments.h). A new table is an offset in
+ * FrameScalars and an entry in its block, not a parameter. */
 __kernel void phong_shade(
-    /* G-buffer tile: planes (see layout.h, material.h), positions relative to the eye */
-    __global const STORAGE* restrict planes,
-    __global const int* restrict material_index,
-    /* scene; colours scaled by 2^-radiance_exponent, undone by the two scale factors */
-    UNIFORM_SPACE const MaterialRecord* restrict materials,
-    UNIFORM_SPACE const PointLight* restrict point_lights,
-    UNIFORM_SPACE const DirectionalLight* restrict directional_lights,
-    /* ambient, background, radiance scales, light counts, plane stride (layout.h) */
+    /* G-buffer tile: planes (see layout.h, material.h), positions relative to the eye; each slot's
+     * material, PHONGCL_BACKGROUND where not shaded */
+    __global const STORAGE* restrict planes, __global const int* restrict material_index,
+    /* ambient, background, radiance scales, light counts, plane stride, the tile grids, the shadow
+     * scalars, and where each table starts in the blocks below (layout.h) */
     const FrameScalars frame,
-    /* output planes (PHONGCL_OUTPUT_PLANES): R G B A; with WRITE_TERMS also the terms (PHONGCL_TERM_PLANES) */
-    __global float* restrict out_rgba, __global float* restrict out_terms,
-    /* light shapes and linking masks (light_shape.h), read only when compiled in */
-    UNIFORM_SPACE const LightShape* restrict point_shapes, UNIFORM_SPACE const LinkWord* restrict links,
-    /* tiled culling (cull.cl): tile t's point lights are tile_lights[tile_offsets[t] ...], tile_counts[t] of
-     * them, the first tile_holding[t] holding all of the tile in their bounds */
-    __global const uint* restrict tile_offsets, __global const uint* restrict tile_counts,
-    __global const uint* restrict tile_holding, __global const uint* restrict tile_lights, const TileGrid grid,
-    /* shadows (shadow.h), read only with SHADOWS: a word per light (point lights', then directional
-     * lights', then area lights'), 1 + its place among the casters where it casts shadows, else 0;
-     * the geometry (shadow_layout.h), the screen march's depth plane and the frame's shadow scalars;
-     * with shadow_tiles > 0 tiled shadow culling's lists (shadow_cull.cl) over shadow_grid's tiles */
-    __global const uint* restrict shadow_casters, __global const BvhNode* restrict shadow_nodes,
-    __global const ShadowPrimitive* restrict shadow_primitives, __global const ShadowPlane* restrict shadow_planes,
-    __global const float* restrict shadow_depth, const ShadowFrame shadow_frame,
-    __global const uint* restrict shadow_counts, __global const uint* restrict shadow_offsets,
-    __global const ShadowCandidate* restrict shadow_candidates, const TileGrid shadow_grid, const uint shadow_tiles,
-    /* light groups, read only with LIGHT_GROUPS: each light's group (point lights', then directional
-     * lights', then area lights'), LIGHT_GROUPS for none; their planes follow the terms in out_terms */
-    __global const uint* restrict light_groups,
-    /* area lights (area_light.h), read only with AREA_LIGHTS */
-    __global const AreaLightRecord* restrict area_lights) {
+    /* the scene's tables (SceneTables): materials, lights, light shapes, linking masks, area lights,
+     * shadow casters, light groups; colours scaled by 2^-radiance_exponent, undone by the two scale
+     * factors. Each is read only where the recipe compiles in what needs it. */
+    UNIFORM_SPACE const uint* restrict scene,
+    /* TILED_CULLING: the tiles' light lists (TileListTables, cull.cl) */
+    __global const uint* restrict tile_lists,
+    /* SHADOWS: the geometry and the screen march's depth plane (ShadowGeometryTables, shadow.h); with
+     * frame.shadow_tiles > 0 tiled shadow culling's lists (ShadowListTables, shadow_cull.cl) */
+    __global const uint* restrict shadow_geometry, __global const uint* restrict shadow_lists,
+    /* output planes (PHONGCL_OUTPUT_PLANES): R G B A; with WRITE_TERMS also the terms (PHONGCL_TERM_PLANES),
+     * then with LIGHT_GROUPS each group's three planes */
+    __global float* restrict out_rgba, __global float* restrict out_terms) {
   const size_t group = get_global_id(0);
   const PixelOutputs outputs = {out_rgba, out_terms, frame.plane_stride, group};
   const float radiance_scale_a = frame.radiance_scale_a, radiance_scale_b = frame.radiance_scale_b;
-  const uint tile = TILED_CULLING ? tile_of_pixel(grid, grid.first_pixel + (uint)(group * PHONGCL_LANES)) : 0;
+  const uint first_pixel = (uint)(group * PHONGCL_LANES);
+  const uint tile = TILED_CULLING ? tile_of_pixel(frame.grid, frame.grid.first_pixel + first_pixel) : 0;
   const uint shadow_tile =
-      shadow_tiles > 0 ? tile_of_pixel(shadow_grid, shadow_grid.first_pixel + (uint)(group * PHONGCL_LANES)) : 0;
-  const ShadowInputs shadows = {shadow_nodes,  shadow_primitives, shadow_planes,     shadow_depth, shadow_frame,
-                                shadow_counts, shadow_offsets,    shadow_candidates, shadow_tiles, shadow_tile};
+      frame.shadow_tiles > 0 ? tile_of_pixel(frame.shadow_grid, frame.shadow_grid.first_pixel + first_pixel) : 0;
+  const ShadowInputs shadows = {
+      .nodes = TABLE(__global, BvhNode, shadow_geometry, frame.shadow_geometry.nodes),
+      .primitives = TABLE(__global, ShadowPrimitive, shadow_geometry, frame.shadow_geometry.primitives),
+      .planes = TABLE(__global, ShadowPlane, shadow_geometry, frame.shadow_geometry.planes),
+      .depth = TABLE(__global, float, shadow_geometry, frame.shadow_geometry.depth),
+      .frame = frame.shadow,
+      .counts = TABLE(__global, uint, shadow_lists, frame.shadow_lists.counts),
+      .offsets = TABLE(__global, uint, shadow_lists, frame.shadow_lists.offsets),
+      .candidates = TABLE(__global, ShadowCandidate, shadow_lists, frame.shadow_lists.candidates),
+      .tiles = frame.shadow_tiles,
+      .tile = shadow_tile,
+  };
+  UNIFORM_SPACE const LinkWord* links = TABLE(UNIFORM_SPACE, LinkWord, scene, frame.scene.links);
+  UNIFORM_SPACE const uint* casters = TABLE(UNIFORM_SPACE, uint, scene, frame.scene.shadow_casters);
+  UNIFORM_SPACE const uint* groups = TABLE(UNIFORM_SPACE, uint, scene, frame.scene.light_groups);
+  __global const uint* tile_offsets = TABLE(__global, uint, tile_lists, frame.tile_lists.offsets);
+  __global const uint* tile_lights = TABLE(__global, uint, tile_lists, frame.tile_lists.lights);
   const Lights lights = {
-      .point = point_lights,
-      .point_shapes = point_shapes,
+      .point = TABLE(UNIFORM_SPACE, PointLight, scene, frame.scene.point_lights),
+      .point_shapes = TABLE(UNIFORM_SPACE, LightShape, scene, frame.scene.point_shapes),
       .point_links = links,
-      .directional = directional_lights,
+      .directional = TABLE(UNIFORM_SPACE, DirectionalLight, scene, frame.scene.directional_lights),
       .directional_links = links + frame.point_count * LIGHT_LINKING,
       .point_list = tile_lights + (TILED_CULLING ? tile_offsets[tile] : 0),
-      .point_count = TILED_CULLING ? (int)tile_counts[tile] : POINT_COUNT > 0 ? POINT_COUNT : frame.point_count,
-      .point_holding = TILED_CULLING ? (int)tile_holding[tile] : 0,
+      .point_count = TILED_CULLING ? (int)TABLE(__global, uint, tile_lists, frame.tile_lists.counts)[tile]
+                     : POINT_COUNT > 0 ? POINT_COUNT : frame.point_count,
+      .point_holding = TILED_CULLING ? (int)TABLE(__global, uint, tile_lists, frame.tile_lists.holding)[tile] : 0,
       .directional_count = DIRECTIONAL_COUNT > 0 ? DIRECTIONAL_COUNT : frame.directional_count,
-      .area = area_lights,
+      .area = TABLE(UNIFORM_SPACE, AreaLightRecord, scene, frame.scene.area_lights),
       .area_count = frame.area_count,
-      .point_casters = shadow_casters,
-      .directional_casters = shadow_casters + frame.point_count,
-      .area_casters = shadow_casters + frame.point_count + frame.directional_count,
+      .point_casters = casters,
+      .directional_casters = casters + frame.point_count,
+      .area_casters = casters + frame.point_count + frame.directional_count,
       .shadows = &shadows,
-      .point_groups = light_groups,
-      .directional_groups = light_groups + frame.point_count,
-      .area_groups = light_groups + frame.point_count + frame.directional_count,
+      .point_groups = groups,
+      .directional_groups = groups + frame.point_count,
+      .area_groups = groups + frame.point_count + frame.directional_count,
   };
   MaterialLookup material;
-  look_up_materials(&material, materials, material_index, group);
+  look_up_materials(&material, TABLE(UNIFORM_SPACE, MaterialRecord, scene, frame.scene.materials), material_index,
+                    group);
   const intv background = material.index == PHONGCL_BACKGROUND;
   const PixelPlanes pixels = {planes, frame.plane_stride, group};
 
