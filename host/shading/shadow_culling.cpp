@@ -91,8 +91,7 @@ void ShadowCuller::fine_level(const cl::Buffer& boxes, const ShadowGeometryBuffe
   fine_.tables = {.counts = layout.reserve(pairs * sizeof(cl_uint)),
                   .offsets = layout.add(offsets),
                   .candidates = layout.reserve(room * sizeof(ShadowCandidate))};
-  fine_.block = cl::Buffer(context, CL_MEM_READ_WRITE, layout.bytes());
-  layout.write(queue, fine_.block);
+  fine_.block = layout.upload(context, CL_MEM_READ_WRITE);
   stats.culling_ms += since_ms(prefix_start);
   fine_.counts = layout.table(fine_.block, fine_.tables.counts);
   fine_.offsets = layout.table(fine_.block, fine_.tables.offsets);
