@@ -62,14 +62,14 @@ typedef struct {
                                                         all of the tile in their bounds */
   UNIFORM_SPACE const AreaLightRecord* area;         /* AREA_LIGHTS: rects and disks */
   int area_count;
-  UNIFORM_SPACE const uint* point_casters;                /* SHADOWS: where point light i casts shadows, 1 + its
+  UNIFORM_SPACE const uint* point_casters;           /* SHADOWS: where point light i casts shadows, 1 + its
                                                         place in the culling's casters (shadow.h), else 0 */
-  UNIFORM_SPACE const uint* directional_casters;          /* SHADOWS: the same per directional light */
-  UNIFORM_SPACE const uint* area_casters;                 /* SHADOWS: the same per area light */
+  UNIFORM_SPACE const uint* directional_casters;     /* SHADOWS: the same per directional light */
+  UNIFORM_SPACE const uint* area_casters;            /* SHADOWS: the same per area light */
   const ShadowInputs* shadows;                       /* SHADOWS: what the shadow rays test (shadow.h) */
-  UNIFORM_SPACE const uint* point_groups;                 /* LIGHT_GROUPS: point light i's group, LIGHT_GROUPS for none */
-  UNIFORM_SPACE const uint* directional_groups;           /* LIGHT_GROUPS: the same per directional light */
-  UNIFORM_SPACE const uint* area_groups;                  /* LIGHT_GROUPS: the same per area light */
+  UNIFORM_SPACE const uint* point_groups;            /* LIGHT_GROUPS: point light i's group, LIGHT_GROUPS for none */
+  UNIFORM_SPACE const uint* directional_groups;      /* LIGHT_GROUPS: the same per directional light */
+  UNIFORM_SPACE const uint* area_groups;             /* LIGHT_GROUPS: the same per area light */
 } Lights;
 
 /* A work-item's slots of the G-buffer planes. */

@@ -376,7 +376,8 @@ void decide_memory(Recipe& recipe, const Scene& scene, const DeviceInfo& device)
                                    recipe.directional_lights * sizeof(DirectionalLight) +
                                    std::max<std::size_t>(scene.materials.size(), 1) * sizeof(MaterialRecord) +
                                    recipe.point_lights * sizeof(LightShape) +
-                                   (recipe.point_lights + recipe.directional_lights) * recipe.link_words * sizeof(LinkWord) +
+                                   (recipe.point_lights + recipe.directional_lights) * recipe.link_words *
+                                       sizeof(LinkWord) +
                                    scene.area_lights.size() * sizeof(AreaLightRecord) +
                                    2 * lights * sizeof(layout_uint) + kSceneTables * kSceneTableAlignment;
   const bool constant = recipe.specialised && device.max_constant_args >= 1 && bytes <= device.max_constant_buffer;
