@@ -40,7 +40,7 @@ vec3 select3(vec3 if_true, vec3 if_false, realv condition) {
   return make_vec3(SELECT(condition != 0, if_true.x, if_false.x), SELECT(condition != 0, if_true.y, if_false.y),
                    SELECT(condition != 0, if_true.z, if_false.z));
 }
-vec3 area_vector(__global const float* x) { return make_vec3((realv)x[0], (realv)x[1], (realv)x[2]); }
+vec3 area_vector(UNIFORM_SPACE const float* x) { return make_vec3((realv)x[0], (realv)x[1], (realv)x[2]); }
 
 /* The angle edge a -> b subtends at P times n's dot with the unit normal of their plane: the angle
  * as atan2(|a x b|, a.b), which keeps its precision where acos of a dot near 1 would not. */
@@ -188,7 +188,7 @@ realv area_specular(int shape, vec3 c, vec3 u, vec3 v, vec3 n, vec3 r, realv shi
 
 /* E and (where `specular`) S of one area light, times its range window, for pixels at p (relative
  * to the eye) with unit normal n and r, the eye vector mirrored about n. */
-void area_light_terms(__global const AreaLightRecord* light, vec3 p, vec3 n, vec3 r, realv shininess, int specular,
+void area_light_terms(UNIFORM_SPACE const AreaLightRecord* light, vec3 p, vec3 n, vec3 r, realv shininess, int specular,
                       realv* irradiance, realv* highlight) {
   const vec3 c_eye = sub3(area_vector(light->center), p);
   const vec3 normal = area_vector(light->normal);

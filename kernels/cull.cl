@@ -13,8 +13,8 @@
  * tile of a work-item is the tile of its first pixel (tiles.h), so a tile's box covers every pixel
  * its work-items shade.
  * The small fixed loops (the three axes, a block's boxes, the sieve's eight lights) are unrolled by
- * pragma: PoCL's compiler left them rolled, with the arrays they index in memory, and the culling
- * took 7.6 against 6.6 ms at 10,000 lights (paired, 1080p, 2 cores).
+ * pragma, a hint for speed alone (docs/kernel.md, "Unrolling"): PoCL's compiler left them rolled,
+ * with the arrays they index in memory, and the culling took longer (docs/kernel.md, "Measured").
  * Options: PHONGCL_LANES and HALF_STORAGE, as phong_shade's; PHONGCL_BLOCK_BOXES, the boxes of a
  * block (4 or 8). */
 /* The boxes are plain float whatever the shading's arithmetic. */
@@ -37,8 +37,8 @@ uint round_up_lanes(uint pixel) { return (pixel + PHONGCL_LANES - 1) / PHONGCL_L
  * PHONGCL_LANES (so does first_pixel), so the box is taken over whole lane vectors, background lanes
  * left out by selects, and the lanes reduced once per tile. The sums are named vectors, not arrays
  * indexed by axis, and min and max, not fmin and fmax (no NaN comes here: a shaded position is
- * finite): PoCL kept indexed arrays in memory, and the pass took 2.5 against 1.3 ms for a 1080p
- * frame on 2 cores. */
+ * finite): PoCL kept indexed arrays in memory, and the pass took twice as long (docs/kernel.md,
+ * "Measured"). */
 __kernel void tile_bounds(__global const STORAGE* restrict planes, uint plane_stride,
                           __global const int* restrict material_index, uint slot_count, TileGrid grid,
                           __global TileBox* restrict boxes) {

@@ -4,6 +4,8 @@
 #ifndef PHONGCL_LAYOUT_H
 #define PHONGCL_LAYOUT_H
 
+#include "shadow_layout.h"
+
 /* float and int are 32 bits on both sides (OpenCL C requires it; the host static-asserts the sizes). */
 typedef float layout_float;
 typedef int layout_int;
@@ -19,6 +21,53 @@ typedef unsigned int layout_uint;
 #define PHONGCL_OUTPUT_PLANES 4
 #define PHONGCL_TERM_PLANES 9
 
+/* The screen tiles of tiled light culling. A work-item belongs to the tile of its first pixel, and
+ * the tile's bounds cover every lane of its work-items (the last one of a row may reach into the
+ * next tile), so one light list serves all of a work-item's pixels. */
+typedef struct {
+  unsigned int image_width; /* pixels per row */
+  unsigned int tile_size;   /* tiles are tile_size pixels wide */
+  unsigned int tile_rows;   /* and tile_rows tall */
+  unsigned int tiles_x;     /* tiles per row */
+  unsigned int first_pixel; /* the frame pixel of this launch's slot 0 */
+} TileGrid;
+
+/* phong_shade reads its tables from a few blocks, one buffer each (ISPC's deferred example passes
+ * one header and offsets into one block): these say where each table starts in its block, in 4-byte
+ * words. A new table is a field here and a line where the host packs the block, not a parameter. */
+
+/* The scene's block (pack.h): colours scaled by 2^-radiance_exponent. Per light, `links` holds
+ * LIGHT_LINKING words (point lights', then directional lights'); shadow_casters and light_groups a
+ * word (point lights', then directional lights', then area lights'). */
+typedef struct {
+  layout_uint materials;          /* MaterialRecord per material */
+  layout_uint point_lights;       /* PointLight: point and spot lights */
+  layout_uint point_shapes;       /* LightShape, parallel to point_lights */
+  layout_uint links;              /* LinkWord: light linking masks */
+  layout_uint directional_lights; /* DirectionalLight */
+  layout_uint area_lights;        /* AreaLightRecord: rects and disks */
+  layout_uint shadow_casters;     /* SHADOWS: 1 + the light's place among the casters where it casts shadows, else 0 */
+  layout_uint light_groups;       /* LIGHT_GROUPS: the light's group, LIGHT_GROUPS for none */
+} SceneTables;
+
+/* Tiled culling's block (cull.cl): tile t's point lights are lights[offsets[t] ...], counts[t] of
+ * them, the first holding[t] holding all of the tile in their bounds. */
+typedef struct {
+  layout_uint offsets, counts, holding, lights;
+} TileListTables;
+
+/* The shadow geometry's block (shadow_layout.h): the BVH's nodes, its primitives and their bounds,
+ * the unbounded planes, and for screen-space shadows the frame's depth plane (floats). */
+typedef struct {
+  layout_uint nodes, primitives, bounds, planes, depth;
+} ShadowGeometryTables;
+
+/* Tiled shadow culling's block (shadow_cull.cl): pair caster * tiles + tile holds counts[pair]
+ * candidates from candidates[offsets[pair]], or PHONGCL_SHADOW_TRAVERSE. */
+typedef struct {
+  layout_uint counts, offsets, candidates;
+} ShadowListTables;
+
 /* The per-frame scalars, one kernel argument (by value) rather than a row of floats that compiles
  * with two of them swapped. Colours are scaled by 2^-radiance_exponent so that sums of HDR values
  * near float's limits cannot overflow early; the kernel multiplies by a * b = 2^e at the end. */
@@ -29,7 +78,15 @@ typedef struct {
   layout_int point_count, directional_count;      /* entries in the light tables */
   layout_uint plane_stride;                       /* values per plane in every buffer, a multiple of PHONGCL_LANES */
   layout_int area_count;                          /* entries in the area light table */
-  layout_uint padding[2];
+  layout_uint shadow_tiles;                       /* tiled shadow culling's tiles; 0 without its lists */
+  layout_uint padding;
+  SceneTables scene;                              /* where the blocks' tables start */
+  TileListTables tile_lists;
+  ShadowGeometryTables shadow_geometry;
+  ShadowListTables shadow_lists;
+  TileGrid grid;                                  /* TILED_CULLING: the light lists' tiles */
+  TileGrid shadow_grid;                           /* tiled shadow culling's tiles */
+  ShadowFrame shadow;                             /* SHADOWS: the geometry's counts, the ray offsets, the march */
 } FrameScalars;
 
 /* A point light. position is relative to the eye: the host rebases in double so that a scene far
@@ -82,16 +139,7 @@ typedef struct {
   unsigned int padding[3];
 } LightBounds;
 
-/* The screen tiles of tiled light culling. A work-item belongs to the tile of its first pixel, and
- * the tile's bounds cover every lane of its work-items (the last one of a row may reach into the
- * next tile), so one light list serves all of a work-item's pixels. */
-typedef struct {
-  unsigned int image_width; /* pixels per row */
-  unsigned int tile_size;   /* tiles are tile_size pixels wide */
-  unsigned int tile_rows;   /* and tile_rows tall */
-  unsigned int tiles_x;     /* tiles per row */
-  unsigned int first_pixel; /* the frame pixel of this launch's slot 0 */
-} TileGrid;
+
 
 /* Distance bins, for culling in depth as well as across the screen (Harada's 2.5D culling, with bins
  * fixed in distance rather than per tile): a distance d from the eye is in bin (the float bits of

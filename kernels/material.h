@@ -57,9 +57,10 @@ static inline realv select_entry(UNIFORM_SPACE const MaterialRecord* table, real
 
 /* A table of MATERIAL_COUNT <= PHONGCL_LANES entries: each lane's field is picked by comparing its
  * index with every entry (uniform loads and selects). PoCL lowers per-lane gathers, and shuffles
- * with a variable mask, through per-work-item private memory: 7 of the 11 ms of a 1080p frame
- * without lights. Background lanes (index -1) get entry 0. Written out rather than a loop: it must
- * unroll, so that the comparisons are shared by every field, and OpenCL C 1.2 has no unroll pragma. */
+ * with a variable mask, through per-work-item private memory, most of a frame without lights
+ * (docs/kernel.md, "Measured"). Background lanes (index -1) get entry 0. Written out rather than a
+ * loop: the comparisons are shared by every field only once unrolled, and `#pragma unroll` is a hint
+ * a compiler may drop (docs/kernel.md, "Unrolling"). */
 realv select_field(UNIFORM_SPACE const MaterialRecord* table, intv index, int field) {
   const realv lane_index = TO_REALV(index);
   realv value = (realv)material_scalar(&table[0], field);

@@ -2,9 +2,11 @@
  * (phong_math.h):
  *   L_o = ka*La + sum_i Li F_i [ kd*max(0, n.l_i) + ks*max(0, v.r_i)^q ],  r = 2(n.l)n - l
  * with Phong's lobe, or the one the material's specular model chooses (specular.h). shade_pixel()
- * is that formula. What one light adds is add_point_light() or add_directional_light(),
- * its F_i (falloff, range, cone, linking) light_shape.h's, the specular lobe specular.h's; the tuned
- * arithmetic (robust normalisation, the power, compensated sums, streaming stores) is phong_math.h's.
+ * is that formula's three terms; light_contribution() what one light adds (n.l, v.r, the power q);
+ * add_point_light() and add_directional_light() each light's l and F_i (falloff, range, cone,
+ * linking: light_shape.h); sum_light_kind() the loop that visits the lights (blocks, compensated
+ * sums, pending powers, culled lists). The tuned arithmetic (robust normalisation, the power,
+ * compensated sums, streaming stores) is phong_math.h's.
  * With AREA_LIGHTS rects and disks add theirs too (area_light.h: the diffuse term exact, the
  * specular one by quadrature), looped over untiled; their shadows are one ray to the centre.
  * With SHADOWS a light that casts shadows is multiplied by its visibility (shadow.h: a ray traced
@@ -12,7 +14,8 @@
  * With LIGHT_GROUPS the lights are summed group by group, and each group's terms also written apart.
  * Only what the scene needs is compiled in: the host's recipe defines every flag of features.h.
  * Every buffer is planar with frame.plane_stride values per plane, a multiple of PHONGCL_LANES (the
- * host pads each tile with background pixels).
+ * host pads each tile with background pixels). The tables come in a few blocks, one buffer each,
+ * FrameScalars saying where each table starts (layout.h; docs/kernel.md).
  */
 #include "area_light.h"
 #include "features.h"
@@ -57,16 +60,16 @@ typedef struct {
   int point_count, directional_count;                /* lights to loop over (of point_list when culled) */
   int point_holding;                                 /* TILED_CULLING: the first this many of point_list hold
                                                         all of the tile in their bounds */
-  __global const AreaLightRecord* area;              /* AREA_LIGHTS: rects and disks */
+  UNIFORM_SPACE const AreaLightRecord* area;         /* AREA_LIGHTS: rects and disks */
   int area_count;
-  __global const uint* point_casters;                /* SHADOWS: where point light i casts shadows, 1 + its
+  UNIFORM_SPACE const uint* point_casters;           /* SHADOWS: where point light i casts shadows, 1 + its
                                                         place in the culling's casters (shadow.h), else 0 */
-  __global const uint* directional_casters;          /* SHADOWS: the same per directional light */
-  __global const uint* area_casters;                 /* SHADOWS: the same per area light */
+  UNIFORM_SPACE const uint* directional_casters;     /* SHADOWS: the same per directional light */
+  UNIFORM_SPACE const uint* area_casters;            /* SHADOWS: the same per area light */
   const ShadowInputs* shadows;                       /* SHADOWS: what the shadow rays test (shadow.h) */
-  __global const uint* point_groups;                 /* LIGHT_GROUPS: point light i's group, LIGHT_GROUPS for none */
-  __global const uint* directional_groups;           /* LIGHT_GROUPS: the same per directional light */
-  __global const uint* area_groups;                  /* LIGHT_GROUPS: the same per area light */
+  UNIFORM_SPACE const uint* point_groups;            /* LIGHT_GROUPS: point light i's group, LIGHT_GROUPS for none */
+  UNIFORM_SPACE const uint* directional_groups;      /* LIGHT_GROUPS: the same per directional light */
+  UNIFORM_SPACE const uint* area_groups;             /* LIGHT_GROUPS: the same per area light */
 } Lights;
 
 /* A work-item's slots of the G-buffer planes. */
@@ -108,9 +111,9 @@ typedef struct {
 } PendingLobes;
 
 /* Whether a kind of light leaves its powers to sum_pending_lobes: in vectors of lanes, unless the
- * kernel holds a few of them (`count` in the code), whose skips a predictor learns (the branch was
- * 3-6% faster with 2 and 4 lights of each kind, the pending lobes 6% with 8 and 12% with 128). One
- * lane per work-item (GPUs) keeps the branch: a GPU would keep the lobes in scratch memory. */
+ * kernel holds a few of them (`count` in the code), whose skips a predictor learns (docs/kernel.md,
+ * "Measured"). One lane per work-item (GPUs) keeps the branch: a GPU would keep the lobes in scratch
+ * memory. */
 #define DEFERS_LOBES(count) (PHONGCL_LANES > 1 && ((count) == 0 || (count) > 4))
 
 /* Adds Li spec factor, spec the lobe's power: 0 where factor is (F may be +Inf where spec is 0). */
@@ -121,31 +124,38 @@ void add_specular(LightSums* sums, realv spec, realv factor, UNIFORM_SPACE const
   sums->specular.z += NONNEGATIVE_TIMES(color[2], lit_spec);
 }
 
-/* Adds what one light of colour `color` and weight F adds: Li F max(0, n.l) and Li F spec, with
- * l = toward * inverse (inverse = 1 / |toward|, 1 for a directional light's unit vector); where
- * `pending` is not 0 the lobe is left there for its power. In place, not returned: each
- * `sum += colour * lobe` contracts to one fma. Nothing here waits for the light's square root before
- * it must: the loop is latency-bound, and waiting makes a point light's chain 50% longer. n, v and q
- * come by value, not as the Surface: with the struct's address passed this deep, PoCL keeps a copy of
- * it per work-item (4 KB each with double16, past the work-group's stack). */
-void add_lobes(LightSums* sums, PendingLobes* pending, vec3 n, vec3 v, realv shininess, realv cutoff, realv model,
-               vec3 toward, realv inverse, UNIFORM_SPACE const float* color, realv weight) {
-  const realv n_dot = dot3(n, toward);
-  const realv ndl = n_dot * inverse;
-  const realv lit_ndl = SELECT(ndl > 0, ndl * weight, 0); /* back-facing or grazing: nothing from this light */
-  sums->diffuse.x += NONNEGATIVE_TIMES(color[0], lit_ndl);
-  sums->diffuse.y += NONNEGATIVE_TIMES(color[1], lit_ndl);
-  sums->diffuse.z += NONNEGATIVE_TIMES(color[2], lit_ndl);
+/* What one light adds: the seed's formula for light i, without the material's kd and ks (the same
+ * for every light: shade_pixel() multiplies the sums once),
+ *   diffuse  += Li F_i max(0, n.l)
+ *   specular += Li F_i max(0, v.r)^q,   r = 2(n.l)n - l  (Phong's lobe; the material's model: specular.h)
+ * for a light of colour Li = `color`, weight F_i = `weight` (falloff, cone, linking, shadow: the
+ * add_*_light() below) and direction l = toward * inverse (inverse = 1 / |toward|, 1 for a
+ * directional light's unit vector). Where `pending` is not 0 the lobe waits there for its power
+ * (sum_pending_lobes(), next).
+ * How it is written: in place, not returned, each `sum += colour * lobe` contracts to one fma; nothing
+ * waits for the light's square root before it must (the loop is latency-bound, and waiting makes a
+ * point light's chain 50% longer); n, v and q come by value, not as the Surface: with the struct's
+ * address passed this deep, PoCL keeps a copy of it per work-item (4 KB each with double16, past the
+ * work-group's stack). */
+void light_contribution(LightSums* sums, PendingLobes* pending, vec3 n, vec3 v, realv shininess, realv cutoff,
+                        realv model, vec3 toward, realv inverse, UNIFORM_SPACE const float* color, realv weight) {
+  const realv n_dot_toward = dot3(n, toward);
+  const realv n_dot_l = n_dot_toward * inverse;                           /* n.l */
+  const realv lit = SELECT(n_dot_l > 0, n_dot_l * weight, 0);             /* F max(0, n.l) */
+  sums->diffuse.x += NONNEGATIVE_TIMES(color[0], lit);
+  sums->diffuse.y += NONNEGATIVE_TIMES(color[1], lit);
+  sums->diffuse.z += NONNEGATIVE_TIMES(color[2], lit);
   if (SPECULAR) {
-    const LobeCosine lobe = lobe_cosine(n, v, toward, inverse, n_dot, model);
+    /* v.r (or the model's cosine) and 1 - it, which the power takes for accuracy near 1 */
+    const LobeCosine lobe = lobe_cosine(n, v, toward, inverse, n_dot_toward, model);
     /* The power is half of a light's instructions and most of its dependency chain. Where every
      * lane faces away or is below the cutoff its terms are 0, and adding them changes no bit: left
      * out (half of the vectors and lights of the throughput bench's 256 lights), by the count of
      * pending lobes or by a branch. */
-    const int dark = all_lanes(LANE_MASK(ndl <= 0) | LANE_MASK(lobe.cosine < cutoff));
-    realv factor = SELECT(ndl > 0, weight, 0);
-    /* A normalised lobe takes the cosine: lit_ndl is F n.l, and 0 where n.l <= 0. */
-    if (NORMALIZED_LOBES) factor = SELECT(normalized_model(model) != 0, lit_ndl, factor);
+    const int dark = all_lanes(LANE_MASK(n_dot_l <= 0) | LANE_MASK(lobe.cosine < cutoff));
+    /* F where n.l > 0 (a normalised lobe: F n.l), else 0: a light behind the surface has no highlight */
+    realv factor = SELECT(n_dot_l > 0, weight, 0);
+    if (NORMALIZED_LOBES) factor = SELECT(normalized_model(model) != 0, lit, factor);
     if (pending) {
       /* Written whether or not it is kept: the next light's lobe overwrites a dark one. */
       PendingLobe* next = &pending->lobes[pending->count];
@@ -157,11 +167,11 @@ void add_lobes(LightSums* sums, PendingLobes* pending, vec3 n, vec3 v, realv shi
       return;
     }
     if (dark) return;
-    add_specular(sums, specular_power(lobe.cosine, lobe.one_minus_cosine, shininess), factor, color);
+    add_specular(sums, specular_power(lobe.cosine, lobe.one_minus_cosine, shininess), factor, color); /* ^q */
   }
 }
 
-/* The block's pending lobes (add_lobes) raised to the power q and added, in the lights' order. */
+/* The block's pending lobes (light_contribution) raised to the power q and added, in the lights' order. */
 void sum_pending_lobes(LightSums* sums, const PendingLobes* pending, realv shininess) {
   for (int k = 0; k < pending->count; ++k) {
     const PendingLobe* lobe = &pending->lobes[k];
@@ -215,8 +225,8 @@ static inline void add_point_light(LightSums* sums, PendingLobes* pending, const
   const realv gate = link_gate(link_mask, surface->material);
   realv weight = POINT_SHAPES ? shape_weight(shape, toward, inverse, distance, inverse_distance, gate) : gate;
   if (SHADOWS) weight = shadowed_weight(weight, surface, lights, position, 0, lights->point_casters[i]);
-  add_lobes(sums, pending, surface->n, surface->v, surface->shininess, surface->highlight_cutoff,
-            surface->specular_model, toward, inverse, light->color, weight);
+  light_contribution(sums, pending, surface->n, surface->v, surface->shininess, surface->highlight_cutoff,
+                     surface->specular_model, toward, inverse, light->color, weight);
 }
 
 /* What a directional light adds; F is its linking, times its visibility with SHADOWS. */
@@ -227,15 +237,15 @@ static inline void add_directional_light(LightSums* sums, PendingLobes* pending,
   const vec3 l = make_vec3(light->to_light[0], light->to_light[1], light->to_light[2]);
   realv weight = link_gate(link_mask, surface->material);
   if (SHADOWS) weight = shadowed_weight(weight, surface, lights, l, 1, lights->directional_casters[k]);
-  add_lobes(sums, pending, surface->n, surface->v, surface->shininess, surface->highlight_cutoff,
-            surface->specular_model, l, 1, light->color, weight);
+  light_contribution(sums, pending, surface->n, surface->v, surface->shininess, surface->highlight_cutoff,
+                     surface->specular_model, l, 1, light->color, weight);
 }
 
 /* An area light's hard shadow: its E and S are 0 in the lanes where the one ray to the emitter's
  * centre is blocked, as a point light's there would be (lanes whose horizon hides the centre trace
  * nothing and stay lit). Selects, not products, as shadowed_weight's. */
 static inline void shadow_area_light(realv* irradiance, realv* highlight, const Surface* surface, const Lights* lights,
-                                     __global const AreaLightRecord* light, uint casts) {
+                                     UNIFORM_SPACE const AreaLightRecord* light, uint casts) {
   const intv lit = LANE_MASK(*irradiance > 0) | LANE_MASK(*highlight > 0);
   const intv pending = lit & LANE_MASK(surface->material != PHONGCL_BACKGROUND);
   const intv blocked = light_blocked(lights->shadows, surface->p, surface->n, area_vector(light->center), 0,
@@ -247,7 +257,7 @@ static inline void shadow_area_light(realv* irradiance, realv* highlight, const 
 /* What an area light adds: Li E and Li S (area_light.h), with r = 2(n.v)n - v, times its visibility
  * with SHADOWS. */
 static inline void add_area_light(LightSums* sums, const Surface* surface, const Lights* lights, int k) {
-  __global const AreaLightRecord* light = &lights->area[k];
+  UNIFORM_SPACE const AreaLightRecord* light = &lights->area[k];
   if (beyond_range_in_every_lane(sub3(area_vector(light->center), surface->p), (realv)light->inverse_range)) return;
   const vec3 n = surface->n, v = surface->v;
   const realv two_n_dot_v = 2 * dot3(n, v);
@@ -275,24 +285,39 @@ void add_block(LightSums* sums, LightSums* compensation, const LightSums* block)
   kahan_add(&sums->specular.z, &compensation->specular.z, block->specular.z, WEIGHT_CAN_OVERFLOW);
 }
 
-/* Sums the point lights (of the tile's list with TILED_CULLING) into `sums` and `compensation`, a
- * block at a time (sum_lights), with LIGHT_GROUPS `group`'s only. A tile's list leads with the lights
- * whose bounds hold all of the tile (cull.cl); of the others each block first keeps those within
- * range of some lane, counting rather than branching: a light left out changes no bit of the sums
- * (its window is 0 in every lane), and which of a tile's lights miss a row of it follows no pattern a
- * branch predictor learns (a mispredicted skip cost about what shading the light does). */
-static inline void sum_point_lights(LightSums* sums, LightSums* compensation, const Surface* surface,
-                                    const Lights* lights, uint group) {
+/* The kinds of light, each a table of the scene's block and a loop of sum_lights(). */
+enum { POINT_KIND, DIRECTIONAL_KIND, AREA_KIND };
+
+/* The loop driver: sums the lights of one kind into `sums` and `compensation`, with LIGHT_GROUPS
+ * `group`'s only (the test is uniform: every lane skips the same lights). It owns how the lights are
+ * visited, apart from what each adds (light_contribution()):
+ * - Blocks: lights are summed in blocks of PHONGCL_LIGHT_BLOCK in plain float, and the block sums
+ *   compensated (Kahan, add_block()): the error stays a few ulp plus one block's however many lights
+ *   there are (10,000 lights, one of 1 then 9,999 of 3e-8: plain float 3.0e-4 relative, blocked Kahan
+ *   4.5e-7). Counts in the code (up to 16) are one block. -cl-fast-relaxed-math may fold the
+ *   compensation away (fast).
+ * - Pending lobes: with DEFERS_LOBES a block's specular powers are taken after its lights.
+ * - Culled lists: with TILED_CULLING the point lights are the tile's list, led by the lights whose
+ *   bounds hold all of the tile (cull.cl); of the others each block first keeps those within range of
+ *   some lane, counting rather than branching: a light left out changes no bit of the sums (its window
+ *   is 0 in every lane), and which of a tile's lights miss a row of it follows no pattern a branch
+ *   predictor learns (a mispredicted skip cost about what shading the light does).
+ * Inlined at each call whatever its size, so that `kind` is a constant and the other kinds' code
+ * folds away, as if each kind had its own loop. */
+static inline __attribute__((always_inline)) void sum_light_kind(LightSums* sums, LightSums* compensation,
+                                                                 const Surface* surface, const Lights* lights,
+                                                                 int kind, int count, uint group) {
   const realv zero = 0;
   const LightSums no_light = {{zero, zero, zero}, {zero, zero, zero}};
-  for (int first = 0; first < lights->point_count; first += PHONGCL_LIGHT_BLOCK) {
-    const int last = min(first + PHONGCL_LIGHT_BLOCK, lights->point_count);
+  const int count_in_code = kind == POINT_KIND ? POINT_COUNT : kind == DIRECTIONAL_KIND ? DIRECTIONAL_COUNT : 0;
+  for (int first = 0; first < count; first += PHONGCL_LIGHT_BLOCK) {
+    const int last = min(first + PHONGCL_LIGHT_BLOCK, count);
     LightSums block = no_light;
     PendingLobes lobes;
     lobes.count = 0;
-    PendingLobes* pending = SPECULAR && DEFERS_LOBES(POINT_COUNT) ? &lobes : 0;
-    if (TILED_CULLING) {
-      int kept[PHONGCL_LIGHT_BLOCK], count = 0;
+    PendingLobes* pending = SPECULAR && kind != AREA_KIND && DEFERS_LOBES(count_in_code) ? &lobes : 0;
+    if (TILED_CULLING && kind == POINT_KIND) {
+      int kept[PHONGCL_LIGHT_BLOCK], kept_count = 0;
       for (int k = first; k < last; ++k) {
         const int i = (int)lights->point_list[k];
         UNIFORM_SPACE const PointLight* light = &lights->point[i];
@@ -300,49 +325,36 @@ static inline void sum_point_lights(LightSums* sums, LightSums* compensation, co
                             beyond_range_in_every_lane(light_offset(LIGHT_POSITION(light), LIGHT_REST(light), surface),
                                                        (realv)lights->point_shapes[i].inverse_range);
         const bool in_group = !LIGHT_GROUPS || lights->point_groups[i] == group;
-        kept[count] = i;
-        count += !beyond && in_group;
+        kept[kept_count] = i;
+        kept_count += !beyond && in_group;
       }
-      for (int k = 0; k < count; ++k) add_point_light(&block, pending, surface, lights, kept[k]);
-    } else {
+      for (int k = 0; k < kept_count; ++k) add_point_light(&block, pending, surface, lights, kept[k]);
+    } else if (kind == POINT_KIND) {
       for (int k = first; k < last; ++k)
         if (!LIGHT_GROUPS || lights->point_groups[k] == group) add_point_light(&block, pending, surface, lights, k);
+    } else if (kind == DIRECTIONAL_KIND) {
+      for (int k = first; k < last; ++k)
+        if (!LIGHT_GROUPS || lights->directional_groups[k] == group)
+          add_directional_light(&block, pending, surface, lights, k);
+    } else {
+      for (int k = first; k < last; ++k)
+        if (!LIGHT_GROUPS || lights->area_groups[k] == group) add_area_light(&block, surface, lights, k);
     }
     if (pending) sum_pending_lobes(&block, pending, surface->shininess);
     add_block(sums, compensation, &block);
   }
 }
 
-/* The lights' sums for one vector of pixels, with LIGHT_GROUPS those of `group`'s lights only (the
- * test is uniform: every lane skips the same lights). Lights are summed in blocks of
- * PHONGCL_LIGHT_BLOCK in plain float, and the block sums compensated (Kahan): the error stays a few
- * ulp plus one block's however many lights there are (10,000 lights, one of 1 then 9,999 of 3e-8:
- * plain float 3.0e-4 relative, blocked Kahan 4.5e-7). Counts in the code (up to 16) are one block.
- * -cl-fast-relaxed-math may fold the compensation away (fast). */
+/* The lights' sums for one vector of pixels (with LIGHT_GROUPS `group`'s lights only): each kind's
+ * loop, compensated into one sum. */
 static inline void sum_lights(LightSums* out, const Surface* surface, const Lights* lights, uint group) {
   const realv zero = 0;
   const LightSums no_light = {{zero, zero, zero}, {zero, zero, zero}};
   LightSums sums = no_light, compensation = no_light;
-  if (POINT_LIGHTS) sum_point_lights(&sums, &compensation, surface, lights, group);
+  if (POINT_LIGHTS) sum_light_kind(&sums, &compensation, surface, lights, POINT_KIND, lights->point_count, group);
   if (DIRECTIONAL_LIGHTS)
-    for (int first = 0; first < lights->directional_count; first += PHONGCL_LIGHT_BLOCK) {
-      LightSums block = no_light;
-      PendingLobes lobes;
-      lobes.count = 0;
-      PendingLobes* pending = SPECULAR && DEFERS_LOBES(DIRECTIONAL_COUNT) ? &lobes : 0;
-      for (int k = first; k < min(first + PHONGCL_LIGHT_BLOCK, lights->directional_count); ++k)
-        if (!LIGHT_GROUPS || lights->directional_groups[k] == group)
-          add_directional_light(&block, pending, surface, lights, k);
-      if (pending) sum_pending_lobes(&block, pending, surface->shininess);
-      add_block(&sums, &compensation, &block);
-    }
-  if (AREA_LIGHTS)
-    for (int first = 0; first < lights->area_count; first += PHONGCL_LIGHT_BLOCK) {
-      LightSums block = no_light;
-      for (int k = first; k < min(first + PHONGCL_LIGHT_BLOCK, lights->area_count); ++k)
-        if (!LIGHT_GROUPS || lights->area_groups[k] == group) add_area_light(&block, surface, lights, k);
-      add_block(&sums, &compensation, &block);
-    }
+    sum_light_kind(&sums, &compensation, surface, lights, DIRECTIONAL_KIND, lights->directional_count, group);
+  if (AREA_LIGHTS) sum_light_kind(&sums, &compensation, surface, lights, AREA_KIND, lights->area_count, group);
   *out = sums;
 }
 
@@ -457,70 +469,78 @@ static inline void store_pixels(const PixelOutputs* out, const Terms* terms, int
   }
 }
 
-/* The host sets these arguments by name (host/shading/phong_arguments.h): a new one is a parameter
- * here and a field and a line there. */
+/* A table of one of the kernel's blocks, at its word offset (FrameScalars' *Tables say where). */
+#define TABLE(space, type, block, offset) ((space const type*)((block) + (offset)))
+
+/* The host sets these arguments by name (host/shading/phong_arguments.h). A new table is an offset in
+ * FrameScalars and an entry in its block, not a parameter. */
 __kernel void phong_shade(
-    /* G-buffer tile: planes (see layout.h, material.h), positions relative to the eye */
-    __global const STORAGE* restrict planes,
-    __global const int* restrict material_index,
-    /* scene; colours scaled by 2^-radiance_exponent, undone by the two scale factors */
-    UNIFORM_SPACE const MaterialRecord* restrict materials,
-    UNIFORM_SPACE const PointLight* restrict point_lights,
-    UNIFORM_SPACE const DirectionalLight* restrict directional_lights,
-    /* ambient, background, radiance scales, light counts, plane stride (layout.h) */
+    /* G-buffer tile: planes (see layout.h, material.h), positions relative to the eye; each slot's
+     * material, PHONGCL_BACKGROUND where not shaded */
+    __global const STORAGE* restrict planes, __global const int* restrict material_index,
+    /* ambient, background, radiance scales, light counts, plane stride, the tile grids, the shadow
+     * scalars, and where each table starts in the blocks below (layout.h) */
     const FrameScalars frame,
-    /* output planes (PHONGCL_OUTPUT_PLANES): R G B A; with WRITE_TERMS also the terms (PHONGCL_TERM_PLANES) */
-    __global float* restrict out_rgba, __global float* restrict out_terms,
-    /* light shapes and linking masks (light_shape.h), read only when compiled in */
-    UNIFORM_SPACE const LightShape* restrict point_shapes, UNIFORM_SPACE const LinkWord* restrict links,
-    /* tiled culling (cull.cl): tile t's point lights are tile_lights[tile_offsets[t] ...], tile_counts[t] of
-     * them, the first tile_holding[t] holding all of the tile in their bounds */
-    __global const uint* restrict tile_offsets, __global const uint* restrict tile_counts,
-    __global const uint* restrict tile_holding, __global const uint* restrict tile_lights, const TileGrid grid,
-    /* shadows (shadow.h), read only with SHADOWS: a word per light (point lights', then directional
-     * lights', then area lights'), 1 + its place among the casters where it casts shadows, else 0;
-     * the geometry (shadow_layout.h), the screen march's depth plane and the frame's shadow scalars;
-     * with shadow_tiles > 0 tiled shadow culling's lists (shadow_cull.cl) over shadow_grid's tiles */
-    __global const uint* restrict shadow_casters, __global const BvhNode* restrict shadow_nodes,
-    __global const ShadowPrimitive* restrict shadow_primitives, __global const ShadowPlane* restrict shadow_planes,
-    __global const float* restrict shadow_depth, const ShadowFrame shadow_frame,
-    __global const uint* restrict shadow_counts, __global const uint* restrict shadow_offsets,
-    __global const ShadowCandidate* restrict shadow_candidates, const TileGrid shadow_grid, const uint shadow_tiles,
-    /* light groups, read only with LIGHT_GROUPS: each light's group (point lights', then directional
-     * lights', then area lights'), LIGHT_GROUPS for none; their planes follow the terms in out_terms */
-    __global const uint* restrict light_groups,
-    /* area lights (area_light.h), read only with AREA_LIGHTS */
-    __global const AreaLightRecord* restrict area_lights) {
+    /* the scene's tables (SceneTables): materials, lights, light shapes, linking masks, area lights,
+     * shadow casters, light groups; colours scaled by 2^-radiance_exponent, undone by the two scale
+     * factors. Each is read only where the recipe compiles in what needs it. */
+    UNIFORM_SPACE const uint* restrict scene,
+    /* TILED_CULLING: the tiles' light lists (TileListTables, cull.cl) */
+    __global const uint* restrict tile_lists,
+    /* SHADOWS: the geometry and the screen march's depth plane (ShadowGeometryTables, shadow.h); with
+     * frame.shadow_tiles > 0 tiled shadow culling's lists (ShadowListTables, shadow_cull.cl) */
+    __global const uint* restrict shadow_geometry, __global const uint* restrict shadow_lists,
+    /* output planes (PHONGCL_OUTPUT_PLANES): R G B A; with WRITE_TERMS also the terms (PHONGCL_TERM_PLANES),
+     * then with LIGHT_GROUPS each group's three planes */
+    __global float* restrict out_rgba, __global float* restrict out_terms) {
   const size_t group = get_global_id(0);
   const PixelOutputs outputs = {out_rgba, out_terms, frame.plane_stride, group};
   const float radiance_scale_a = frame.radiance_scale_a, radiance_scale_b = frame.radiance_scale_b;
-  const uint tile = TILED_CULLING ? tile_of_pixel(grid, grid.first_pixel + (uint)(group * PHONGCL_LANES)) : 0;
+  const uint first_pixel = (uint)(group * PHONGCL_LANES);
+  const uint tile = TILED_CULLING ? tile_of_pixel(frame.grid, frame.grid.first_pixel + first_pixel) : 0;
   const uint shadow_tile =
-      shadow_tiles > 0 ? tile_of_pixel(shadow_grid, shadow_grid.first_pixel + (uint)(group * PHONGCL_LANES)) : 0;
-  const ShadowInputs shadows = {shadow_nodes,  shadow_primitives, shadow_planes,     shadow_depth, shadow_frame,
-                                shadow_counts, shadow_offsets,    shadow_candidates, shadow_tiles, shadow_tile};
+      frame.shadow_tiles > 0 ? tile_of_pixel(frame.shadow_grid, frame.shadow_grid.first_pixel + first_pixel) : 0;
+  const ShadowInputs shadows = {
+      .nodes = TABLE(__global, BvhNode, shadow_geometry, frame.shadow_geometry.nodes),
+      .primitives = TABLE(__global, ShadowPrimitive, shadow_geometry, frame.shadow_geometry.primitives),
+      .planes = TABLE(__global, ShadowPlane, shadow_geometry, frame.shadow_geometry.planes),
+      .depth = TABLE(__global, float, shadow_geometry, frame.shadow_geometry.depth),
+      .frame = frame.shadow,
+      .counts = TABLE(__global, uint, shadow_lists, frame.shadow_lists.counts),
+      .offsets = TABLE(__global, uint, shadow_lists, frame.shadow_lists.offsets),
+      .candidates = TABLE(__global, ShadowCandidate, shadow_lists, frame.shadow_lists.candidates),
+      .tiles = frame.shadow_tiles,
+      .tile = shadow_tile,
+  };
+  UNIFORM_SPACE const LinkWord* links = TABLE(UNIFORM_SPACE, LinkWord, scene, frame.scene.links);
+  UNIFORM_SPACE const uint* casters = TABLE(UNIFORM_SPACE, uint, scene, frame.scene.shadow_casters);
+  UNIFORM_SPACE const uint* groups = TABLE(UNIFORM_SPACE, uint, scene, frame.scene.light_groups);
+  __global const uint* tile_offsets = TABLE(__global, uint, tile_lists, frame.tile_lists.offsets);
+  __global const uint* tile_lights = TABLE(__global, uint, tile_lists, frame.tile_lists.lights);
   const Lights lights = {
-      .point = point_lights,
-      .point_shapes = point_shapes,
+      .point = TABLE(UNIFORM_SPACE, PointLight, scene, frame.scene.point_lights),
+      .point_shapes = TABLE(UNIFORM_SPACE, LightShape, scene, frame.scene.point_shapes),
       .point_links = links,
-      .directional = directional_lights,
+      .directional = TABLE(UNIFORM_SPACE, DirectionalLight, scene, frame.scene.directional_lights),
       .directional_links = links + frame.point_count * LIGHT_LINKING,
       .point_list = tile_lights + (TILED_CULLING ? tile_offsets[tile] : 0),
-      .point_count = TILED_CULLING ? (int)tile_counts[tile] : POINT_COUNT > 0 ? POINT_COUNT : frame.point_count,
-      .point_holding = TILED_CULLING ? (int)tile_holding[tile] : 0,
+      .point_count = TILED_CULLING ? (int)TABLE(__global, uint, tile_lists, frame.tile_lists.counts)[tile]
+                     : POINT_COUNT > 0 ? POINT_COUNT : frame.point_count,
+      .point_holding = TILED_CULLING ? (int)TABLE(__global, uint, tile_lists, frame.tile_lists.holding)[tile] : 0,
       .directional_count = DIRECTIONAL_COUNT > 0 ? DIRECTIONAL_COUNT : frame.directional_count,
-      .area = area_lights,
+      .area = TABLE(UNIFORM_SPACE, AreaLightRecord, scene, frame.scene.area_lights),
       .area_count = frame.area_count,
-      .point_casters = shadow_casters,
-      .directional_casters = shadow_casters + frame.point_count,
-      .area_casters = shadow_casters + frame.point_count + frame.directional_count,
+      .point_casters = casters,
+      .directional_casters = casters + frame.point_count,
+      .area_casters = casters + frame.point_count + frame.directional_count,
       .shadows = &shadows,
-      .point_groups = light_groups,
-      .directional_groups = light_groups + frame.point_count,
-      .area_groups = light_groups + frame.point_count + frame.directional_count,
+      .point_groups = groups,
+      .directional_groups = groups + frame.point_count,
+      .area_groups = groups + frame.point_count + frame.directional_count,
   };
   MaterialLookup material;
-  look_up_materials(&material, materials, material_index, group);
+  look_up_materials(&material, TABLE(UNIFORM_SPACE, MaterialRecord, scene, frame.scene.materials), material_index,
+                    group);
   const intv background = material.index == PHONGCL_BACKGROUND;
   const PixelPlanes pixels = {planes, frame.plane_stride, group};
 

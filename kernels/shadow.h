@@ -168,8 +168,7 @@ typedef struct {
 } ShadowInputs;
 
 /* Inlined into each light's code whatever its size: called, it takes the shaded point and the light
- * as vec3s on the stack and spills the light loop's sums around the call (PoCL, 16 lanes:
- * scenes/large's 16 shadow-casting lights shaded in 0.8x the time inlined). */
+ * as vec3s on the stack and spills the light loop's sums around the call (docs/kernel.md, "Measured"). */
 #define SHADOW_INLINE __attribute__((always_inline))
 
 /* The lanes of `pending` that a light does not reach (shadow_ray_toward's light): its ray is blocked

@@ -75,22 +75,18 @@ void launch_once(const ComputeContext& compute, const Recipe& recipe, const std:
   std::vector<cl_int> background(lanes, PHONGCL_BACKGROUND);
   const cl::Buffer index(compute.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, lanes * sizeof(cl_int),
                          background.data());
-  const cl::Buffer table = zeros(4096);
+  // Every table of every block at offset 0 of one zeroed buffer.
+  const cl::Buffer tables = zeros(4096);
   PhongArguments arguments{.planes = zeros(recipe.plane_count() * lanes * sizeof(cl_float)),
                            .material_index = index,
-                           .materials = table,
-                           .point_lights = table,
-                           .directional_lights = table,
+                           .scene = tables,
+                           .tile_lists = tables,
+                           .shadow_geometry = tables,
+                           .shadow_lists = tables,
                            .out_rgba = zeros(PHONGCL_OUTPUT_PLANES * lanes * sizeof(cl_float)),
-                           .out_terms = zeros(PHONGCL_TERM_PLANES * lanes * sizeof(cl_float)),
-                           .point_shapes = table,
-                           .links = table,
-                           .tile_offsets = table,
-                           .tile_counts = table,
-                           .tile_holding = table,
-                           .tile_lights = table};
+                           .out_terms = zeros(PHONGCL_TERM_PLANES * lanes * sizeof(cl_float))};
   arguments.frame.plane_stride = static_cast<cl_uint>(lanes);
-  arguments.grid = {static_cast<cl_uint>(lanes), 16, 1, 0};
+  arguments.frame.grid = {static_cast<cl_uint>(lanes), 16, 1, 0};
   launch_phong(kernel, compute, arguments, lanes, recipe.lanes);
   compute.queue.finish();
 }

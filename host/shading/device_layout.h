@@ -8,9 +8,15 @@ extern "C" {
 }
 
 static_assert(sizeof(layout_float) == 4 && sizeof(layout_int) == 4 && sizeof(layout_uint) == 4);
-static_assert(sizeof(FrameScalars) == 64 && offsetof(FrameScalars, background) == 16 &&
-              offsetof(FrameScalars, radiance_scale_a) == 32 && offsetof(FrameScalars, point_count) == 40 &&
-              offsetof(FrameScalars, plane_stride) == 48);
+static_assert(offsetof(FrameScalars, background) == 16 && offsetof(FrameScalars, radiance_scale_a) == 32 &&
+              offsetof(FrameScalars, point_count) == 40 && offsetof(FrameScalars, plane_stride) == 48 &&
+              offsetof(FrameScalars, shadow_tiles) == 56 && offsetof(FrameScalars, scene) == 64 &&
+              offsetof(FrameScalars, tile_lists) == 96 && offsetof(FrameScalars, shadow_geometry) == 112 &&
+              offsetof(FrameScalars, shadow_lists) == 132 && offsetof(FrameScalars, grid) == 144 &&
+              offsetof(FrameScalars, shadow_grid) == 164 && offsetof(FrameScalars, shadow) == 184 &&
+              sizeof(FrameScalars) == 184 + sizeof(ShadowFrame));
+static_assert(sizeof(SceneTables) == 32 && sizeof(TileListTables) == 16 && sizeof(ShadowGeometryTables) == 20 &&
+              sizeof(ShadowListTables) == 12);
 static_assert(PHONGCL_UNROLL_LIGHT_LIMIT <= PHONGCL_LIGHT_BLOCK, "an unrolled light loop is one compensated block");
 static_assert(sizeof(PointLight) == 48 && offsetof(PointLight, color) == 16 && offsetof(PointLight, position_rest) == 32);
 static_assert(sizeof(DirectionalLight) == 32 && offsetof(DirectionalLight, color) == 16);
@@ -27,3 +33,12 @@ static_assert(sizeof(LightShape) == 48 && offsetof(LightShape, inverse_range) ==
 static_assert(sizeof(LightBounds) == 64 && offsetof(LightBounds, apex) == 16 && offsetof(LightBounds, distance_bins) == 48 &&
               sizeof(TileGrid) == 20 && sizeof(LinkWord) == 4);
 static_assert(sizeof(TileBox) == 32 && offsetof(TileBox, hi) == 16);
+
+namespace phongcl {
+
+// The scene block's tables (SceneTables) start at multiples of a cache line: no table shares one with
+// the next, and nothing takes them as sub-buffers, which would need the device's alignment.
+constexpr std::size_t kSceneTableAlignment = 64;
+constexpr std::size_t kSceneTables = sizeof(SceneTables) / sizeof(layout_uint);
+
+}  // namespace phongcl

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "cl/compute_context.h"
+#include "cl/table_block.h"
 #include "cl/work_groups.h"
 #include "shading/host_threads.h"
 
@@ -68,19 +69,23 @@ std::size_t tile_pixels(const DeviceInfo& device, const Recipe& recipe, std::siz
   return std::max<std::size_t>(tile, 1);
 }
 
-DeviceUniforms upload_uniforms(const cl::Context& context, const UniformData& uniforms, std::size_t plane_stride) {
-  DeviceUniforms device{.materials = uniform_buffer(context, uniforms.materials),
-                        .point_lights = uniform_buffer(context, uniforms.point_lights),
-                        .directional_lights = uniform_buffer(context, uniforms.directional_lights),
-                        .point_shapes = uniform_buffer(context, uniforms.point_shapes),
-                        .links = uniform_buffer(context, uniforms.links),
+DeviceUniforms upload_uniforms(const cl::Context& context, const UniformData& uniforms,
+                               const std::vector<cl_uint>& shadow_casters, std::size_t plane_stride) {
+  TableBlockLayout block(kSceneTableAlignment);
+  FrameScalars scalars = uniforms.scalars;
+  scalars.scene = {.materials = block.add(uniforms.materials),
+                   .point_lights = block.add(uniforms.point_lights),
+                   .point_shapes = block.add(uniforms.point_shapes),
+                   .links = block.add(uniforms.links),
+                   .directional_lights = block.add(uniforms.directional_lights),
+                   .area_lights = block.add(uniforms.area_lights),
+                   .shadow_casters = block.add(shadow_casters),
+                   .light_groups = block.add(uniforms.light_groups)};
+  scalars.plane_stride = static_cast<layout_uint>(plane_stride);
+  return DeviceUniforms{.scene = block.upload(context, CL_MEM_READ_ONLY),
                         .point_bounds = uniform_buffer(context, uniforms.point_bounds),
-                        .area_lights = uniform_buffer(context, uniforms.area_lights),
-                        .no_tiles = uniform_buffer(context, std::vector<cl_uint>{}),
-                        .light_groups = uniform_buffer(context, uniforms.light_groups),
-                        .scalars = uniforms.scalars};
-  device.scalars.plane_stride = static_cast<layout_uint>(plane_stride);
-  return device;
+                        .no_tables = uniform_buffer(context, std::vector<cl_uint>{}),
+                        .scalars = scalars};
 }
 
 std::vector<std::string> phong_argument_names() {

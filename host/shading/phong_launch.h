@@ -44,17 +44,18 @@ PackedTile pack_into_mapped(cl::CommandQueue& queue, const PackTarget& target, c
                             const glm::dvec3& eye, const Recipe& recipe, std::size_t first, std::size_t count,
                             std::size_t padded);
 
-// The light and material tables in device memory, with the per-frame scalars they go with.
+// The scene's tables in device memory, in one block (kernels/layout.h's SceneTables), with the
+// per-frame scalars they go with.
 struct DeviceUniforms {
-  cl::Buffer materials, point_lights, directional_lights;
-  cl::Buffer point_shapes, links, point_bounds;  // light shapes and linking (kernels/light_shape.h), culling spheres
-  cl::Buffer area_lights;                       // rects and disks (kernels/area_light.h)
-  cl::Buffer no_tiles;                          // stands in for the tile lists when not culling
-  cl::Buffer light_groups;                      // each light's group (LIGHT_GROUPS)
-  FrameScalars scalars{};
+  cl::Buffer scene;         // materials, lights, shapes, links, area lights, shadow casters, light groups
+  cl::Buffer point_bounds;  // what each point light reaches, for culling (parallel to the point lights)
+  cl::Buffer no_tables;     // stands in for a block the frame does not make (tile or shadow lists, geometry)
+  FrameScalars scalars{};   // with scalars.scene saying where each table starts
 };
-// `plane_stride`: values per plane of the tile the kernel will shade.
-DeviceUniforms upload_uniforms(const cl::Context& context, const UniformData& uniforms, std::size_t plane_stride);
+// `shadow_casters`: ShadowCasters' words (shading/shadow_inputs.h); `plane_stride`: values per plane of
+// the tile the kernel will shade.
+DeviceUniforms upload_uniforms(const cl::Context& context, const UniformData& uniforms,
+                               const std::vector<cl_uint>& shadow_casters, std::size_t plane_stride);
 
 // phong.cl's phong_shade in `program`.
 cl::Kernel phong_kernel(const cl::Program& program);

@@ -122,9 +122,8 @@ PhongShader::FrameSetup PhongShader::prepare(const Scene& scene, const GBuffer& 
   const std::size_t plane_bytes = stride * recipe.plane_count() * (half ? sizeof(cl_half) : sizeof(cl_float));
   if (!uniforms_ || uniforms_options_ != report.build_options || uniforms_stride_ != stride) {
     const auto upload_start = Clock::now();
-    uniforms_ = upload_uniforms(context, pack_uniforms(scene, recipe), stride);
     const ShadowCasters casters = shadow_casters(scene);
-    shadow_casters_ = table_buffer(context, casters.words);
+    uniforms_ = upload_uniforms(context, pack_uniforms(scene, recipe), casters.words, stride);
     shadow_lights_ = table_buffer(context, casters.lights);
     shadow_light_count_ = casters.lights.size();
     uniforms_options_ = report.build_options;
@@ -194,34 +193,29 @@ cl::Event PhongShader::cull_and_launch(cl::Kernel& kernel, FrameSetup& frame, co
     report.timings.kernel_ms += culled.culling_ms;
   }
   const ShadowLists* lists = shadow_culler ? &shadow_culler->lists() : nullptr;
+  FrameScalars scalars = uniforms.scalars;
+  if (culler) {
+    scalars.grid = frame.tiles.grid;
+    scalars.tile_lists = culler->tables();
+  }
+  if (shadows) {
+    scalars.shadow = shadows->device.frame;
+    scalars.shadow_geometry = shadows->device.geometry.tables;
+  }
+  if (lists) {
+    scalars.shadow_grid = frame.shadow_tiles.grid;
+    scalars.shadow_tiles = lists->tiles;
+    scalars.shadow_lists = lists->tables;
+  }
   const PhongArguments arguments{.planes = packed.planes,
                                  .material_index = packed.material_index,
-                                 .materials = uniforms.materials,
-                                 .point_lights = uniforms.point_lights,
-                                 .directional_lights = uniforms.directional_lights,
-                                 .frame = uniforms.scalars,
+                                 .frame = scalars,
+                                 .scene = uniforms.scene,
+                                 .tile_lists = culler ? culler->block() : uniforms.no_tables,
+                                 .shadow_geometry = shadows ? shadows->device.geometry.block : uniforms.no_tables,
+                                 .shadow_lists = lists ? lists->block : uniforms.no_tables,
                                  .out_rgba = frame.output,
-                                 .out_terms = frame.terms,
-                                 .point_shapes = uniforms.point_shapes,
-                                 .links = uniforms.links,
-                                 .tile_offsets = culler ? culler->offsets() : uniforms.no_tiles,
-                                 .tile_counts = culler ? culler->counts() : uniforms.no_tiles,
-                                 .tile_holding = culler ? culler->holding() : uniforms.no_tiles,
-                                 .tile_lights = culler ? culler->lights() : uniforms.no_tiles,
-                                 .grid = culler ? frame.tiles.grid : TileGrid{},
-                                 .shadow_casters = shadows ? shadow_casters_ : uniforms.no_tiles,
-                                 .shadow_nodes = shadows ? shadows->device.geometry.nodes : uniforms.no_tiles,
-                                 .shadow_primitives = shadows ? shadows->device.geometry.primitives : uniforms.no_tiles,
-                                 .shadow_planes = shadows ? shadows->device.geometry.planes : uniforms.no_tiles,
-                                 .shadow_depth = shadows ? shadows->device.depth : uniforms.no_tiles,
-                                 .shadow_frame = shadows ? shadows->device.frame : ShadowFrame{},
-                                 .shadow_counts = lists ? lists->counts : uniforms.no_tiles,
-                                 .shadow_offsets = lists ? lists->offsets : uniforms.no_tiles,
-                                 .shadow_candidates = lists ? lists->candidates : uniforms.no_tiles,
-                                 .shadow_grid = lists ? frame.shadow_tiles.grid : TileGrid{},
-                                 .shadow_tiles = lists ? lists->tiles : 0u,
-                                 .light_groups = uniforms.light_groups,
-                                 .area_lights = uniforms.area_lights};
+                                 .out_terms = frame.terms};
   return launch_phong(kernel, compute_, arguments, padded, recipe.lanes);
 }
 

@@ -133,7 +133,7 @@ class PhongShader {
   std::optional<PackedFrame> packed_;  // the planes hold the whole frame, packed for this
   std::uint64_t packings_ = 0;         // the planes' packings so far: the last one's number (BoxesKey)
   std::optional<ResidentShadows> shadows_;
-  cl::Buffer shadow_casters_, shadow_lights_;  // uploaded with the tables (ShadowCasters' words, lights)
+  cl::Buffer shadow_lights_;  // uploaded with the tables (ShadowCasters' lights; their words are in the scene block)
   std::size_t shadow_light_count_ = 0;
   // ALLOC_HOST_PTR + map/unmap: on a CPU device packing writes straight into device memory.
   ReusableBuffer planes_{CL_MEM_READ_ONLY | CL_MEM_ALLOC_HOST_PTR};

@@ -369,15 +369,18 @@ void decide_position_rest(Recipe& recipe) {
 }
 
 void decide_memory(Recipe& recipe, const Scene& scene, const DeviceInfo& device) {
-  const bool shapes = recipe.value("FALLOFF") != "0" || recipe.value("FALLOFF_MIXED") == "1" ||
-                      recipe.value("RANGE_WINDOW") == "1" || recipe.value("SPOT_LIGHTS") == "1";
+  // The scene block (phong_launch.h): every table, each from a multiple of kSceneTableAlignment. The
+  // casters' and groups' words are counted whether or not the scene has them.
+  const std::size_t lights = recipe.point_lights + recipe.directional_lights + scene.area_lights.size();
   const unsigned long long bytes = recipe.point_lights * sizeof(PointLight) +
                                    recipe.directional_lights * sizeof(DirectionalLight) +
                                    std::max<std::size_t>(scene.materials.size(), 1) * sizeof(MaterialRecord) +
-                                   (shapes ? recipe.point_lights * sizeof(LightShape) : 0) +
-                                   (recipe.point_lights + recipe.directional_lights) * recipe.link_words * sizeof(LinkWord);
-  // Five tables: materials, point and directional lights, light shapes, linking masks.
-  const bool constant = recipe.specialised && device.max_constant_args >= 5 && bytes <= device.max_constant_buffer;
+                                   recipe.point_lights * sizeof(LightShape) +
+                                   (recipe.point_lights + recipe.directional_lights) * recipe.link_words *
+                                       sizeof(LinkWord) +
+                                   scene.area_lights.size() * sizeof(AreaLightRecord) +
+                                   2 * lights * sizeof(layout_uint) + kSceneTables * kSceneTableAlignment;
+  const bool constant = recipe.specialised && device.max_constant_args >= 1 && bytes <= device.max_constant_buffer;
   recipe.flags.push_back({"UNIFORM_SPACE", constant ? "__constant" : "__global",
                           constant ? "lights and materials: __constant memory (" + std::to_string(bytes) + " bytes fit)"
                                    : "lights and materials: __global memory",

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "cl/kernel_source.h"
+#include "cl/table_block.h"
 
 namespace phongcl {
 
@@ -86,10 +87,15 @@ void ShadowCuller::fine_level(const cl::Buffer& boxes, const ShadowGeometryBuffe
     offsets[p] = static_cast<cl_uint>(room);
     room += parent_count == PHONGCL_SHADOW_TRAVERSE ? limit : std::min(parent_count, limit);
   }
-  fine_.offsets = table_buffer(context, offsets);
+  TableBlockLayout layout(sub_buffer_alignment(context));
+  fine_.tables = {.counts = layout.reserve(pairs * sizeof(cl_uint)),
+                  .offsets = layout.add(offsets),
+                  .candidates = layout.reserve(room * sizeof(ShadowCandidate))};
+  fine_.block = layout.upload(context, CL_MEM_READ_WRITE);
   stats.culling_ms += since_ms(prefix_start);
-  fine_.counts = cl::Buffer(context, CL_MEM_READ_WRITE, std::max<std::size_t>(pairs, 1) * sizeof(cl_uint));
-  fine_.candidates = cl::Buffer(context, CL_MEM_READ_WRITE, std::max<std::size_t>(room, 1) * sizeof(ShadowCandidate));
+  fine_.counts = layout.table(fine_.block, fine_.tables.counts);
+  fine_.offsets = layout.table(fine_.block, fine_.tables.offsets);
+  fine_.candidates = layout.table(fine_.block, fine_.tables.candidates);
   cl::KernelFunctor<cl::Buffer, cl_uint, cl::Buffer, cl_float, cl_float, cl_uint, CullLevel, cl::Buffer, cl::Buffer, cl::Buffer,
                     cl::Buffer, cl_uint, cl::Buffer, cl::Buffer, cl_uint, cl::Buffer, cl::Buffer, cl::Buffer>
       collect(cull_program_, "collect_shadow_candidates");

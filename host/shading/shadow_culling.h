@@ -16,9 +16,12 @@
 namespace phongcl {
 
 // What the kernels read: pair p = light * tiles + tile has counts[p] candidates from
-// candidates[offsets[p]], or counts[p] == PHONGCL_SHADOW_TRAVERSE (its rays traverse the BVH).
+// candidates[offsets[p]], or counts[p] == PHONGCL_SHADOW_TRAVERSE (its rays traverse the BVH). The
+// tiles' level keeps the three in one block (phong_shade's shadow_lists), `tables` saying where.
 struct ShadowLists {
-  cl::Buffer counts, offsets, candidates;
+  cl::Buffer counts, offsets, candidates;  // sub-buffers of `block` where there is one
+  cl::Buffer block;
+  ShadowListTables tables{};
   TileGrid grid{};
   cl_uint tiles = 0;
   std::vector<cl_uint> host_counts;  // the coarse level's, which size the tiles' room

@@ -21,12 +21,10 @@ ShadowDevice make_shadow_device(const cl::Context& context, const Scene& scene, 
   ShadowFrame& frame = device.frame;
   frame.offset_scale = half_storage ? PHONGCL_SHADOW_OFFSET_HALF : PHONGCL_SHADOW_OFFSET_FLOAT;
   frame.eye_extent = static_cast<float>(std::max({std::abs(eye.x), std::abs(eye.y), std::abs(eye.z)}));
-  std::vector<float> depth;
   if (mode == ShadowMode::screen) {
     ScreenDepth screen = screen_depth(scene.camera, gbuffer, settings.steps, static_cast<float>(settings.thickness));
     frame.march = screen.march;
-    depth = std::move(screen.depth);
-    device.geometry = upload_shadow_geometry(context, DeviceGeometry{});
+    device.geometry = upload_shadow_geometry(context, DeviceGeometry{}, screen.depth);
   } else {
     const SceneBvh bvh = build_scene_bvh(flatten_objects(scene.objects), PHONGCL_BVH_MAX_DEPTH);
     const DeviceGeometry geometry = pack_device_geometry(bvh, eye);
@@ -38,7 +36,6 @@ ShadowDevice make_shadow_device(const cl::Context& context, const Scene& scene, 
     device.unbounded_planes = geometry.planes.size();
     device.culled = bvh.shapes.bounded_count() <= kShadowCullingMaxShapes;
   }
-  device.depth = table_buffer(context, depth);
   device.build_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return device;
 }

@@ -28,8 +28,7 @@ constexpr std::size_t kShadowCullingMaxShapes = 4096;
 constexpr int kShadowCullingTile = 32;
 
 struct ShadowDevice {
-  ShadowGeometryBuffers geometry;  // one zeroed element per table where the mode reads none
-  cl::Buffer depth;
+  ShadowGeometryBuffers geometry;  // with the depth plane; one zeroed element per table the mode reads none of
   ShadowFrame frame{};
   double build_ms = 0.0;      // the BVH's build (geometry) or the depth plane's (screen)
   std::size_t triangles = 0, spheres = 0, unbounded_planes = 0;  // geometry: what the BVH and the plane list hold

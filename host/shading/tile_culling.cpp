@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "cl/kernel_source.h"
+#include "cl/table_block.h"
 #include "cl/work_groups.h"
 
 namespace phongcl {
@@ -155,11 +156,19 @@ TileCuller::Lists TileCuller::lists(const cl::Buffer& boxes, const BoxGrid& grid
   if (room > std::numeric_limits<cl_uint>::max())
     throw std::runtime_error("tiled culling: the light lists need over 2^32 entries (lights without a range are in "
                              "every tile's list): use a larger --tile or --culling none");
-  lists.offsets = device_copy(context, lists.host_offsets);
-  // OpenCL has no empty buffers: a frame that keeps no light still gets one entry.
-  lists.lights = buffers.lights.at_least(context, std::max<std::size_t>(room, 1) * sizeof(cl_uint));
-  lists.counts = buffers.counts.at_least(context, box_count * sizeof(cl_uint));
-  lists.holding = buffers.holding.at_least(context, box_count * sizeof(cl_uint));
+  // One block, kept from frame to frame; OpenCL has no empty buffers: a frame that keeps no light
+  // still gets one entry.
+  TableBlockLayout layout(sub_buffer_alignment(context));
+  lists.tables = {.offsets = layout.add(lists.host_offsets),
+                  .counts = layout.reserve(box_count * sizeof(cl_uint)),
+                  .holding = layout.reserve(box_count * sizeof(cl_uint)),
+                  .lights = layout.reserve(room * sizeof(cl_uint))};
+  lists.block = buffers.block.at_least(context, layout.bytes());
+  layout.write(queue, lists.block);
+  lists.offsets = layout.table(lists.block, lists.tables.offsets);
+  lists.counts = layout.table(lists.block, lists.tables.counts);
+  lists.holding = layout.table(lists.block, lists.tables.holding);
+  lists.lights = layout.table(lists.block, lists.tables.lights);
   // One block per group: PoCL's default put each level's blocks (2,040 at the tiles of a 1080p frame)
   // in one group, on one core; at 10,000 lights the four levels took 6.1 against 9.5 ms.
   const std::size_t blocks = candidate_count.size();
@@ -215,10 +224,8 @@ CullingStats TileCuller::cull(const cl::Buffer& planes, std::size_t plane_stride
                   level.host_holding, false, level_buffers_[g]);
   }
   const Lists& fine = level;
-  offsets_buffer_ = fine.offsets;
-  counts_buffer_ = fine.counts;
-  lights_buffer_ = fine.lights;
-  holding_buffer_ = fine.holding;
+  block_ = fine.block;
+  tables_ = fine.tables;
 
   CullingStats stats;
   stats.tile_size = static_cast<int>(layout.grid.tile_size);

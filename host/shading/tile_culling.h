@@ -54,17 +54,17 @@ class TileCuller {
   TileCuller(const ComputeContext& compute, ProgramCache& cache, const std::string& build_options);
 
   // Culls one launch's slots [0, slot_count) (frame pixels grid.first_pixel onwards) against the
-  // lights; afterwards offsets(), counts() and lights() hold the lists phong_shade reads. `packing`
+  // lights; afterwards block() holds the lists phong_shade reads. `packing`
   // numbers what the slots hold (BoxesKey): the tiles' boxes of the last cull serve the same one.
   CullingStats cull(const cl::Buffer& planes, std::size_t plane_stride, const cl::Buffer& material_index,
                     std::size_t slot_count, const TileLayout& layout, const cl::Buffer& light_bounds,
                     std::size_t light_count, std::uint64_t packing = 0);
 
-  const cl::Buffer& offsets() const { return offsets_buffer_; }
-  const cl::Buffer& counts() const { return counts_buffer_; }
-  const cl::Buffer& lights() const { return lights_buffer_; }
-  // How many lights lead each tile's list whose bounds hold all of the tile's box; the rest follow.
-  const cl::Buffer& holding() const { return holding_buffer_; }
+  // The tiles' lists in one block (phong_shade's tile_lists) and where each table starts in it: tile t's
+  // lights from lights[offsets[t]], counts[t] of them, led by the holding[t] whose bounds hold all of
+  // the tile's box.
+  const cl::Buffer& block() const { return block_; }
+  const TileListTables& tables() const { return tables_; }
 
  private:
   // One level of culling: each block's candidates (a range of `candidates`: block b's from
@@ -73,14 +73,16 @@ class TileCuller {
   // list is lights[host_offsets[t] ...], host_counts[t] of them, led by the host_holding[t] whose
   // bounds hold all of the box.
   struct Lists {
-    cl::Buffer offsets, counts, lights, holding;
+    cl::Buffer block;        // the tables below, in one buffer
+    TileListTables tables{};  // where each starts in it
+    cl::Buffer offsets, counts, lights, holding;  // each table as a sub-buffer, for cull.cl
     std::vector<cl_uint> host_offsets, host_counts, host_holding;
   };
   // A level's device lists, kept from frame to frame: fresh ones cost page faults every frame (at
   // 10,000 lights the coarsest level has room for 1.35 million entries; kept, the frame took 0.98 of
   // its time).
   struct LevelBuffers {
-    ReusableBuffer lights{CL_MEM_READ_WRITE}, counts{CL_MEM_READ_WRITE}, holding{CL_MEM_READ_WRITE};
+    ReusableBuffer block{CL_MEM_READ_WRITE};
   };
   Lists lists(const cl::Buffer& boxes, const BoxGrid& grid, const cl::Buffer& light_bounds,
               const cl::Buffer& candidates, const std::vector<cl_uint>& candidate_first,
@@ -93,7 +95,8 @@ class TileCuller {
   std::vector<TileBox> tile_boxes_;      // boxes_ read back
   std::optional<BoxesKey> boxes_for_;    // what they were taken for
   std::vector<LevelBuffers> level_buffers_;  // the tiles' first
-  cl::Buffer offsets_buffer_, counts_buffer_, lights_buffer_, holding_buffer_;
+  cl::Buffer block_;
+  TileListTables tables_{};
 };
 
 }  // namespace phongcl
