@@ -66,8 +66,8 @@ inline std::pair<Scene, GBuffer> random_scene(const RandomSceneSpec& spec, unsig
   }
   for (int i = 0; i < spec.materials; ++i) {
     // Shininess spread on a log scale, so both broad and needle-sharp highlights appear.
-    scene.materials.push_back({"m" + std::to_string(i), random_color(0.3), random_color(0.9), random_color(0.8),
-                               std::pow(spec.max_shininess, zero_one(rng))});
+    scene.materials.push_back({std::string("m").append(std::to_string(i)), random_color(0.3), random_color(0.9),
+                               random_color(0.8), std::pow(spec.max_shininess, zero_one(rng))});
   }
 
   GBuffer g;

@@ -34,11 +34,6 @@ using testing::TempDir;
 constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 constexpr float kInf = std::numeric_limits<float>::infinity();
 
-std::string contents(const fs::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
 // Distinct values per channel and pixel, not representable in half.
 Image ramp(int width, int height) {
   Image image(width, height);

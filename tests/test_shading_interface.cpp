@@ -76,21 +76,17 @@ void launch_once(const ComputeContext& compute, const Recipe& recipe, const std:
   const cl::Buffer index(compute.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, lanes * sizeof(cl_int),
                          background.data());
   const cl::Buffer table = zeros(4096);
-  PhongArguments arguments{.planes = zeros(recipe.plane_count() * lanes * sizeof(cl_float)),
-                           .material_index = index,
-                           .materials = table,
-                           .point_lights = table,
-                           .directional_lights = table,
-                           .out_rgba = zeros(PHONGCL_OUTPUT_PLANES * lanes * sizeof(cl_float)),
-                           .out_terms = zeros(PHONGCL_TERM_PLANES * lanes * sizeof(cl_float)),
-                           .point_shapes = table,
-                           .links = table,
-                           .tile_offsets = table,
-                           .tile_counts = table,
-                           .tile_holding = table,
-                           .tile_lights = table};
+  // What a launch over background pixels reads; the shadow, group and area-light buffers stay empty.
+  PhongArguments arguments;
+  arguments.planes = zeros(recipe.plane_count() * lanes * sizeof(cl_float));
+  arguments.material_index = index;
+  arguments.materials = arguments.point_lights = arguments.directional_lights = table;
+  arguments.out_rgba = zeros(PHONGCL_OUTPUT_PLANES * lanes * sizeof(cl_float));
+  arguments.out_terms = zeros(PHONGCL_TERM_PLANES * lanes * sizeof(cl_float));
+  arguments.point_shapes = arguments.links = table;
+  arguments.tile_offsets = arguments.tile_counts = arguments.tile_holding = arguments.tile_lights = table;
   arguments.frame.plane_stride = static_cast<cl_uint>(lanes);
-  arguments.grid = {static_cast<cl_uint>(lanes), 16, 1, 0};
+  arguments.grid = {static_cast<cl_uint>(lanes), 16, 1, 0, 0};
   launch_phong(kernel, compute, arguments, lanes, recipe.lanes);
   compute.queue.finish();
 }

@@ -24,6 +24,14 @@
 
 namespace phongcl {
 
+// Which image of a frame a request shows: the combined image, a term, or a light group's layer. Not in
+// the anonymous namespace: ImageRequest, declared in the header, holds one.
+struct Term {
+  enum class Kind { combined, ambient, diffuse, specular, group } kind = Kind::combined;
+  std::string group{};  // Kind::group: its name
+  bool needs_terms() const { return kind != Kind::combined; }
+};
+
 namespace {
 
 using nlohmann::json;
@@ -42,12 +50,6 @@ void send_json(httplib::Response& response, const json& body, int status = 200) 
   response.set_content(json_text(body), "application/json");
 }
 
-// Which image of a frame a request shows: the combined image, a term, or a light group's layer.
-struct Term {
-  enum class Kind { combined, ambient, diffuse, specular, group } kind = Kind::combined;
-  std::string group;  // Kind::group: its name
-  bool needs_terms() const { return kind != Kind::combined; }
-};
 Term parse_term(const std::string& name) {
   if (name == "combined") return {Term::Kind::combined};
   if (name == "ambient") return {Term::Kind::ambient};

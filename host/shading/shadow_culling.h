@@ -18,10 +18,10 @@ namespace phongcl {
 // What the kernels read: pair p = light * tiles + tile has counts[p] candidates from
 // candidates[offsets[p]], or counts[p] == PHONGCL_SHADOW_TRAVERSE (its rays traverse the BVH).
 struct ShadowLists {
-  cl::Buffer counts, offsets, candidates;
+  cl::Buffer counts{}, offsets{}, candidates{};
   TileGrid grid{};
   cl_uint tiles = 0;
-  std::vector<cl_uint> host_counts;  // the coarse level's, which size the tiles' room
+  std::vector<cl_uint> host_counts{};  // the coarse level's, which size the tiles' room
 };
 
 class ShadowCuller {

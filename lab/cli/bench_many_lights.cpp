@@ -182,9 +182,9 @@ class ManyLightsBench {
  private:
   struct PeerTiming {
     TiledPeerSchedule schedule;
-    std::vector<double> times, culling;
+    std::vector<double> times{}, culling{};
     double kept_pairs = 0.0;
-    std::optional<double> max_rel_err;
+    std::optional<double> max_rel_err{};
     bool single_run = false;
   };
 
