@@ -325,8 +325,10 @@ void ApiRoutes::send_image(const ImageRequest& wanted, const Image& image, const
   std::optional<Image> resized;
   if (wanted.width != image.width) resized = scale_to_width(image, wanted.width);
   const Image& scaled = resized ? *resized : image;
-  const std::string bytes = wanted.format == ImageFormat::exr ? encode_exr(scaled, color.working_chromaticities())
-                                                              : encode_display_image(scaled, wanted.format, display);
+  // EXR: RGB 0 where alpha is 0, the working space's chromaticities when known.
+  const std::string bytes = wanted.format == ImageFormat::exr
+                                ? encode_exr(scaled, {.chromaticities = color.working_chromaticities()})
+                                : encode_display_image(scaled, wanted.format, display);
   const double encode_ms = elapsed_ms(start);
   {
     std::lock_guard lock(encode_mutex_);
