@@ -2,7 +2,9 @@
 # it, and none of it is installed. The C++ peers' native-ISA code stays here.
 phongcl_lab_room(reference)
 phongcl_lab_room(report)
-phongcl_lab_room(peers)
+# The C++ peers are OpenMP programs, as strong CPU code of this kind is written; the product's host
+# passes use their own threads (common/host_threads.h).
+phongcl_lab_room(peers DEPS OpenMP::OpenMP_CXX)
 # The C++ peers must be strong: every vector unit, contraction to FMA, and no errno/trap semantics
 # (which stop GCC from vectorising floor and if-converting selects; results are unchanged: we never
 # read errno or unmask FP exceptions). 512-bit vectors: GCC's Sapphire Rapids tuning prefers 256.

@@ -9,9 +9,9 @@ phongcl_room(cl       DEPS phongcl_common phongcl_opencl phongcl_kernels)
 # Shadow geometry: meshes read with Assimp, the scene flattened into world space, the BVH and its
 # device layout (kernels/shadow_layout.h).
 phongcl_room(geometry DEPS phongcl_scene phongcl_kernels assimp::assimp)
-phongcl_room(shading  DEPS phongcl_cl phongcl_scene phongcl_gbuffer phongcl_image phongcl_geometry phongcl_kernels OpenMP::OpenMP_CXX)
+phongcl_room(shading  DEPS phongcl_cl phongcl_scene phongcl_gbuffer phongcl_image phongcl_geometry phongcl_kernels)
 phongcl_room(raycast  DEPS phongcl_scene phongcl_gbuffer phongcl_geometry)
-phongcl_room(color    DEPS phongcl_image phongcl_scene phongcl_gbuffer PkgConfig::OCIO yaml-cpp OpenMP::OpenMP_CXX)
+phongcl_room(color    DEPS phongcl_image phongcl_scene phongcl_gbuffer PkgConfig::OCIO yaml-cpp)
 # The display transforms' AVX2 loops, chosen at run time where the CPU has AVX2 and FMA
 # (host/color/pixel_kernels.h): the rest of the product stays baseline x86-64. Multiply-adds are fused
 # where the code says so (_mm256_fmadd_ps), not wherever the compiler may.
@@ -38,7 +38,7 @@ target_compile_features(phongcl_library PUBLIC cxx_std_20)
 # reach OpenCL, OpenEXR and JSON directly.
 add_library(phongcl_internal INTERFACE)
 target_link_libraries(phongcl_internal INTERFACE phongcl_library phongcl_opencl OpenEXR::OpenEXR OpenEXR::OpenEXRCore
-                      nlohmann_json::nlohmann_json PNG::PNG OpenMP::OpenMP_CXX PkgConfig::OCIO)
+                      nlohmann_json::nlohmann_json PNG::PNG PkgConfig::OCIO)
 target_include_directories(phongcl_internal INTERFACE ${PROJECT_SOURCE_DIR}/host ${PROJECT_SOURCE_DIR})
 
 # What the product and lab command lines share: option groups, number formats, the top-level catch.

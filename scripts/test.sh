@@ -6,8 +6,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/setup.sh all
 # A unity build (CMake compiles up to 8 of a room's files as one, the heavy headers parsed once per
-# batch): 314 s against 551 s here. The sanitizer build is one too.
-scripts/build.sh -DPHONGCL_BUILD_TESTS=ON -DCMAKE_UNITY_BUILD=ON
+# batch): 314 s against 551 s here. The sanitizer build is one too. A warning fails this build.
+scripts/build.sh -DPHONGCL_BUILD_TESTS=ON -DCMAKE_UNITY_BUILD=ON -DPHONGCL_WERROR=ON
 # A private PoCL kernel cache: CI machines may have no writable HOME.
 export POCL_CACHE_DIR="${POCL_CACHE_DIR:-$PWD/build/pocl-cache}"
 ctest --test-dir build --output-on-failure -j 2

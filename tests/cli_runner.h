@@ -23,13 +23,18 @@ inline std::string read_text(const std::filesystem::path& file) {
   return text.str();
 }
 
+// A run still going after this long is killed (coreutils' timeout: exit status 124), so a phongcl
+// that hangs fails its test instead of holding ctest for its 600 s.
+inline constexpr int kRunLimitSeconds = 300;
+
 // `arguments` is appended to the binary's path as shell words; `environment` (e.g. "FOO=1 ") is
 // prefixed. Standard input is closed, as in CI.
 inline CliRun run_phongcl(const std::string& arguments, const std::string& environment = "") {
   static int counter = 0;
   const auto base = std::filesystem::temp_directory_path() /
                     ("phongcl-cli-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
-  const std::string command = "cd '" PHONGCL_SOURCE_DIR "' && " + environment + "'" PHONGCL_EXE "' " + arguments +
+  const std::string command = "cd '" PHONGCL_SOURCE_DIR "' && " + environment + "timeout -k 10 " +
+                              std::to_string(kRunLimitSeconds) + " '" PHONGCL_EXE "' " + arguments +
                               " </dev/null >'" + base.string() + ".out' 2>'" + base.string() + ".err'";
   const int status = std::system(command.c_str());
   CliRun run;

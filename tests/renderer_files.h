@@ -243,10 +243,11 @@ inline void expect_same_gbuffer(const GBuffer& actual, const GBuffer& expected, 
   EXPECT_EQ(actual.has_per_pixel_ks(), expected.has_per_pixel_ks());
   expect_planes_near(actual.material, expected.material, 0.0, "material");  // small integers: exact in any format
   for (int c = 0; c < 3; ++c) {
-    expect_planes_near(actual.position[c], expected.position[c], tolerance, "P" + std::to_string(c));
-    expect_planes_near(actual.normal[c], expected.normal[c], tolerance, "N" + std::to_string(c));
-    if (expected.has_per_pixel_kd()) expect_planes_near(actual.kd[c], expected.kd[c], tolerance, "kd" + std::to_string(c));
-    if (expected.has_per_pixel_ks()) expect_planes_near(actual.ks[c], expected.ks[c], tolerance, "ks" + std::to_string(c));
+    const std::string axis = std::to_string(c);
+    expect_planes_near(actual.position[c], expected.position[c], tolerance, "P" + axis);
+    expect_planes_near(actual.normal[c], expected.normal[c], tolerance, "N" + axis);
+    if (expected.has_per_pixel_kd()) expect_planes_near(actual.kd[c], expected.kd[c], tolerance, "kd" + axis);
+    if (expected.has_per_pixel_ks()) expect_planes_near(actual.ks[c], expected.ks[c], tolerance, "ks" + axis);
   }
 }
 

@@ -1,5 +1,5 @@
 #pragma once
-// Shared by the kernel test suites: the default OpenCL device (or a SKIP where there is none),
+// Shared by the kernel test suites: the default OpenCL device (opencl_required.h where there is none),
 // seeded random scenes and G-buffers, and a reference comparison that names the worst pixel.
 #include <gtest/gtest.h>
 
@@ -9,6 +9,7 @@
 
 #include "accuracy_bound.h"
 #include "cl/device.h"
+#include "opencl_required.h"
 #include "raycast/raycast.h"
 #include "reference/reference.h"
 #include "shading/phong_shader.h"
@@ -31,11 +32,11 @@ inline PhongShader* shared_shader() {
   return shader.get();
 }
 
-// In a TEST body: PHONGCL_REQUIRE_DEVICE(shader); declares `PhongShader& shader`, or reports SKIP
-// (never a false PASS or a FAIL) on a machine without an OpenCL device.
+// In a TEST body: PHONGCL_REQUIRE_DEVICE(shader); declares `PhongShader& shader`, or returns as
+// PHONGCL_REQUIRE_OPENCL says on a machine without an OpenCL device (opencl_required.h).
 #define PHONGCL_REQUIRE_DEVICE(name)                                              \
   PhongShader* name##_or_null = ::phongcl::testing::shared_shader();              \
-  if (!name##_or_null) GTEST_SKIP() << "no OpenCL device on this machine";        \
+  PHONGCL_REQUIRE_OPENCL(name##_or_null != nullptr);                              \
   PhongShader& name = *name##_or_null
 
 struct RandomSceneSpec {
@@ -66,8 +67,8 @@ inline std::pair<Scene, GBuffer> random_scene(const RandomSceneSpec& spec, unsig
   }
   for (int i = 0; i < spec.materials; ++i) {
     // Shininess spread on a log scale, so both broad and needle-sharp highlights appear.
-    scene.materials.push_back({"m" + std::to_string(i), random_color(0.3), random_color(0.9), random_color(0.8),
-                               std::pow(spec.max_shininess, zero_one(rng))});
+    scene.materials.push_back({std::string("m").append(std::to_string(i)), random_color(0.3), random_color(0.9),
+                               random_color(0.8), std::pow(spec.max_shininess, zero_one(rng))});
   }
 
   GBuffer g;

@@ -10,6 +10,7 @@
 #include "cl/device.h"
 #include "cl/program_cache.h"
 #include "cl/work_groups.h"
+#include "opencl_required.h"
 #include "temp_dir.h"
 
 namespace phongcl {
@@ -75,7 +76,7 @@ std::size_t files_in(const std::filesystem::path& directory) {
 // cache now keeps the ones used last: a program dropped from memory comes back from disk, and the
 // disk keeps its newest files.
 TEST(ProgramCache, BothCachesKeepTheProgramsUsedLast) {
-  if (list_devices().empty()) GTEST_SKIP() << "no OpenCL device on this machine";
+  PHONGCL_REQUIRE_OPENCL(!list_devices().empty());
   testing::TempDir dir("program_cache");
   ProgramCache cache(dir.path, {2, 3, std::uintmax_t{1} << 30});
   const ComputeContext compute = make_compute_context(pick_device(""));

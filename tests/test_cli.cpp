@@ -18,6 +18,7 @@
 #include "cli_runner.h"
 #include "gbuffer/gbuffer.h"
 #include "image/image.h"
+#include "opencl_required.h"
 #include "peers/knot_mesh.h"
 
 namespace phongcl {
@@ -63,7 +64,7 @@ class Cli : public ::testing::Test {
 constexpr const char* kDefaultScene = "scenes/default/scene.json";
 
 TEST_F(Cli, ShadeWritesImagesAndSaysWhatItDid) {
-  if (!testing::have_opencl_device()) GTEST_SKIP() << "no OpenCL device";
+  PHONGCL_REQUIRE_OPENCL(testing::have_opencl_device());
   const CliRun run = run_phongcl(std::string("shade --scene ") + kDefaultScene + " --out " + path("lit.exr") +
                                  " --png " + path("lit.png") + " --explain");
   ASSERT_EQ(run.exit_code, 0) << run.err;
@@ -76,7 +77,7 @@ TEST_F(Cli, ShadeWritesImagesAndSaysWhatItDid) {
 }
 
 TEST_F(Cli, ShadeMatchesReferenceThroughCompare) {
-  if (!testing::have_opencl_device()) GTEST_SKIP() << "no OpenCL device";
+  PHONGCL_REQUIRE_OPENCL(testing::have_opencl_device());
   const std::string scene = " --scene scenes/shininess/scene.json";
   ASSERT_EQ(run_phongcl("shade" + scene + " --out " + path("lit.exr")).exit_code, 0);
   ASSERT_EQ(run_phongcl("reference" + scene + " --out " + path("ref.exr")).exit_code, 0);
@@ -90,7 +91,7 @@ TEST_F(Cli, ShadeMatchesReferenceThroughCompare) {
 }
 
 TEST_F(Cli, GbufferCommandWritesALoadableGBuffer) {
-  if (!testing::have_opencl_device()) GTEST_SKIP() << "no OpenCL device";
+  PHONGCL_REQUIRE_OPENCL(testing::have_opencl_device());
   ASSERT_EQ(run_phongcl(std::string("gbuffer --scene ") + kDefaultScene + " --out " + path("g.exr")).exit_code, 0);
   const CliRun run = run_phongcl(std::string("shade --scene ") + kDefaultScene + " --gbuffer " + path("g.exr") +
                                  " --out " + path("lit.exr"));
@@ -98,7 +99,7 @@ TEST_F(Cli, GbufferCommandWritesALoadableGBuffer) {
 }
 
 TEST_F(Cli, SecondRunHitsTheProgramCache) {
-  if (!testing::have_opencl_device()) GTEST_SKIP() << "no OpenCL device";
+  PHONGCL_REQUIRE_OPENCL(testing::have_opencl_device());
   const std::string env = "PHONGCL_CACHE_DIR='" + path("cache") + "' ";
   const std::string args = std::string("shade --scene ") + kDefaultScene + " --out " + path("lit.exr");
   const CliRun first = run_phongcl(args, env);
@@ -108,7 +109,7 @@ TEST_F(Cli, SecondRunHitsTheProgramCache) {
 }
 
 TEST_F(Cli, WorksWithoutAHomeDirectory) {
-  if (!testing::have_opencl_device()) GTEST_SKIP() << "no OpenCL device";
+  PHONGCL_REQUIRE_OPENCL(testing::have_opencl_device());
   const CliRun run = run_phongcl(std::string("shade --scene ") + kDefaultScene + " --out " + path("lit.exr"),
                                  "env -u HOME -u XDG_CACHE_HOME -u PHONGCL_CACHE_DIR -u POCL_CACHE_DIR ");
   EXPECT_EQ(run.exit_code, 0) << run.err;
@@ -186,7 +187,7 @@ TEST_F(Cli, NoOpenCLDeviceIsAClearError) {
 }
 
 TEST_F(Cli, KernelBuildFailureShowsTheBuildLog) {
-  if (!testing::have_opencl_device()) GTEST_SKIP() << "no OpenCL device";
+  PHONGCL_REQUIRE_OPENCL(testing::have_opencl_device());
   const fs::path kernels = fs::path(PHONGCL_SOURCE_DIR) / "kernels";
   fs::create_directories(path("kernels"));
   for (const auto& entry : fs::directory_iterator(kernels)) fs::copy(entry.path(), path("kernels"));
@@ -230,7 +231,7 @@ TEST_F(Cli, BadFlagsAreOneLineErrors) {
 }
 
 TEST_F(Cli, LanesAreWhatWasAskedFor) {
-  if (!testing::have_opencl_device()) GTEST_SKIP() << "no OpenCL device";
+  PHONGCL_REQUIRE_OPENCL(testing::have_opencl_device());
   const CliRun run =
       run_phongcl(std::string("shade --scene ") + kDefaultScene + " --out " + path("lit.exr") + " --lanes 4 --explain");
   ASSERT_EQ(run.exit_code, 0) << run.err;
@@ -239,7 +240,7 @@ TEST_F(Cli, LanesAreWhatWasAskedFor) {
 }
 
 TEST_F(Cli, NonFinitePixelsAreCountedNotFatal) {
-  if (!testing::have_opencl_device()) GTEST_SKIP() << "no OpenCL device";
+  PHONGCL_REQUIRE_OPENCL(testing::have_opencl_device());
   GBuffer gbuffer = read_gbuffer(fs::path(PHONGCL_SOURCE_DIR) / "scenes/default/gbuffer.exr");
   std::size_t shaded = 0;
   for (std::size_t i = 0; i < gbuffer.pixel_count() && shaded < 3; ++i) {
@@ -324,7 +325,7 @@ TEST_F(Cli, DisplayNamesAreCheckedBeforeShading) {
 }
 
 TEST_F(Cli, ExrsAreBlackWhereTransparentUnlessAsked) {
-  if (!testing::have_opencl_device()) GTEST_SKIP() << "no OpenCL device";
+  PHONGCL_REQUIRE_OPENCL(testing::have_opencl_device());
   const std::string shade = std::string("shade --scene ") + kDefaultScene;
   ASSERT_EQ(run_phongcl(shade + " --out " + path("lit.exr") + " --png " + path("lit.png")).exit_code, 0);
   ASSERT_EQ(run_phongcl(shade + " --out " + path("old.exr") + " --exr-background").exit_code, 0);
@@ -353,7 +354,7 @@ TEST_F(Cli, ExrsAreBlackWhereTransparentUnlessAsked) {
 }
 
 TEST_F(Cli, PngOfAnExrIsShadesOwnPreview) {
-  if (!testing::have_opencl_device()) GTEST_SKIP() << "no OpenCL device";
+  PHONGCL_REQUIRE_OPENCL(testing::have_opencl_device());
   ASSERT_EQ(run_phongcl(std::string("shade --scene ") + kDefaultScene + " --out " + path("lit.exr") + " --png " +
                         path("shade.png") + " --view aces --exposure 0.5")
                 .exit_code,
@@ -373,7 +374,7 @@ TEST_F(Cli, PngOfAnExrIsShadesOwnPreview) {
 }
 
 TEST_F(Cli, GbufferSpaceConvertsTheColourPasses) {
-  if (!testing::have_opencl_device()) GTEST_SKIP() << "no OpenCL device";
+  PHONGCL_REQUIRE_OPENCL(testing::have_opencl_device());
   const std::string shade = "shade --scene tests/fixtures/blender/scene.json --gbuffer tests/fixtures/blender/cycles.exr";
   ASSERT_EQ(run_phongcl(shade + " --out " + path("linear.exr")).exit_code, 0);
   const CliRun run = run_phongcl(shade + " --out " + path("srgb.exr") + " --gbuffer-space sRGB");
@@ -390,7 +391,7 @@ TEST_F(Cli, GbufferSpaceConvertsTheColourPasses) {
 }
 
 TEST_F(Cli, SceneColoursNameTheirSpace) {
-  if (!testing::have_opencl_device()) GTEST_SKIP() << "no OpenCL device";
+  PHONGCL_REQUIRE_OPENCL(testing::have_opencl_device());
   // The same scene twice: colours as sRGB-encoded values, and the same colours decoded by hand.
   const std::string gbuffer = " --gbuffer scenes/default/gbuffer.exr";
   const std::string encoded = write("encoded.json", R"({"color_space": "sRGB", "camera": {"eye": [0, 2, 8], "look_at": [0, 0.7, 0]},
@@ -522,7 +523,7 @@ TEST_F(Cli, ExposureIsCheckedBeforeShading) {
 // The temporary beside an output is named after it: a name that fits its file system must give a
 // temporary that fits too, and one that does not is refused before shading.
 TEST_F(Cli, LongOutputNamesWriteAndTooLongOnesAreRefusedUpFront) {
-  if (!testing::have_opencl_device()) GTEST_SKIP() << "no OpenCL device";
+  PHONGCL_REQUIRE_OPENCL(testing::have_opencl_device());
   const std::string longest = path(std::string(251, 'n') + ".exr");  // 255 bytes
   const CliRun run = run_phongcl(std::string("shade --scene ") + kDefaultScene + " --out " + longest);
   EXPECT_EQ(run.exit_code, 0) << run.err;
@@ -536,7 +537,7 @@ TEST_F(Cli, LongOutputNamesWriteAndTooLongOnesAreRefusedUpFront) {
 // A write that runs out of space (here: a file size limit, as a full disk fails it) names the
 // output, not the unnamed temporary's /proc/self/fd/N.
 TEST_F(Cli, AFailedWriteNamesTheOutput) {
-  if (!testing::have_opencl_device()) GTEST_SKIP() << "no OpenCL device";
+  PHONGCL_REQUIRE_OPENCL(testing::have_opencl_device());
   const std::string out = path("big.exr");
   const CliRun run = run_phongcl(std::string("shade --scene ") + kDefaultScene + " --out " + out + " --compression none",
                                  "trap '' XFSZ; ulimit -f 1024; ");

@@ -18,7 +18,7 @@ namespace {
 
 using namespace testing;
 
-std::string quoted(const fs::path& path) { return "\"" + path.string() + "\""; }
+std::string quoted(const fs::path& path) { return std::string("\"").append(path.string()).append("\""); }
 
 TEST(LayoutsCli, RendererFilesShadeWithOnlySceneAndGBuffer) {
   PHONGCL_REQUIRE_DEVICE(shader);

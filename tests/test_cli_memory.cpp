@@ -7,6 +7,7 @@
 #include <string>
 
 #include "cli_runner.h"
+#include "opencl_required.h"
 #include "peers/knot_mesh.h"
 #include "temp_dir.h"
 
@@ -40,7 +41,7 @@ std::string mesh_scene(int instances) {
 // A 500,000-triangle mesh listed twenty times under a 3 GB address-space limit: 10 million
 // triangles of shadow geometry. It ended in a bare std::bad_alloc; one instance still shades.
 TEST(CliMemory, ShadowGeometryBeyondTheLimitIsRefusedNamingIt) {
-  if (!testing::have_opencl_device()) GTEST_SKIP() << "no OpenCL device";
+  PHONGCL_REQUIRE_OPENCL(testing::have_opencl_device());
   if (under_address_sanitizer()) GTEST_SKIP() << "AddressSanitizer reserves terabytes of address space: ulimit -v cannot hold it";
   TempDir dir;
   write_ply(dir / "rock.ply", trefoil_knot(1000, 250));

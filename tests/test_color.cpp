@@ -32,6 +32,7 @@
 #include "color/pixel_kernels.h"
 #include "common/error.h"
 #include "image/image.h"
+#include "opencl_required.h"
 #include "scene/scene.h"
 #include "temp_dir.h"
 
@@ -678,7 +679,7 @@ TEST(SceneColors, OutOfGamutAndUnknownSpacesAreErrors) {
 }
 
 TEST(SceneColors, TheRelighterRefusesColoursNotYetConverted) {
-  if (!testing::have_opencl_device()) GTEST_SKIP() << "no OpenCL device";
+  PHONGCL_REQUIRE_OPENCL(testing::have_opencl_device());
   Scene scene = parse_scene(kScene, "scene.json");
   GBuffer gbuffer;
   gbuffer.width = gbuffer.height = 1;

@@ -22,6 +22,7 @@
 #include "common/utf8.h"
 
 #include "temp_dir.h"
+#include "wait_until.h"
 
 namespace phongcl {
 namespace {
@@ -50,9 +51,9 @@ bool killed_in_child(const std::function<void()>& body) {
     body();
     ::_exit(0);  // not killed: the parent sees exit status 0
   }
-  int status = 0;
-  ::waitpid(child, &status, 0);
-  return WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL;
+  // Nothing where it still ran at the deadline (wait_for_child kills it then): not the death body chose.
+  const std::optional<int> status = testing::wait_for_child(child);
+  return status && WIFSIGNALED(*status) && WTERMSIG(*status) == SIGKILL;
 }
 
 void write_then_die(const fs::path& temp) {
@@ -76,7 +77,7 @@ TEST(AtomicFile, NextWriteRemovesTemporariesOfDeadProcesses) {
   TempDir dir;
   const pid_t dead = ::fork();
   if (dead == 0) ::_exit(0);
-  ::waitpid(dead, nullptr, 0);
+  ASSERT_TRUE(testing::wait_for_child(dead));
   const std::string stale = ".lit.tmp" + std::to_string(dead) + ".exr";
   const std::string live = ".lit.tmp" + std::to_string(::getppid()) + ".exr";  // a process that exists
   for (const std::string& name : {stale, live, std::string(".other.tmp") + std::to_string(dead) + ".exr"})

@@ -12,6 +12,7 @@
 #include "cl/device.h"
 #include "geometry/device_geometry.h"
 #include "geometry/scene_bvh.h"
+#include "opencl_required.h"
 #include "peers/light_sweep.h"
 #include "peers/opencl_shadow_rays.h"
 #include "peers/packed_frame.h"
@@ -49,7 +50,7 @@ Device* shared_device() {
 
 #define REQUIRE_DEVICE(name)                                                 \
   Device* name = shared_device();                                            \
-  if (!name) GTEST_SKIP() << "no OpenCL device on this machine"
+  PHONGCL_REQUIRE_OPENCL(name != nullptr)
 
 // A scene's G-buffer (ray-cast), its BVH, and the standalone kernel holding both and the frame.
 struct Traced {

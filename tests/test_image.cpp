@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "cli_runner.h"  // read_text
 #include "common/error.h"
 #include "image/image.h"
 #include "renderer_files.h"
@@ -33,11 +34,6 @@ using testing::TempDir;
 
 constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 constexpr float kInf = std::numeric_limits<float>::infinity();
-
-std::string contents(const fs::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
 
 // Distinct values per channel and pixel, not representable in half.
 Image ramp(int width, int height) {
@@ -262,6 +258,20 @@ TEST(ExrImage, ChromaticitiesAreTheStandardAttribute) {
   EXPECT_EQ(c.green.y, 0.69f);
   EXPECT_EQ(c.blue.x, 0.15f);
   EXPECT_EQ(c.white.y, 0.329f);
+}
+
+// What `phongcl serve` sends: the bytes write_exr writes, made in memory.
+TEST(ExrImage, EncodedInMemoryIsWhatWriteExrWrites) {
+  TempDir dir;
+  Image image = ramp(5, 3);
+  image.pixel(0)[3] = 0.0f;  // its colour is cleared in both
+  const Chromaticities p3{{0.68f, 0.32f}, {0.265f, 0.69f}, {0.15f, 0.06f}, {0.3127f, 0.329f}};
+  for (const ExrPixelType type : {ExrPixelType::float32, ExrPixelType::half}) {
+    const ExrWriteOptions options{.type = type, .chromaticities = p3};
+    write_exr(image, dir / "frame.exr", options);
+    const std::string file = testing::read_text(dir / "frame.exr"), memory = encode_exr(image, options);
+    EXPECT_TRUE(memory == file) << "in memory " << memory.size() << " bytes, the file " << file.size();
+  }
 }
 
 TEST(ExrImage, WriteIntoMissingDirectoryLeavesNothing) {

@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "common/error.h"
+#include "opencl_required.h"
 #include "peers/halide_peer.h"
 #include "peers/packed_file.h"
 #include "cli_runner.h"
@@ -118,7 +119,7 @@ const nlohmann::json* halide_row(const nlohmann::json& rows) {
 }
 
 TEST(ThroughputBench, HalideRowHasMeasuredFiguresBesidePhongcl) {
-  if (!testing::have_opencl_device()) GTEST_SKIP() << "no OpenCL device";
+  PHONGCL_REQUIRE_OPENCL(testing::have_opencl_device());
   if (!halide_peer()) GTEST_SKIP() << "Halide not installed: no phongcl-halide-peer";
   const testing::TempDir dir("bench_halide");
   const nlohmann::json rows = throughput_rows(PHONGCL_EXE, dir);
@@ -132,7 +133,7 @@ TEST(ThroughputBench, HalideRowHasMeasuredFiguresBesidePhongcl) {
 }
 
 TEST(ThroughputBench, HalideRowSaysSkipWithoutThePeerAndHasNoFigures) {
-  if (!testing::have_opencl_device()) GTEST_SKIP() << "no OpenCL device";
+  PHONGCL_REQUIRE_OPENCL(testing::have_opencl_device());
   const testing::TempDir dir("bench_no_halide");
   // The benchmark runs in phongcl-lab (phongcl hands it over); a copy of that with no peer beside it.
   const auto lone_lab = dir / "phongcl-lab";

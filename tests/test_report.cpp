@@ -13,6 +13,7 @@
 
 #include "cl/device.h"
 #include "cli_runner.h"
+#include "opencl_required.h"
 #include "report/error_vs_time_report.h"
 #include "report/markdown_table.h"
 #include "report/pareto.h"
@@ -179,7 +180,7 @@ TEST(ErrorVsTimeReport, JsonRoundTripKeepsEveryVariantAndField) {
 }
 
 TEST(BenchCli, WritesThreeFilesWithEveryVariantMeasured) {
-  if (!testing::have_opencl_device()) GTEST_SKIP() << "no OpenCL device on this machine";
+  PHONGCL_REQUIRE_OPENCL(testing::have_opencl_device());
   testing::TempDir dir;
   const auto run = testing::run_phongcl("bench --scene scenes/default/scene.json --runs 2 --report '" +
                                         (dir / "report").string() + "'");

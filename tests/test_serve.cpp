@@ -25,6 +25,7 @@
 #include "cl/device.h"
 #include "cli_runner.h"
 #include "gbuffer/layouts.h"
+#include "opencl_required.h"
 #include "reference/reference.h"
 #include "color/color_conversion.h"
 #include "color/display.h"
@@ -55,7 +56,7 @@ class Serve : public ::testing::Test {
     server_ = nullptr;
   }
   void SetUp() override {
-    if (!server_) GTEST_SKIP() << "no OpenCL device on this machine";
+    PHONGCL_REQUIRE_OPENCL(server_ != nullptr);
     // Each test starts from the scene file and the default settings.
     auto client = server_->client();
     ASSERT_EQ(client.Put("/api/scene", file_text(kSceneFile), "application/json")->status, 200);
@@ -383,7 +384,7 @@ TEST_F(Serve, ShadesOneFrameAheadOfWhatIsFetched) {
 // The render loop shades into the image of a frame nobody reads any more: every value of it is
 // written again. A canvas of NaN gives exactly the image a new one does.
 TEST(ServeFrames, ACanvasIsOverwrittenWhole) {
-  if (list_devices().empty()) GTEST_SKIP() << "no OpenCL device on this machine";
+  PHONGCL_REQUIRE_OPENCL(!list_devices().empty());
   RelightSession session(read_gbuffer(PHONGCL_SOURCE_DIR "/scenes/default/gbuffer.exr"), "");
   const Scene scene = parse_scene(file_text(kSceneFile), kSceneFile);
   const Image fresh = session.shade(scene, RenderSettings{}).image;
@@ -568,7 +569,7 @@ TEST_F(Serve, BeautyIs404WithoutOne) {
 // A Blender render's Combined, as the G-buffer read it, in every format, at a width, and its
 // parameters checked like the frame's.
 TEST(ServeBeauty, ServesTheRenderersOwnImage) {
-  if (!testing::have_opencl_device()) GTEST_SKIP() << "no OpenCL device on this machine";
+  PHONGCL_REQUIRE_OPENCL(testing::have_opencl_device());
   const std::filesystem::path fixtures = PHONGCL_SOURCE_DIR "/tests/fixtures/blender";
   ReadOptions options;
   options.beauty = true;
@@ -610,7 +611,7 @@ TEST_F(Serve, SaveWithoutAPathIs409) {
 }
 
 TEST(ServeSave, WritesTheHeldSceneAtomically) {
-  if (list_devices().empty()) GTEST_SKIP() << "no OpenCL device on this machine";
+  PHONGCL_REQUIRE_OPENCL(!list_devices().empty());
   TempDir dir("serve_save");
   RunningServer server(dir / "saved.json");
   auto client = server.client();
@@ -625,7 +626,7 @@ TEST(ServeSave, WritesTheHeldSceneAtomically) {
 }
 
 TEST(ServeShutdown, StopEndsWaitingRequestsPromptly) {
-  if (list_devices().empty()) GTEST_SKIP() << "no OpenCL device on this machine";
+  PHONGCL_REQUIRE_OPENCL(!list_devices().empty());
   auto server = std::make_unique<RunningServer>();
   auto client = server->client();
   const std::string version = client.Get("/api/image?format=jpeg")->get_header_value("X-Frame-Version");
@@ -641,7 +642,7 @@ TEST(ServeShutdown, StopEndsWaitingRequestsPromptly) {
 }
 
 TEST(ServeCli, PrintsTheUrlAndStopsCleanlyOnSigtermAndSigint) {
-  if (!testing::have_opencl_device()) GTEST_SKIP() << "no OpenCL device on this machine";
+  PHONGCL_REQUIRE_OPENCL(testing::have_opencl_device());
   for (int signal : {SIGTERM, SIGINT}) {
     ServeProcess serve("--scene scenes/default/scene.json --port 0");
     ASSERT_GT(serve.port(), 0) << serve.output();
@@ -663,7 +664,7 @@ TEST(ServeCli, PrintsTheUrlAndStopsCleanlyOnSigtermAndSigint) {
 
 // The beauty pass is named in the summary when the file has one, and absent otherwise.
 TEST(ServeCli, NamesTheBeautyPassItServes) {
-  if (!testing::have_opencl_device()) GTEST_SKIP() << "no OpenCL device on this machine";
+  PHONGCL_REQUIRE_OPENCL(testing::have_opencl_device());
   ServeProcess blender("--scene tests/fixtures/blender/scene.json --gbuffer tests/fixtures/blender/cycles.exr --port 0");
   ASSERT_GT(blender.port(), 0) << blender.output();
   EXPECT_NE(blender.output().find("  beauty     Combined (GET /api/beauty"), std::string::npos) << blender.output();
@@ -675,7 +676,7 @@ TEST(ServeCli, NamesTheBeautyPassItServes) {
 }
 
 TEST(ServeCli, WarnsWhenListeningBeyondLoopback) {
-  if (!testing::have_opencl_device()) GTEST_SKIP() << "no OpenCL device on this machine";
+  PHONGCL_REQUIRE_OPENCL(testing::have_opencl_device());
   ServeProcess serve("--scene scenes/default/scene.json --host 0.0.0.0 --port 0");
   EXPECT_NE(serve.output().find("warning    listening on 0.0.0.0: anyone"), std::string::npos) << serve.output();
   EXPECT_GT(serve.port(), 0) << serve.output();
@@ -684,7 +685,7 @@ TEST(ServeCli, WarnsWhenListeningBeyondLoopback) {
 }
 
 TEST(ServeCli, RefusesABusyPortAndBadOptions) {
-  if (!testing::have_opencl_device()) GTEST_SKIP() << "no OpenCL device on this machine";
+  PHONGCL_REQUIRE_OPENCL(testing::have_opencl_device());
   // A plain listening socket (httplib's own would share the port through SO_REUSEPORT).
   const int blocker = socket(AF_INET, SOCK_STREAM, 0);
   sockaddr_in address{};

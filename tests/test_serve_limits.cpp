@@ -15,6 +15,7 @@
 #include <filesystem>
 #include <future>
 #include <memory>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
@@ -23,14 +24,17 @@
 
 #include "cl/device.h"
 #include "cli_runner.h"
+#include "opencl_required.h"
 #include "serve_support.h"
 #include "temp_dir.h"
+#include "wait_until.h"
 
 namespace phongcl {
 namespace {
 
 using nlohmann::json;
 using testing::RunningServer;
+using testing::wait_until;
 using namespace std::chrono_literals;
 
 // Longer than any answer here takes on a loaded machine: reaching it means the server hung.
@@ -100,6 +104,30 @@ class RawClient {
   bool closed_ = false;
 };
 
+// A client that sends a request's head a header line every 50 ms and never ends it, until destroyed.
+class SlowSender {
+ public:
+  explicit SlowSender(int port)
+      : thread_([this, port] {
+          RawClient client(port);
+          client.send("GET /api/stats HTTP/1.1\r\n");
+          while (!done_) {
+            client.send("X-Slow: 1\r\n");
+            std::this_thread::sleep_for(50ms);
+          }
+        }) {}
+  ~SlowSender() {
+    done_ = true;
+    thread_.join();
+  }
+  SlowSender(const SlowSender&) = delete;
+  SlowSender& operator=(const SlowSender&) = delete;
+
+ private:
+  std::atomic<bool> done_ = false;  // before thread_, which reads it from its first moment
+  std::thread thread_;
+};
+
 int status_of(const std::string& response) { return response.rfind("HTTP/1.1 ", 0) == 0 ? std::stoi(response.substr(9, 3)) : 0; }
 
 json body_of(const std::string& response) {
@@ -123,7 +151,7 @@ std::string round_trip(int port, const std::string& request) {
 class ServeHostile : public ::testing::Test {
  protected:
   void SetUp() override {
-    if (list_devices().empty()) GTEST_SKIP() << "no OpenCL device on this machine";
+    PHONGCL_REQUIRE_OPENCL(!list_devices().empty());
     server_ = std::make_unique<RunningServer>();
   }
   std::unique_ptr<RunningServer> server_;
@@ -257,7 +285,7 @@ HttpLimits quick_limits() {
 class ServeLimits : public ::testing::Test {
  protected:
   void SetUp() override {
-    if (list_devices().empty()) GTEST_SKIP() << "no OpenCL device on this machine";
+    PHONGCL_REQUIRE_OPENCL(!list_devices().empty());
   }
 };
 
@@ -281,7 +309,8 @@ TEST_F(ServeLimits, TheConnectionIdleLongestMakesRoom) {
   RunningServer server({}, limits);
   std::vector<std::unique_ptr<RawClient>> idle;
   for (std::size_t i = 0; i < limits.max_connections; ++i) idle.push_back(std::make_unique<RawClient>(server.port()));
-  while (server.server().counters().open < limits.max_connections) std::this_thread::sleep_for(10ms);
+  ASSERT_TRUE(wait_until([&] { return server.server().counters().open >= limits.max_connections; }, kHung))
+      << "the idle connections were never all open";
   EXPECT_EQ(status_of(round_trip(server.port(), "GET /api/stats HTTP/1.1\r\nHost: x\r\n\r\n")), 200);
   EXPECT_EQ(idle.front()->read_until_closed(), "");
   EXPECT_TRUE(idle.front()->closed()) << "the first idle connection made room";
@@ -299,18 +328,10 @@ TEST_F(ServeLimits, SlowIdleAndWaitingClientsLeaveTheApiAnswering) {
   const int port = server.port();
   std::vector<std::unique_ptr<RawClient>> idle;
   for (int i = 0; i < 200; ++i) idle.push_back(std::make_unique<RawClient>(port));
-  std::atomic<bool> done = false;
-  std::vector<std::thread> slow;
-  for (int i = 0; i < 32; ++i)
-    slow.emplace_back([&] {
-      RawClient client(port);
-      client.send("GET /api/stats HTTP/1.1\r\n");
-      while (!done) {
-        client.send("X-Slow: 1\r\n");
-        std::this_thread::sleep_for(50ms);
-      }
-    });
-  while (server.server().counters().open < 200 + 32) std::this_thread::sleep_for(10ms);
+  std::vector<std::unique_ptr<SlowSender>> slow;
+  for (int i = 0; i < 32; ++i) slow.push_back(std::make_unique<SlowSender>(port));
+  ASSERT_TRUE(wait_until([&] { return server.server().counters().open >= 200 + 32; }, kHung))
+      << "the idle and slow connections were never all open";
   auto client = server.client();
   const std::string version = client.Get("/api/image?format=jpeg")->get_header_value("X-Frame-Version");
   std::vector<std::unique_ptr<RawClient>> polls;
@@ -321,7 +342,8 @@ TEST_F(ServeLimits, SlowIdleAndWaitingClientsLeaveTheApiAnswering) {
   // A request is counted when a worker takes it and holds a waiting place a moment later: wait
   // for the places, or the request beyond them may take one.
   const auto waiting = [&] { return body_of("HTTP/1.1 200\r\n\r\n" + client.Get("/api/stats")->body)["waiting_for_frames"].get<std::size_t>(); };
-  while (waiting() < limits.max_waiting) std::this_thread::sleep_for(10ms);
+  ASSERT_TRUE(wait_until([&] { return waiting() >= limits.max_waiting; }, kHung))
+      << "fewer than " << limits.max_waiting << " requests ever waited";
 
   const std::string beyond = round_trip(port, "GET /api/frame?timeout_ms=60000&after=" + version + " HTTP/1.1\r\n\r\n");
   EXPECT_EQ(status_of(beyond), 503) << beyond;
@@ -334,8 +356,6 @@ TEST_F(ServeLimits, SlowIdleAndWaitingClientsLeaveTheApiAnswering) {
   EXPECT_EQ(stats->status, 200);
   EXPECT_EQ(status_of(round_trip(port, "GET / HTTP/1.1\r\nHost: x\r\n\r\n")), 200) << "the page";
   EXPECT_GE(server.server().counters().open, 200u + 32u + limits.max_waiting) << "every slow client still connected";
-  done = true;
-  for (auto& thread : slow) thread.join();
 }
 
 // SIGTERM waited for a slow client without limit (23 s in the probe). A stop now ends the server
@@ -346,25 +366,17 @@ TEST_F(ServeLimits, StopEndsTheServerWhateverClientsDo) {
   limits.request_time = limits.idle = 600s;
   auto server = std::make_unique<RunningServer>(std::filesystem::path(), limits);
   const int port = server->port();
-  std::atomic<bool> done = false;
-  std::thread slow([&] {
-    RawClient client(port);
-    client.send("GET /api/stats HTTP/1.1\r\n");
-    while (!done) {
-      client.send("X-Slow: 1\r\n");
-      std::this_thread::sleep_for(50ms);
-    }
-  });
+  std::optional<SlowSender> slow(std::in_place, port);
   RawClient not_reading(port);
   for (int i = 0; i < 8; ++i) not_reading.send("GET /api/image?format=exr HTTP/1.1\r\nHost: x\r\n\r\n");
   RawClient poll(port);
   poll.send("GET /api/frame?timeout_ms=60000&after=999999 HTTP/1.1\r\nHost: x\r\n\r\n");
-  while (server->server().counters().requests < 2) std::this_thread::sleep_for(10ms);
+  ASSERT_TRUE(wait_until([&] { return server->server().counters().requests >= 2; }, kHung))
+      << "the server never took the requests";
 
   auto stopped = std::async(std::launch::async, [&] { server.reset(); });
   const bool in_time = stopped.wait_for(kHung) == std::future_status::ready;
-  done = true;  // lets a server that waits for its slow client end, so a failure is reported, not hung
-  slow.join();
+  slow.reset();  // lets a server that waits for its slow client end, so a failure is reported, not hung
   EXPECT_TRUE(in_time) << "the server did not stop while a slow client was connected";
 }
 

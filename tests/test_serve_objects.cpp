@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_runner.h"
+#include "opencl_required.h"
 #include "peers/knot_mesh.h"
 #include "serve_support.h"
 #include "temp_dir.h"
@@ -65,7 +66,7 @@ std::vector<std::size_t> darkened(const Image& lit, const Image& shadowed) {
 // The spheres shadow the floor; without them (the floor alone, which shadows nothing the lights
 // above it reach) the next frame is the unshadowed one.
 TEST(ServeObjects, RemovingTheShadowingObjectsLightsWhatTheyShadowed) {
-  if (!testing::have_opencl_device()) GTEST_SKIP() << "no OpenCL device on this machine";
+  PHONGCL_REQUIRE_OPENCL(testing::have_opencl_device());
   RunningServer server;
   auto client = server.client();
   const json scene = shadowed_scene();
@@ -89,7 +90,7 @@ TEST(ServeObjects, RemovingTheShadowingObjectsLightsWhatTheyShadowed) {
 // A mesh added by a PUT casts its shadow in the next frame, and a mesh file rewritten in place is
 // read again for the next frame.
 TEST(ServeObjects, AMeshAddedByAPutIsReadForTheNextFrame) {
-  if (!testing::have_opencl_device()) GTEST_SKIP() << "no OpenCL device on this machine";
+  PHONGCL_REQUIRE_OPENCL(testing::have_opencl_device());
   TempDir dir;
   write_ply(dir / "knot.ply", trefoil_knot(48, 10));
   RunningServer server;
@@ -115,7 +116,7 @@ TEST(ServeObjects, AMeshAddedByAPutIsReadForTheNextFrame) {
 // A mesh file that cannot be opened is a 400 naming it, the held scene unchanged; one that opens
 // but is malformed fails the next frame, whose error names it.
 TEST(ServeObjects, MeshesThatCannotBeReadFailThePutOrTheNextFrame) {
-  if (!testing::have_opencl_device()) GTEST_SKIP() << "no OpenCL device on this machine";
+  PHONGCL_REQUIRE_OPENCL(testing::have_opencl_device());
   TempDir dir;
   RunningServer server;
   auto client = server.client();
@@ -142,7 +143,7 @@ TEST(ServeObjects, MeshesThatCannotBeReadFailThePutOrTheNextFrame) {
 
 // A PUT can name a mesh after start-up that --save names too: saving would replace it.
 TEST(ServeObjects, SaveOverAMeshOfTheHeldSceneIsRefused) {
-  if (!testing::have_opencl_device()) GTEST_SKIP() << "no OpenCL device on this machine";
+  PHONGCL_REQUIRE_OPENCL(testing::have_opencl_device());
   TempDir dir;
   write_ply(dir / "rock.ply", trefoil_knot(8, 4));
   const std::string mesh_bytes = testing::read_text(dir / "rock.ply");

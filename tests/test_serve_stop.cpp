@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_runner.h"
+#include "opencl_required.h"
 #include "peers/knot_mesh.h"
 #include "serve_process.h"
 #include "temp_dir.h"
@@ -52,7 +53,7 @@ void put(httplib::Client& client, const char* path, const std::string& body) {
 }
 
 TEST(ServeStop, ALongRenderNeitherDelaysThePageNorHoldsSigterm) {
-  if (!testing::have_opencl_device()) GTEST_SKIP() << "no OpenCL device on this machine";
+  PHONGCL_REQUIRE_OPENCL(testing::have_opencl_device());
   testing::TempDir dir;
   write_ply(dir / "dense.ply", trefoil_knot(20000, 50));  // 2 million triangles
   testing::ServeProcess serve("--scene scenes/default/scene.json --port 0");

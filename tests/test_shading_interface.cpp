@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "cl/kernel_source.h"
+#include "opencl_required.h"
 #include "shading/phong_arguments.h"
 #include "shading/phong_launch.h"
 #include "shading/tile_culling.h"
@@ -124,7 +125,7 @@ std::vector<std::pair<Scene, GBuffer>> variant_scenes() {
 // Built on $PHONGCL_TEST_DEVICE where set (scripts/checks/40-oclgrind.sh names Oclgrind, which the
 // default choice passes over as a simulator), else on the default device.
 TEST(KernelVariants, EveryVariantBuilds) {
-  if (list_devices().empty()) GTEST_SKIP() << "no OpenCL device on this machine";
+  PHONGCL_REQUIRE_OPENCL(!list_devices().empty());
   const char* named = std::getenv("PHONGCL_TEST_DEVICE");
   const ComputeContext compute = make_compute_context(pick_device(named ? named : ""));
   const DeviceInfo& device = compute.device.info;

@@ -121,9 +121,10 @@ Image shade(const Scene& scene, const GBuffer& gbuffer, const ShadowSettings& sh
   options.shadows = shadows;
   Relighter relighter(scene, gbuffer, options);
   Image image = relighter.shade();
-  if (shadows.mode == ShadowMode::geometry)
+  if (shadows.mode == ShadowMode::geometry) {
     EXPECT_EQ(relighter.last_report().shadows.find("culled in 32x32 tiles") != std::string::npos, culled)
         << relighter.last_report().shadows;
+  }
   return image;
 }
 
@@ -188,7 +189,9 @@ void expect_screen_matches_reference(const ShadowSettings& settings, bool area_l
   const ReferenceScreenMarch march(scene.camera, gbuffer, settings.steps, settings.thickness);
   const Expected expected = reference_with_shadows(
       scene, gbuffer, [&](const ReferenceShadowRay& ray) { return march.march(ray, 0x1p-16, 0x1p-9); });
-  if (area_lights) EXPECT_GT(expected.area_blocked, expected.shaded / 20) << "area lights' shadows are there to get wrong";
+  if (area_lights) {
+    EXPECT_GT(expected.area_blocked, expected.shaded / 20) << "area lights' shadows are there to get wrong";
+  }
   expect_agreement(shade(scene, gbuffer, settings), expected);
 }
 

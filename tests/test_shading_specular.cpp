@@ -46,7 +46,7 @@ const std::vector<std::vector<SpecularModel>> kModelSets = {
 
 std::string names(const std::vector<SpecularModel>& models) {
   std::string text;
-  for (SpecularModel model : models) text += (text.empty() ? "" : "+") + std::string(to_string(model));
+  for (SpecularModel model : models) text.append(text.empty() ? "" : "+").append(to_string(model));
   return text;
 }
 

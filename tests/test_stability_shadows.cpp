@@ -7,6 +7,7 @@
 #include "geometry/device_geometry.h"
 #include "geometry/scene_bvh.h"
 #include "geometry/scene_shapes.h"
+#include "opencl_required.h"
 #include "peers/opencl_shadow_rays.h"
 #include "peers/packed_frame.h"
 #include "reference/reference_shadows.h"
@@ -53,7 +54,7 @@ TEST(StabilityShadows, TheReferenceDecidesEveryCaseAsItsGeometrySays) {
 // The kernel side, through the standalone kernel until shading has shadows: per pixel, as many
 // lights blocked as the case says, traversing and culled, in packets of 16 and one ray at a time.
 TEST(StabilityShadows, TheKernelsTraversalDecidesEveryCaseAsItsGeometrySays) {
-  if (list_devices().empty()) GTEST_SKIP() << "no OpenCL device on this machine";
+  PHONGCL_REQUIRE_OPENCL(!list_devices().empty());
   const ComputeContext compute = make_compute_context(pick_device(""));
   ProgramCache cache{std::filesystem::path()};
   testing::TempDir dir;

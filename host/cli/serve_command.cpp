@@ -82,7 +82,8 @@ void run_serve(const ServeArguments& args) {
   RenderSettings settings;
   settings.precision = parse_precision(args.precision);
   LiveRelighter live(session, scene_text, scene.source, settings, *args.inputs.color_config());
-  RelightServer server(live, {args.host, args.port, args.save, device});
+  RelightServer server(live, {.host = args.host, .port = args.port, .save_path = args.save, .device = device,
+                              .limits = {}});  // the default limits
 
   const std::string host = args.host.find(':') != std::string::npos ? "[" + args.host + "]" : args.host;
   std::cout << "phongcl serve: " << scene.source.string() << " + " << loaded.gbuffer.source.string() << "\n"

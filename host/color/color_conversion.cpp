@@ -6,6 +6,7 @@
 
 #include "color/config_impl.h"
 #include "common/error.h"
+#include "common/host_threads.h"
 
 namespace phongcl {
 
@@ -45,15 +46,15 @@ glm::dvec3 ColorConversion::operator()(const glm::dvec3& color) const {
 
 void ColorConversion::convert(Planes3& planes) const {
   if (is_identity() || planes[0].empty()) return;
-  const long count = static_cast<long>(planes[0].size());
-  constexpr long kRows = 4096;  // pixels per task
-  const long tasks = (count + kRows - 1) / kRows;
-#pragma omp parallel for schedule(static)
-  for (long task = 0; task < tasks; ++task) {
-    const long first = task * kRows, n = std::min(kRows, count - first);
-    OCIO::PlanarImageDesc image(planes[0].data() + first, planes[1].data() + first, planes[2].data() + first, nullptr, n, 1);
-    impl_->cpu->apply(image);
-  }
+  constexpr std::size_t kChunk = 4096;  // pixels OCIO converts at a time
+  for_each_core_range(planes[0].size(), kChunk, [&](std::size_t, std::size_t begin, std::size_t end) {
+    for (std::size_t first = begin; first < end; first += kChunk) {
+      const long n = static_cast<long>(std::min(kChunk, end - first));
+      OCIO::PlanarImageDesc image(planes[0].data() + first, planes[1].data() + first, planes[2].data() + first, nullptr,
+                                  n, 1);
+      impl_->cpu->apply(image);
+    }
+  });
 }
 
 namespace {

@@ -16,6 +16,7 @@
 #include "color/view_pipeline.h"
 #include "common/atomic_file.h"
 #include "common/error.h"
+#include "common/host_threads.h"
 #include "common/joined.h"
 #include "image/image.h"  // check_exposure
 
@@ -26,7 +27,7 @@ namespace OCIO = OCIO_NAMESPACE;
 namespace {
 
 constexpr std::size_t kBlockPixels = 256;  // stages run over blocks that stay in L1
-constexpr int kRowsPerTask = 16;
+constexpr std::size_t kRowGrain = 16;  // a core encodes rows in multiples of this
 
 std::shared_ptr<const ViewPipeline> compiled_view(const ColorConfig& config, const std::string& display,
                                                   const std::string& view, const std::string& look) {
@@ -137,12 +138,10 @@ void DisplayTransform::encode_rows(const Image& image, std::size_t first_row, st
 
 std::vector<std::uint8_t> DisplayTransform::encode(const Image& image) const {
   std::vector<std::uint8_t> bytes(4 * image.pixel_count());
-  const int tasks = (image.height + kRowsPerTask - 1) / kRowsPerTask;
-#pragma omp parallel for schedule(dynamic)
-  for (int task = 0; task < tasks; ++task) {
-    const int first = task * kRowsPerTask;
-    encode_rows(image, first, std::min(kRowsPerTask, image.height - first), bytes.data());
-  }
+  for_each_core_range(static_cast<std::size_t>(image.height), kRowGrain,
+                      [&](std::size_t, std::size_t first, std::size_t end) {
+                        encode_rows(image, first, end - first, bytes.data());
+                      });
   return bytes;
 }
 

@@ -11,7 +11,7 @@ struct NamedFile {
   std::string option;          // "--out", "--gbuffer", "the scene's \"gbuffer\" entry"
   std::filesystem::path path;  // the file itself (a frame pattern's file of one frame)
   bool output = false;
-  std::string pattern;  // the option's frame pattern ("shot.####.exr") when `path` is one of its files
+  std::string pattern{};  // the option's frame pattern ("shot.####.exr") when `path` is one of its files
 };
 
 // Throws std::invalid_argument naming both options for the first output that is the same file as

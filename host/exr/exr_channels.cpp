@@ -7,6 +7,7 @@
 #include <ImfCompression.h>
 #include <ImfFrameBuffer.h>
 #include <ImfStandardAttributes.h>
+#include <ImfStdIO.h>
 #include <ImfInputPart.h>
 #include <ImfMultiPartInputFile.h>
 #include <ImfOutputFile.h>
@@ -427,9 +428,13 @@ std::vector<std::string> InputExr::channel_names() const { return reader_->chann
 bool InputExr::has_channel(const std::string& name) const { return reader_->has_channel(name); }
 void InputExr::read(const std::vector<ReadSlice>& slices) { reader_->read(slices); }
 
-void write_channels(const std::filesystem::path& file, const PixelWindow& data_window, const PixelWindow& display_window,
-                    ExrPixelType type, const std::vector<WriteSlice>& slices, ExrCompression compression,
-                    const std::optional<Chromaticities>& chromaticities) {
+namespace {
+
+// One scanline EXR of the slices into `stream`, complete when this returns (the OutputFile writes its
+// table of line offsets as it closes).
+void write_slices(Imf::OStream& stream, const PixelWindow& data_window, const PixelWindow& display_window,
+                  ExrPixelType type, const std::vector<WriteSlice>& slices, ExrCompression compression,
+                  const std::optional<Chromaticities>& chromaticities) {
   const Imf::PixelType pixel_type = type == ExrPixelType::half ? Imf::HALF : Imf::FLOAT;
   const Imath::Box2i window = to_box(data_window);
   const std::size_t pixel_count = static_cast<std::size_t>(data_window.width()) * data_window.height();
@@ -445,21 +450,38 @@ void write_channels(const std::filesystem::path& file, const PixelWindow& data_w
     for (std::size_t i = 0; i < pixel_count; ++i) plane[i] = half(slice.first[i * slice.stride]);
     frame_buffer.insert(slice.name, Imf::Slice::Make(Imf::HALF, plane.data(), window));
   }
+  Imf::Header header(to_box(display_window), window);
+  header.compression() = to_imf(compression);
+  if (chromaticities) {
+    const Chromaticities& c = *chromaticities;
+    Imf::addChromaticities(header, Imf::Chromaticities({c.red[0], c.red[1]}, {c.green[0], c.green[1]},
+                                                       {c.blue[0], c.blue[1]}, {c.white[0], c.white[1]}));
+  }
+  for (const auto& slice : slices) header.channels().insert(slice.name, Imf::Channel(pixel_type));
+  Imf::OutputFile output(stream, header);
+  output.setFrameBuffer(frame_buffer);
+  output.writePixels(data_window.height());
+}
+
+}  // namespace
+
+void write_channels(const std::filesystem::path& file, const PixelWindow& data_window, const PixelWindow& display_window,
+                    ExrPixelType type, const std::vector<WriteSlice>& slices, ExrCompression compression,
+                    const std::optional<Chromaticities>& chromaticities) {
   write_atomically(file, [&](const std::filesystem::path& temp) {
     translate_errors(file, "cannot write EXR", [&] {
-      Imf::Header header(to_box(display_window), window);
-      header.compression() = to_imf(compression);
-      if (chromaticities) {
-        const Chromaticities& c = *chromaticities;
-        Imf::addChromaticities(header, Imf::Chromaticities({c.red[0], c.red[1]}, {c.green[0], c.green[1]},
-                                                           {c.blue[0], c.blue[1]}, {c.white[0], c.white[1]}));
-      }
-      for (const auto& slice : slices) header.channels().insert(slice.name, Imf::Channel(pixel_type));
-      Imf::OutputFile output(temp.c_str(), header);
-      output.setFrameBuffer(frame_buffer);
-      output.writePixels(data_window.height());
+      Imf::StdOFStream stream(temp.c_str());
+      write_slices(stream, data_window, display_window, type, slices, compression, chromaticities);
     });
   });
+}
+
+std::string encode_channels(const PixelWindow& data_window, const PixelWindow& display_window, ExrPixelType type,
+                            const std::vector<WriteSlice>& slices, ExrCompression compression,
+                            const std::optional<Chromaticities>& chromaticities) {
+  Imf::StdOSStream stream;
+  write_slices(stream, data_window, display_window, type, slices, compression, chromaticities);
+  return stream.str();
 }
 
 }  // namespace phongcl::exr

@@ -85,5 +85,9 @@ void write_channels(const std::filesystem::path& file, const PixelWindow& data_w
                     const PixelWindow& display_window, ExrPixelType type, const std::vector<WriteSlice>& slices,
                     ExrCompression compression = ExrCompression::zip,
                     const std::optional<Chromaticities>& chromaticities = std::nullopt);
+// The same EXR as bytes in memory (for an HTTP response), with no file in between.
+std::string encode_channels(const PixelWindow& data_window, const PixelWindow& display_window, ExrPixelType type,
+                            const std::vector<WriteSlice>& slices, ExrCompression compression = ExrCompression::zip,
+                            const std::optional<Chromaticities>& chromaticities = std::nullopt);
 
 }  // namespace phongcl::exr

@@ -51,25 +51,26 @@ Image without_color_where_transparent(const Image& image) {
   return result;
 }
 
-}  // namespace
+// What one EXR of `layers` holds: its windows, and a slice per channel into the layers' images or into
+// `cleared`, their copies with RGB 0 where alpha is 0 (the callers' images are const).
+struct LayerChannels {
+  PixelWindow data_window, display_window;
+  std::vector<exr::WriteSlice> slices;
+  std::vector<Image> cleared;
+};
 
-void write_exr(const Image& image, const std::filesystem::path& file, const ExrWriteOptions& options) {
-  write_layered_exr({{"", &image, true}}, file, options);
-}
-
-void write_layered_exr(const std::vector<ExrLayer>& given, const std::filesystem::path& file,
-                       const ExrWriteOptions& options) {
+LayerChannels layer_channels(const std::vector<ExrLayer>& given, const ExrWriteOptions& options) {
   if (given.empty()) throw std::invalid_argument("write_layered_exr: no layers");
   std::vector<ExrLayer> layers = given;
-  std::vector<Image> cleared;  // copies with RGB 0 where alpha is 0 (the callers' images are const)
-  cleared.reserve(layers.size());
+  LayerChannels channels;
+  channels.cleared.reserve(layers.size());  // the slices point into its images
   if (!options.keep_color_where_transparent)
     for (auto& layer : layers)
       if (layer.image->rgba.size() == 4 * layer.image->pixel_count() && has_color_where_transparent(*layer.image))
-        layer.image = &cleared.emplace_back(without_color_where_transparent(*layer.image));
+        layer.image = &channels.cleared.emplace_back(without_color_where_transparent(*layer.image));
   const Image& first = *layers.front().image;
-  const PixelWindow data_window = exr::data_window_for(first.data_window, first.width, first.height);
-  std::vector<exr::WriteSlice> slices;
+  channels.data_window = exr::data_window_for(first.data_window, first.width, first.height);
+  channels.display_window = exr::display_window_for(first.display_window, channels.data_window);
   std::vector<std::string> layer_of;  // each slice's layer, for check_channel_names' messages
   for (const auto& layer : layers) {
     const Image& image = *layer.image;
@@ -77,18 +78,37 @@ void write_layered_exr(const std::vector<ExrLayer>& given, const std::filesystem
       throw std::invalid_argument("write_exr: image holds " + std::to_string(image.rgba.size()) +
                                   " floats, expected " + std::to_string(4 * image.pixel_count()));
     const PixelWindow window = exr::data_window_for(image.data_window, image.width, image.height);
+    const PixelWindow& data_window = channels.data_window;
     if (window.x_min != data_window.x_min || window.y_min != data_window.y_min || window.x_max != data_window.x_max ||
         window.y_max != data_window.y_max)
       throw std::invalid_argument("write_layered_exr: layer '" + layer.name + "' differs in size or window");
     for (int c = 0; c < (layer.with_alpha ? 4 : 3); ++c) {
-      slices.push_back({layer.name.empty() ? kChannelNames[c] : layer.name + "." + kChannelNames[c],
-                        image.rgba.data() + c, 4});
+      channels.slices.push_back({layer.name.empty() ? kChannelNames[c] : layer.name + "." + kChannelNames[c],
+                                 image.rgba.data() + c, 4});
       layer_of.push_back(layer.name);
     }
   }
-  check_channel_names(slices, layer_of);
-  exr::write_channels(file, data_window, exr::display_window_for(first.display_window, data_window), options.type, slices,
+  check_channel_names(channels.slices, layer_of);
+  return channels;
+}
+
+}  // namespace
+
+void write_exr(const Image& image, const std::filesystem::path& file, const ExrWriteOptions& options) {
+  write_layered_exr({{"", &image, true}}, file, options);
+}
+
+void write_layered_exr(const std::vector<ExrLayer>& layers, const std::filesystem::path& file,
+                       const ExrWriteOptions& options) {
+  const LayerChannels channels = layer_channels(layers, options);
+  exr::write_channels(file, channels.data_window, channels.display_window, options.type, channels.slices,
                       options.compression, options.chromaticities);
+}
+
+std::string encode_exr(const Image& image, const ExrWriteOptions& options) {
+  const LayerChannels channels = layer_channels({{"", &image, true}}, options);
+  return exr::encode_channels(channels.data_window, channels.display_window, options.type, channels.slices,
+                              options.compression, options.chromaticities);
 }
 
 Image read_exr(const std::filesystem::path& file) {

@@ -43,6 +43,8 @@ struct ExrWriteOptions {
 
 // Writes channels R G B A, same data/display window as the image; atomic.
 void write_exr(const Image& image, const std::filesystem::path& file, const ExrWriteOptions& options = {});
+// The bytes write_exr writes, made in memory (an HTTP response's body).
+std::string encode_exr(const Image& image, const ExrWriteOptions& options = {});
 // The same with the file first, as the public API (include/phongcl/phongcl.hpp) writes it.
 inline void write_exr(const std::filesystem::path& file, const Image& image, ExrPixelType type = ExrPixelType::float32) {
   write_exr(image, file, ExrWriteOptions{.type = type});

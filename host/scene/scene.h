@@ -36,7 +36,7 @@ struct Light {
   double cosine_power = 0.0;                           // spot: F gains max(0, dot(-l, axis))^p; 0: none
   std::optional<std::vector<int>> materials{};         // light linking: lights only these; absent: every material
   bool shadows = false;                                // casts shadows (when the shade's shadow mode is not off)
-  std::string group;                                   // light group: its light also goes to that layer; empty: none
+  std::string group{};                                 // light group: its light also goes to that layer; empty: none
 
   bool has_range() const { return range > 0.0; }
   bool reaches(int material) const;  // light linking
@@ -68,7 +68,7 @@ struct AreaLight {
   glm::dvec3 color{1.0};
   double range = 0.0;  // > 0: windowed to 0 at this distance from the centre (as a point light's); 0: no range
   bool shadows = false;  // casts a hard shadow, decided by one ray to the centre (when the shadow mode is not off)
-  std::string group;     // light group, as a Light's; empty: none
+  std::string group{};   // light group, as a Light's; empty: none
 
   bool has_range() const { return range > 0.0; }
   bool operator==(const AreaLight&) const = default;
@@ -95,9 +95,9 @@ struct Object {
   glm::dvec3 normal{0.0, 1.0, 0.0};          // plane: points x with dot(normalize(normal), x) == offset
   double offset = 0.0;                       // plane
   std::array<glm::dvec3, 3> vertices{};      // triangle, counter-clockwise seen from the front
-  std::filesystem::path file;                // mesh: its triangles' file (PLY, OBJ, glTF), resolved relative to the scene
+  std::filesystem::path file{};              // mesh: its triangles' file (PLY, OBJ, glTF), resolved relative to the scene
   glm::dmat4 matrix{1.0};                    // transform: object-to-parent
-  std::vector<Object> children;              // transform
+  std::vector<Object> children{};            // transform
 
   bool operator==(const Object&) const = default;
 };

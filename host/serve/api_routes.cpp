@@ -24,6 +24,14 @@
 
 namespace phongcl {
 
+// Which image of a frame a request shows: the combined image, a term, or a light group's layer. Not in
+// the anonymous namespace: ImageRequest, declared in the header, holds one.
+struct Term {
+  enum class Kind { combined, ambient, diffuse, specular, group } kind = Kind::combined;
+  std::string group{};  // Kind::group: its name
+  bool needs_terms() const { return kind != Kind::combined; }
+};
+
 namespace {
 
 using nlohmann::json;
@@ -42,12 +50,6 @@ void send_json(HttpResponse& response, const json& body, int status = 200) {
   response.set_content(json_text(body), "application/json");
 }
 
-// Which image of a frame a request shows: the combined image, a term, or a light group's layer.
-struct Term {
-  enum class Kind { combined, ambient, diffuse, specular, group } kind = Kind::combined;
-  std::string group;  // Kind::group: its name
-  bool needs_terms() const { return kind != Kind::combined; }
-};
 Term parse_term(const std::string& name) {
   if (name == "combined") return {Term::Kind::combined};
   if (name == "ambient") return {Term::Kind::ambient};
@@ -321,8 +323,10 @@ void ApiRoutes::send_image(const ImageRequest& wanted, const Image& image, const
   std::optional<Image> resized;
   if (wanted.width != image.width) resized = scale_to_width(image, wanted.width);
   const Image& scaled = resized ? *resized : image;
-  const std::string bytes = wanted.format == ImageFormat::exr ? encode_exr(scaled, color.working_chromaticities())
-                                                              : encode_display_image(scaled, wanted.format, display);
+  // EXR: RGB 0 where alpha is 0, the working space's chromaticities when known.
+  const std::string bytes = wanted.format == ImageFormat::exr
+                                ? encode_exr(scaled, {.chromaticities = color.working_chromaticities()})
+                                : encode_display_image(scaled, wanted.format, display);
   const double encode_ms = elapsed_ms(start);
   {
     std::lock_guard lock(encode_mutex_);

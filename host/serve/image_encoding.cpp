@@ -1,16 +1,11 @@
 #include "serve/image_encoding.h"
 
-#include <stdlib.h>
 #include <turbojpeg.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
-#include <fstream>
 #include <memory>
-#include <sstream>
 #include <stdexcept>
 #include <vector>
 
@@ -35,22 +30,6 @@ std::string encode_jpeg(const Image& image, const DisplayTransform& display) {
 }
 
 }  // namespace
-
-// OpenEXR writes files; a private temporary one is read back and removed.
-std::string encode_exr(const Image& image, const std::optional<Chromaticities>& chromaticities) {
-  std::string name = (std::filesystem::temp_directory_path() / "phongcl-serve-XXXXXX.exr").string();
-  const int fd = mkstemps(name.data(), 4);
-  if (fd < 0) throw std::runtime_error("cannot create a temporary file for the EXR in " + name);
-  close(fd);
-  const std::unique_ptr<const std::string, void (*)(const std::string*)> remove_at_exit(
-      &name, [](const std::string* file) { std::filesystem::remove(*file); });
-  write_exr(image, name, ExrWriteOptions{.chromaticities = chromaticities});
-  std::ifstream stream(name, std::ios::binary);
-  std::ostringstream bytes;
-  bytes << stream.rdbuf();
-  if (!stream) throw std::runtime_error("cannot read back the temporary EXR " + name);
-  return bytes.str();
-}
 
 ImageFormat parse_image_format(std::string_view name) {
   if (name == "png") return ImageFormat::png;

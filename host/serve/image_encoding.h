@@ -1,7 +1,6 @@
 #pragma once
-// Frames as the bytes an HTTP response carries: PNG and JPEG for display (color/display.h) and EXR
-// for the linear values.
-#include <optional>
+// Frames as the bytes an HTTP response carries: PNG and JPEG for display (color/display.h); EXR, for
+// the linear values, is image/image.h's encode_exr.
 #include <string>
 #include <string_view>
 
@@ -19,10 +18,8 @@ const char* content_type(ImageFormat format);
 // [1, image.width]. The image itself when width == image.width.
 Image scale_to_width(const Image& image, int width);
 
-// PNG: 8-bit sRGB RGBA, fast zlib settings. JPEG: RGB (alpha dropped), 4:2:0, quality 90.
-// EXR: R G B A float32. Throws std::runtime_error if an encoder fails.
+// PNG: 8-bit sRGB RGBA, fast zlib settings. JPEG: RGB (alpha dropped), 4:2:0, quality 90. Throws
+// std::runtime_error if an encoder fails. EXR holds linear values: image/image.h's encode_exr.
 std::string encode_display_image(const Image& image, ImageFormat format, const DisplayTransform& display);
-// EXR: R G B A float32, RGB 0 where alpha is 0, the working space's chromaticities when known.
-std::string encode_exr(const Image& image, const std::optional<Chromaticities>& chromaticities);
 
 }  // namespace phongcl

@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "common/error.h"
-#include "shading/host_threads.h"
+#include "common/host_threads.h"
 #include "shading/light_order.h"
 #include "shading/pack_area.h"
 #include "shading/store3.h"

@@ -13,19 +13,19 @@ namespace phongcl {
 
 struct PhongArguments {
   // G-buffer tile
-  cl::Buffer planes;          // recipe.plane_count() planes of plane_stride values (half with half-storage)
-  cl::Buffer material_index;  // one int per slot, PHONGCL_BACKGROUND where not shaded
+  cl::Buffer planes{};          // recipe.plane_count() planes of plane_stride values (half with half-storage)
+  cl::Buffer material_index{};  // one int per slot, PHONGCL_BACKGROUND where not shaded
   // ambient, background, radiance scales, light counts, plane stride, the tile grids, the shadow
   // scalars, and where each table starts in the blocks below (kernels/layout.h)
   FrameScalars frame{};
   // the blocks of tables (one buffer each, read only where the recipe compiles in what needs them)
-  cl::Buffer scene;            // SceneTables: materials, lights, shapes, links, area lights, casters, groups
-  cl::Buffer tile_lists;       // TileListTables: tiled culling's light lists
-  cl::Buffer shadow_geometry;  // ShadowGeometryTables: the BVH, primitives, planes, the depth plane
-  cl::Buffer shadow_lists;     // ShadowListTables: tiled shadow culling's candidates
+  cl::Buffer scene{};            // SceneTables: materials, lights, shapes, links, area lights, casters, groups
+  cl::Buffer tile_lists{};       // TileListTables: tiled culling's light lists
+  cl::Buffer shadow_geometry{};  // ShadowGeometryTables: the BVH, primitives, planes, the depth plane
+  cl::Buffer shadow_lists{};     // ShadowListTables: tiled shadow culling's candidates
   // output
-  cl::Buffer out_rgba;   // PHONGCL_OUTPUT_PLANES planes
-  cl::Buffer out_terms;  // PHONGCL_TERM_PLANES planes (then the light groups') with WRITE_TERMS, else unused
+  cl::Buffer out_rgba{};   // PHONGCL_OUTPUT_PLANES planes
+  cl::Buffer out_terms{};  // PHONGCL_TERM_PLANES planes (then the light groups') with WRITE_TERMS, else unused
 };
 
 // visit(name, field) for every argument, in phong_shade's parameter order.

@@ -7,7 +7,7 @@
 #include "cl/compute_context.h"
 #include "cl/table_block.h"
 #include "cl/work_groups.h"
-#include "shading/host_threads.h"
+#include "common/host_threads.h"
 
 namespace phongcl {
 

@@ -35,7 +35,7 @@ struct FrameTargets {
   float* ambient = nullptr;
   float* diffuse = nullptr;
   float* specular = nullptr;
-  std::vector<float*> groups;  // with light groups: one RGBA image per group, or empty to leave them out
+  std::vector<float*> groups{};  // with light groups: one RGBA image per group, or empty to leave them out
 };
 
 class PhongShader {

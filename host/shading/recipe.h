@@ -21,7 +21,7 @@ struct ShadeOptions {
   int lanes = 0;                    // pixels per work-item: 1, 2, 4, 8 or 16; 0: the device's choice
   Culling culling = Culling::automatic;
   int tile_size = 16;               // culling tiles of tile_size pixels, lists per half tile (tile_culling.h)
-  ShadowSettings shadows;           // how lights with "shadows": true cast them (docs/shadows.md)
+  ShadowSettings shadows{};         // how lights with "shadows": true cast them (docs/shadows.md)
 };
 
 // One row of the recipe: a flag of kernels/features.h, the value the kernel is built with, and why.

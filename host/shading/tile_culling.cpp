@@ -26,7 +26,7 @@ std::string culling_options(const std::string& shading_options, int block_boxes)
   for (const char* keep : {"-DPHONGCL_LANES=", "-DHALF_STORAGE"}) {
     const std::size_t at = shading_options.find(keep);
     if (at == std::string::npos) continue;
-    options += " " + shading_options.substr(at, shading_options.find(' ', at) - at);
+    options.append(" ").append(shading_options, at, shading_options.find(' ', at) - at);
   }
   return options;
 }
@@ -89,9 +89,9 @@ constexpr std::size_t kCoarsestSpan = 8;
 // parent box b (one level up) is made of, PHONGCL_NO_BOX where the grid ends.
 struct BoxGrid {
   std::size_t columns = 0;
-  std::vector<TileBox> boxes;
+  std::vector<TileBox> boxes{};
   std::size_t block_rows = 2;
-  std::vector<cl_uint> blocks;
+  std::vector<cl_uint> blocks{};
   std::size_t block_size() const { return 2 * block_rows; }
 };
 

@@ -32,7 +32,7 @@ struct RelighterOptions {
   int tile_size = 16;                        // culling tiles of tile_size pixels (docs/performance.md)
   bool terms = false;                        // also shade ambient, diffuse and specular apart: shade(TermImages&)
   std::size_t max_tile_pixels = 0;           // > 0: at most this many pixels per launch (else the device's limit)
-  ShadowSettings shadows;                    // how lights with "shadows": true cast them (docs/shadows.md)
+  ShadowSettings shadows{};                  // how lights with "shadows": true cast them (docs/shadows.md)
 };
 
 // Throws std::invalid_argument naming the option for a value no device takes: lanes other than 0,

@@ -8,9 +8,9 @@
 #include <cmath>
 #include <fstream>
 #include <iostream>
-#include <omp.h>
 #include <optional>
 #include <sstream>
+#include <thread>
 
 #include <nlohmann/json.hpp>
 #include <phongcl/relighter.hpp>
@@ -153,9 +153,9 @@ void run_display_bench(const BenchArguments& args) {
   Relighter relighter(scene, std::move(gbuffer), options);
   const Image image = relighter.shade();
   const std::string load_before = load_average();
+  const unsigned threads = std::thread::hardware_concurrency();  // what DisplayTransform::encode runs on
   std::cout << "phongcl bench --display: " << scene.source.string() << ", " << image.width << " x " << image.height << " ("
-            << with_commas(image.pixel_count()) << " pixels), " << omp_get_max_threads() << " threads; load average "
-            << load_before << "\n"
+            << with_commas(image.pixel_count()) << " pixels), " << threads << " threads; load average " << load_before << "\n"
             << "  per case: the median of " << args.runs << " runs after a warm-up; 'all' encodes in row blocks on every "
                "thread (wall clock, and the process's CPU time), 'one' the whole frame on one thread (CPU time); "
                "OpenColorIO: its default CPU processor of the same view on the same values, one thread, one run; bytes "
@@ -181,7 +181,7 @@ void run_display_bench(const BenchArguments& args) {
   std::cout << "  load average after " << load_average() << "\n";
   if (!args.json_file.empty()) {
     std::ofstream out(args.json_file);
-    out << nlohmann::json{{"width", image.width}, {"height", image.height}, {"threads", omp_get_max_threads()},
+    out << nlohmann::json{{"width", image.width}, {"height", image.height}, {"threads", threads},
                           {"load_before", load_before}, {"cases", json}}
                .dump(2)
         << "\n";

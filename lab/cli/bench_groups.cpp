@@ -43,13 +43,13 @@ std::vector<Light> ring_of_lights(const Scene& scene, bool grouped) {
 // One variant's shader, recipe and images: each keeps its kernel, tables and packed G-buffer.
 struct Variant {
   const char* name;
-  Scene scene;
-  Recipe recipe;
-  Image image;
-  TermImages terms;
-  FrameTargets targets;
-  std::unique_ptr<PhongShader> shader;
-  std::vector<double> kernel_ms, download_ms;
+  Scene scene{};
+  Recipe recipe{};
+  Image image{};
+  TermImages terms{};
+  FrameTargets targets{};
+  std::unique_ptr<PhongShader> shader{};
+  std::vector<double> kernel_ms{}, download_ms{};
 };
 
 void prepare(Variant& v, const GBuffer& gbuffer, bool terms, const ComputeContext& compute, ProgramCache& cache) {

@@ -150,7 +150,7 @@ class ManyLightsBench {
     for (PeerTiming& timing : timings) timing.single_run = warm_up(timing.times, timing.culling, [&] { run(timing); });
     for (int round = 0; round < runs_; ++round) {
       // The peer's idle OpenMP workers spin after its parallel regions (libgomp's GOMP_SPINCOUNT,
-      // host/shading/host_threads.h), on the cores the kernel runs on: they are let go to sleep first.
+      // host/common/host_threads.h), on the cores the kernel runs on: they are let go to sleep first.
       std::this_thread::sleep_for(std::chrono::milliseconds(50));
       if (!kernel_single) run_kernel();
       for (PeerTiming& timing : timings)
@@ -182,9 +182,9 @@ class ManyLightsBench {
  private:
   struct PeerTiming {
     TiledPeerSchedule schedule;
-    std::vector<double> times, culling;
+    std::vector<double> times{}, culling{};
     double kept_pairs = 0.0;
-    std::optional<double> max_rel_err;
+    std::optional<double> max_rel_err{};
     bool single_run = false;
   };
 

@@ -7,12 +7,11 @@ import numpy as np
 import pytest
 
 import phongcl
+from opencl_required import needs_device
 
 SCENES = pathlib.Path(__file__).resolve().parents[2] / "scenes"
 DEFAULT = SCENES / "default" / "scene.json"
 DEFAULT_GBUFFER = SCENES / "default" / "gbuffer.exr"
-
-needs_device = pytest.mark.skipif(not phongcl.devices(), reason="no OpenCL device on this machine")
 
 
 def small_gbuffer(height=4, width=6):

@@ -10,12 +10,11 @@ import pytest
 import phongcl
 import numpy_reference
 from accuracy_bound import RELATIVE_BOUND
+from opencl_required import needs_device
 
 SCENES = pathlib.Path(__file__).resolve().parents[2] / "scenes"
 DEFAULT = SCENES / "default" / "scene.json"
 DEFAULT_GBUFFER = SCENES / "default" / "gbuffer.exr"
-
-needs_device = pytest.mark.skipif(not phongcl.devices(), reason="no OpenCL device on this machine")
 
 
 @pytest.fixture(scope="module")

@@ -34,8 +34,11 @@ for binary in "$library" "$prefix/bin/phongcl" $python_module; do
   [ "$beyond" -eq 0 ] || fail "$binary has $beyond instructions beyond baseline x86-64 (AVX or later)"
 done
 
+# With the warnings of the project's own build, as errors: the installed headers compile cleanly in a
+# strict user's build.
 cmake -S tests/consumer -B "$work/consumer" -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_PREFIX_PATH="$prefix" \
-  >"$work/configure.log" 2>&1 || { cat "$work/configure.log"; fail "consumer does not configure"; }
+  -DCMAKE_CXX_FLAGS="-Wall -Wextra -Wpedantic" -DCMAKE_COMPILE_WARNING_AS_ERROR=ON >"$work/configure.log" 2>&1 ||
+  { cat "$work/configure.log"; fail "consumer does not configure"; }
 cmake --build "$work/consumer" >"$work/build.log" 2>&1 || { cat "$work/build.log"; fail "consumer does not build"; }
 mkdir "$work/out"
 "$work/consumer/phongcl_consumer" scenes/default/scene.json scenes/default/gbuffer.exr "$work/out" ||

@@ -1,6 +1,7 @@
 #pragma once
-// Fork-join over the cores for the host's per-frame passes (packing, copying out), on threads that
-// exit when their range is done. Not OpenMP: libgomp's idle workers spin after every parallel region
+// Fork-join over the cores for the host's per-frame passes (packing, copying out, colour conversion,
+// display encoding), on threads that exit when their range is done: the host's one threading model.
+// Not OpenMP: libgomp's idle workers spin after every parallel region
 // (GOMP_SPINCOUNT, 300,000 pauses by default: 10 to 14 ms of CPU per frame here, counted in
 // /proc/<pid>/task/<tid>/schedstat), on the cores PoCL's workers need for the kernel launched next.
 #include <algorithm>
