@@ -87,7 +87,7 @@ void launch_once(const ComputeContext& compute, const Recipe& recipe, const std:
                            .out_rgba = zeros(PHONGCL_OUTPUT_PLANES * lanes * sizeof(cl_float)),
                            .out_terms = zeros(PHONGCL_TERM_PLANES * lanes * sizeof(cl_float))};
   arguments.frame.plane_stride = static_cast<cl_uint>(lanes);
-  arguments.frame.grid = {static_cast<cl_uint>(lanes), 16, 1, 0};
+  arguments.frame.grid = {static_cast<cl_uint>(lanes), 16, 1, 0, 0};
   launch_phong(kernel, compute, arguments, lanes, recipe.lanes);
   compute.queue.finish();
 }

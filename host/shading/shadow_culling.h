@@ -19,13 +19,9 @@ namespace phongcl {
 // candidates[offsets[p]], or counts[p] == PHONGCL_SHADOW_TRAVERSE (its rays traverse the BVH). The
 // tiles' level keeps the three in one block (phong_shade's shadow_lists), `tables` saying where.
 struct ShadowLists {
-<<<<<<< HEAD
-  cl::Buffer counts, offsets, candidates;  // sub-buffers of `block` where there is one
-  cl::Buffer block;
+  cl::Buffer counts{}, offsets{}, candidates{};  // sub-buffers of `block` where there is one
+  cl::Buffer block{};
   ShadowListTables tables{};
-=======
-  cl::Buffer counts{}, offsets{}, candidates{};
->>>>>>> house-house
   TileGrid grid{};
   cl_uint tiles = 0;
   std::vector<cl_uint> host_counts{};  // the coarse level's, which size the tiles' room
