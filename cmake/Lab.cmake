@@ -10,6 +10,12 @@ phongcl_lab_room(peers DEPS OpenMP::OpenMP_CXX)
 # read errno or unmask FP exceptions). 512-bit vectors: GCC's Sapphire Rapids tuning prefers 256.
 target_compile_options(phongcl_peers PRIVATE -O3 -march=native -mprefer-vector-width=512 -fno-math-errno
                        -fno-trapping-math -ffp-contract=fast)
+# Their loops' vectorisation requests (lab/peers/simd_request.h): off in the sanitizer build, whose
+# checks make those loops unvectorisable.
+option(PHONGCL_PEERS_VECTORISED "The C++ peers' omp simd requests (OFF where they cannot be honoured)" ON)
+if(NOT PHONGCL_PEERS_VECTORISED)
+  target_compile_definitions(phongcl_peers PRIVATE PHONGCL_PEERS_SCALAR)
+endif()
 phongcl_lab_room(stability DEPS phongcl_reference phongcl_report)
 
 add_library(phongcl_lab INTERFACE)

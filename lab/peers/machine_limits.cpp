@@ -8,6 +8,7 @@
 #include <memory>
 
 #include "peers/packed_frame.h"
+#include "peers/simd_request.h"
 
 namespace phongcl {
 
@@ -44,13 +45,13 @@ double measure_triad_bandwidth(std::size_t elements, int repetitions) {
   AlignedVector<float> a(elements), b(elements), c(elements);
   const auto n = static_cast<std::int64_t>(elements);
   // First touch on the threads that use the pages.
-#pragma omp parallel for simd schedule(static)
+PHONGCL_PARALLEL_FOR_SIMD(schedule(static))
   for (std::int64_t i = 0; i < n; ++i) a[i] = 0.0f, b[i] = 1.0f, c[i] = 2.0f;
   double best = 1e300;
   const float s = 3.0f;
   for (int r = 0; r < repetitions; ++r) {
     const auto start = Clock::now();
-#pragma omp parallel for simd schedule(static)
+PHONGCL_PARALLEL_FOR_SIMD(schedule(static))
     for (std::int64_t i = 0; i < n; ++i) a[i] = b[i] + s * c[i];
     best = std::min(best, seconds_since(start));
   }

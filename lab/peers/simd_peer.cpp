@@ -3,6 +3,7 @@
 
 #include "peers/peers.h"
 #include "peers/phong_pixel.h"
+#include "peers/simd_request.h"
 
 namespace phongcl {
 
@@ -36,7 +37,7 @@ struct Block {
 
 void shade_block(const FrameView& f, const SceneView& s, std::size_t first, std::size_t count, float* rgba) {
   Block b;
-#pragma omp simd
+PHONGCL_SIMD()
   for (std::size_t j = 0; j < kBlock; ++j) {  // whole blocks: the frame's planes are padded
     const std::size_t i = first + j;
     b.px[j] = f.px[i], b.py[j] = f.py[i], b.pz[j] = f.pz[i];
@@ -46,19 +47,19 @@ void shade_block(const FrameView& f, const SceneView& s, std::size_t first, std:
   }
   for (int k = 0; k < s.point_count; ++k) {
     const Vec3 light{s.point_x[k], s.point_y[k], s.point_z[k]};
-#pragma omp simd
+PHONGCL_SIMD()
     for (std::size_t j = 0; j < kBlock; ++j) {
       b.add(j, s.point_r[k], s.point_g[k], s.point_b[k], light_term(b.n(j), b.v(j), unit_or_zero(light - b.p(j)), b.q[j]));
     }
   }
   for (int k = 0; k < s.directional_count; ++k) {
     const Vec3 l{s.dir_x[k], s.dir_y[k], s.dir_z[k]};
-#pragma omp simd
+PHONGCL_SIMD()
     for (std::size_t j = 0; j < kBlock; ++j) {
       b.add(j, s.dir_r[k], s.dir_g[k], s.dir_b[k], light_term(b.n(j), b.v(j), l, b.q[j]));
     }
   }
-#pragma omp simd
+PHONGCL_SIMD()
   for (std::size_t j = 0; j < count; ++j) {
     write_pixel(s, f.material[first + j], {b.dr[j], b.dg[j], b.db[j], b.sr[j], b.sg[j], b.sb[j]}, rgba + 4 * (first + j));
   }

@@ -12,6 +12,7 @@
 
 #include "peers/peers.h"
 #include "peers/phong_pixel.h"
+#include "peers/simd_request.h"
 
 namespace phongcl {
 
@@ -106,7 +107,7 @@ bool row_in_range(const PackedScene& s, int k, const float* px, const float* py,
   if (inverse_range <= 0.0f) return true;
   const float lx = s.point_x[k], ly = s.point_y[k], lz = s.point_z[k];
   float nearest_sq = INFINITY;
-#pragma omp simd reduction(min : nearest_sq)
+PHONGCL_SIMD(reduction(min : nearest_sq))
   for (std::size_t j = 0; j < count; ++j) {
     const float tx = lx - px[j], ty = ly - py[j], tz = lz - pz[j];
     nearest_sq = std::min(nearest_sq, tx * tx + ty * ty + tz * tz);
@@ -133,7 +134,7 @@ void shade_row(const FrameView& f, const SceneView& view, const PackedScene& s, 
     const float lx = s.point_x[k], ly = s.point_y[k], lz = s.point_z[k];
     const float cr = s.point_r[k], cg = s.point_g[k], cb = s.point_b[k];
     const Shape shape = shape_of(s, k);
-#pragma omp simd
+PHONGCL_SIMD()
     for (std::size_t j = 0; j < kRow; ++j) {
       const float tx = lx - px[j], ty = ly - py[j], tz = lz - pz[j];
       const float d2 = tx * tx + ty * ty + tz * tz;
@@ -148,7 +149,7 @@ void shade_row(const FrameView& f, const SceneView& view, const PackedScene& s, 
   }
   for (int k = 0; k < s.directional_count(); ++k) {
     const Vec3 l{s.dir_x[k], s.dir_y[k], s.dir_z[k]};
-#pragma omp simd
+PHONGCL_SIMD()
     for (std::size_t j = 0; j < kRow; ++j) {
       const LightTerm term = light_term({nx[j], ny[j], nz[j]}, {vx[j], vy[j], vz[j]}, l, q[j]);
       dr[j] += s.dir_r[k] * term.diffuse, dg[j] += s.dir_g[k] * term.diffuse, db[j] += s.dir_b[k] * term.diffuse;
