@@ -8,20 +8,6 @@ namespace phongcl {
 
 namespace {
 
-// The lights of one group (empty: those in none), point, spot and directional ones, then area ones.
-struct GroupLights {
-  std::vector<Light> lights;
-  std::vector<AreaLight> area_lights;
-};
-
-GroupLights lights_of(const std::string& group, const std::vector<Light>& lights, const std::vector<AreaLight>& areas) {
-  GroupLights result;
-  std::copy_if(lights.begin(), lights.end(), std::back_inserter(result.lights), [&](const Light& l) { return l.group == group; });
-  std::copy_if(areas.begin(), areas.end(), std::back_inserter(result.area_lights),
-               [&](const AreaLight& l) { return l.group == group; });
-  return result;
-}
-
 template <class AnyLight>
 bool same_but_colour(AnyLight edited, const AnyLight& rendered) {
   edited.color = rendered.color;
@@ -62,6 +48,14 @@ bool uniform_scale(const GroupLights& edited, const GroupLights& rendered, glm::
 bool same(const GroupLights& a, const GroupLights& b) { return a.lights == b.lights && a.area_lights == b.area_lights; }
 
 }  // namespace
+
+GroupLights lights_of(const std::string& group, const std::vector<Light>& lights, const std::vector<AreaLight>& areas) {
+  GroupLights result;
+  std::copy_if(lights.begin(), lights.end(), std::back_inserter(result.lights), [&](const Light& l) { return l.group == group; });
+  std::copy_if(areas.begin(), areas.end(), std::back_inserter(result.area_lights),
+               [&](const AreaLight& l) { return l.group == group; });
+  return result;
+}
 
 const char* to_string(GroupChange change) {
   switch (change) {

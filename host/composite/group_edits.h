@@ -25,6 +25,13 @@ struct GroupEdit {
 
 const char* to_string(GroupChange change);  // "unchanged", "scaled", "re-shaded"
 
+// The lights of one group ("": those in none): its point, spot and directional lights, then its area lights.
+struct GroupLights {
+  std::vector<Light> lights;
+  std::vector<AreaLight> area_lights;
+};
+GroupLights lights_of(const std::string& group, const std::vector<Light>& lights, const std::vector<AreaLight>& area_lights);
+
 // One entry per light group of either list, in the order of light_groups() over the edited lights,
 // then groups only the render had. InputError naming the scene file when it has no "rendered", or
 // when a light outside every group was edited, added or removed (its light is part of the render's

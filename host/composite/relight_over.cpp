@@ -11,17 +11,11 @@ namespace phongcl {
 
 namespace {
 
-// phongcl's diffuse and specular light of the lights of `group` alone, or none when it has none.
-std::optional<GroupTerms> shade_group(Relighter& relighter, const std::string& group, const std::vector<Light>& lights,
-                                      const std::vector<AreaLight>& area_lights) {
-  std::vector<Light> its_lights;
-  std::vector<AreaLight> its_area_lights;
-  std::copy_if(lights.begin(), lights.end(), std::back_inserter(its_lights), [&](const Light& l) { return l.group == group; });
-  std::copy_if(area_lights.begin(), area_lights.end(), std::back_inserter(its_area_lights),
-               [&](const AreaLight& l) { return l.group == group; });
-  if (its_lights.empty() && its_area_lights.empty()) return std::nullopt;
-  relighter.set_lights(its_lights);
-  relighter.set_area_lights(its_area_lights);
+// phongcl's diffuse and specular light of `lights` alone (one group's), or none when there are none.
+std::optional<GroupTerms> shade_group(Relighter& relighter, const GroupLights& lights) {
+  if (lights.lights.empty() && lights.area_lights.empty()) return std::nullopt;
+  relighter.set_lights(lights.lights);
+  relighter.set_area_lights(lights.area_lights);
   TermImages terms;
   relighter.shade(terms);
   return GroupTerms{std::move(terms.diffuse), std::move(terms.specular)};
@@ -44,18 +38,20 @@ RelitOver relight_over(Relighter& relighter, const std::filesystem::path& render
   result.view_layer = passes.layer.empty() ? "" : passes.layer.substr(0, passes.layer.size() - 1);
   std::map<std::string, ChangedGroup> changed;
   const Scene held = relighter.scene();
+  const auto give_lights_back = [&] {
+    relighter.set_lights(held.lights);
+    relighter.set_area_lights(held.area_lights);
+  };
   try {
     for (const GroupEdit& edit : result.edits)
       if (edit.change == GroupChange::reshaded)
-        changed[edit.group] = {shade_group(relighter, edit.group, rendered.lights, rendered.area_lights),
-                               shade_group(relighter, edit.group, edited.lights, edited.area_lights)};
+        changed[edit.group] = {shade_group(relighter, lights_of(edit.group, rendered.lights, rendered.area_lights)),
+                               shade_group(relighter, lights_of(edit.group, edited.lights, edited.area_lights))};
   } catch (...) {
-    relighter.set_lights(held.lights);
-    relighter.set_area_lights(held.area_lights);
+    give_lights_back();
     throw;
   }
-  relighter.set_lights(held.lights);
-  relighter.set_area_lights(held.area_lights);
+  give_lights_back();
   try {
     result.composite = composite_over(passes, result.edits, changed);
   } catch (const std::invalid_argument& error) {
