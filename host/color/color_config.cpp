@@ -83,12 +83,12 @@ std::vector<fs::path> blender_datafiles(const std::string& blender) {
 // A config for a newer OpenColorIO (color/config_downlevel.h), read from its YAML with what this
 // library cannot run left out, its files found beside it. The keys this library does not know
 // (Blender 5's interop_id and interchange) are collected for one line rather than a warning each.
-OCIO::ConstConfigRcPtr downlevelled(const fs::path& file, const DownlevelledConfig& config, std::vector<std::string>& notes) {
+OCIO::ConstConfigRcPtr downlevelled(const fs::path& file, const DownlevelledConfig& config, ColorConfig::Impl& impl) {
   static std::mutex logging;
   const std::lock_guard lock(logging);
+  static const std::regex unknown_key("unknown key '([^']*)'");
   std::set<std::string> unknown_keys;
   OCIO::SetLoggingFunction([&](const char* message) {
-    const std::regex unknown_key("unknown key '([^']*)'");
     if (std::cmatch match; std::regex_search(message, match, unknown_key))
       unknown_keys.insert(match[1]);
     else
@@ -104,9 +104,11 @@ OCIO::ConstConfigRcPtr downlevelled(const fs::path& file, const DownlevelledConf
   }
   OCIO::ResetToDefaultLoggingFunction();
   ocio->setWorkingDir(fs::absolute(file).parent_path().c_str());
-  notes = config.omitted;
+  impl.omitted_views = config.views;
+  for (const OmittedView& view : config.views) impl.notes.push_back(view.line());
+  impl.notes.insert(impl.notes.end(), config.others.begin(), config.others.end());
   if (!unknown_keys.empty())
-    notes.push_back("keys ignored, unknown to OpenColorIO " + std::string(OCIO::GetVersion()) + ": " +
+    impl.notes.push_back("keys ignored, unknown to OpenColorIO " + std::string(OCIO::GetVersion()) + ": " +
                     joined({unknown_keys.begin(), unknown_keys.end()}));
   return ocio;
 }
@@ -126,7 +128,7 @@ std::shared_ptr<ColorConfig::Impl> from_file(const fs::path& file) {
       } catch (const std::runtime_error&) {
       }
       if (!older) throw;  // OpenColorIO's own complaint says more than the YAML parser's
-      impl->ocio = downlevelled(file, *older, impl->notes);
+      impl->ocio = downlevelled(file, *older, *impl);
     }
     impl->ocio->validate();
   } catch (const OCIO::Exception& error) {
@@ -203,6 +205,12 @@ ColorConfig ColorConfig::load(const std::string& which, const std::string& blend
 std::string ColorConfig::description() const { return impl_->description; }
 
 const std::vector<std::string>& ColorConfig::omitted() const { return impl_->notes; }
+
+std::optional<std::string> ColorConfig::omitted_view(const std::string& display, const std::string& view) const {
+  for (const OmittedView& omitted : impl_->omitted_views)
+    if (omitted.display == display && omitted.view == view) return omitted.line();
+  return std::nullopt;
+}
 
 std::string ColorConfig::working_space() const {
   const OCIO::ConstColorSpaceRcPtr space = impl_->ocio->getColorSpace(OCIO::ROLE_SCENE_LINEAR);

@@ -32,6 +32,8 @@ class ColorConfig {
   // For a config written for a newer OpenColorIO (Blender 5's): what was left out because this
   // OpenColorIO cannot run it, one line per view and per kind of entry, each saying why. Empty otherwise.
   const std::vector<std::string>& omitted() const;
+  // The line of omitted() for that view of that display, when it was left out.
+  std::optional<std::string> omitted_view(const std::string& display, const std::string& view) const;
   std::string working_space() const;
   std::vector<std::string> displays() const;
   std::string default_display() const;

@@ -186,9 +186,8 @@ std::optional<DownlevelledConfig> downlevel_config(const std::string& yaml) {
           views_left.insert(scalar(view, "name"));
           return true;
         }
-        result.omitted.push_back("view '" + scalar(view, "name") + "' of display '" + display.first.Scalar() +
-                                 "' left out: it uses '" + blocker + "', which " + library + " cannot run (" +
-                                 blockers.why(blocker) + ")");
+        result.views.push_back({display.first.Scalar(), scalar(view, "name"),
+                                "it uses '" + blocker + "', which " + library + " cannot run (" + blockers.why(blocker) + ")"});
         return false;
       });
   }
@@ -198,8 +197,8 @@ std::optional<DownlevelledConfig> downlevel_config(const std::string& yaml) {
   filter(root["viewing_rules"], [&](const YAML::Node& rule) { return blockers.of(rule).empty(); });
   filter(root["file_rules"], [&](const YAML::Node& rule) { return !blockers.left_out(scalar(rule, "colorspace")); });
   for (const auto& [kind, names] : kinds)
-    result.omitted.push_back(std::to_string(names.size()) + " " + kind + (names.size() == 1 ? "" : "s") +
-                             " left out, needing what " + library + " lacks: " + joined(names));
+    result.others.push_back(std::to_string(names.size()) + " " + kind + (names.size() == 1 ? "" : "s") +
+                            " left out, needing what " + library + " lacks: " + joined(names));
 
   root["ocio_profile_version"] = std::to_string(major) + "." + std::to_string(minor);
   YAML::Emitter out;

@@ -11,9 +11,17 @@
 
 namespace phongcl {
 
+struct OmittedView {
+  std::string display, view;
+  std::string why;  // "it uses 'ACES 2.0 Rec.1886', which OpenColorIO 2.1.2 cannot run (it needs ...)"
+
+  std::string line() const { return "view '" + view + "' of display '" + display + "' left out: " + why; }
+};
+
 struct DownlevelledConfig {
-  std::string yaml;                  // the config as this OpenColorIO reads it
-  std::vector<std::string> omitted;  // one line per view left out, one per kind of anything else, each with why
+  std::string yaml;                // the config as this OpenColorIO reads it
+  std::vector<OmittedView> views;  // every view left out
+  std::vector<std::string> others;  // one line per kind of anything else left out, with why
 };
 
 // nullopt when this OpenColorIO reads the config's profile version itself. std::runtime_error with

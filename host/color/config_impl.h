@@ -11,6 +11,7 @@
 #include <OpenColorIO/OpenColorIO.h>
 
 #include "color/color_config.h"
+#include "color/config_downlevel.h"
 
 namespace phongcl {
 
@@ -19,7 +20,10 @@ class ViewPipeline;
 struct ColorConfig::Impl {
   OCIO_NAMESPACE::ConstConfigRcPtr ocio;
   std::string description;
-  std::vector<std::string> notes;  // what was left out of a newer OpenColorIO's config, and why
+  // What was left out of a newer OpenColorIO's config, and why (color/config_downlevel.h): the views,
+  // and every line said of it.
+  std::vector<OmittedView> omitted_views;
+  std::vector<std::string> notes;
   // Compiled (display, view, look) triples: building one costs milliseconds, and a server changes
   // exposure on every slider step but view rarely.
   mutable std::mutex mutex;

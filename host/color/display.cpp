@@ -77,9 +77,7 @@ DisplayTransform::DisplayTransform(const ColorConfig& config, const DisplaySetti
   const std::vector<std::string> views = config.views(display_);  // checks the display
   view_ = settings.view.empty() ? config.default_view(display_) : settings.view;
   if (std::find(views.begin(), views.end(), view_) == views.end()) {
-    const std::string left_out = "view '" + view_ + "' of display '" + display_ + "' left out";
-    for (const std::string& note : config.omitted())
-      if (note.rfind(left_out, 0) == 0) throw InputError(config.description() + ": " + note);
+    if (const auto left_out = config.omitted_view(display_, view_)) throw InputError(config.description() + ": " + *left_out);
     throw InputError(config.description() + ": display '" + display_ + "' has no view '" + view_ + "' (views: " +
                      joined(views) + ")");
   }
