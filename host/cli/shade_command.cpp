@@ -95,7 +95,8 @@ void run_shade(const ShadeArguments& args) {
   relighter.set_frame(scene, std::move(inputs.loaded.gbuffer));
   const GBuffer& gbuffer = relighter.gbuffer();
   TermImages terms;
-  const Image shaded = options.terms ? relighter.shade(terms) : relighter.shade();
+  // --over shades its groups itself (composite/relight_over.h): terms here only for --aov.
+  const Image shaded = args.outputs.wants_terms() ? relighter.shade(terms) : relighter.shade();
   const ShadeReport result = relighter.last_report();
   const auto composite_start = Clock::now();
   const OverResult composite = args.over.empty() ? OverResult{} : shade_over(args.over, scene, relighter);
