@@ -9,7 +9,6 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <functional>
 #include <map>
 #include <optional>
 #include <string>
@@ -24,12 +23,14 @@
 #include "composite/render_passes.h"
 #include "exr/exr_channels.h"
 #include "image/image.h"
+#include "input_error_of.h"
 #include "temp_dir.h"
 
 namespace phongcl {
 namespace {
 
 namespace fs = std::filesystem;
+using testing::input_error_of;
 using testing::TempDir;
 
 Light grouped_light(const std::string& group, glm::dvec3 position, glm::dvec3 color) {
@@ -58,15 +59,6 @@ GroupEdit edit_of(const std::vector<GroupEdit>& edits, const std::string& group)
     if (edit.group == group) return edit;
   ADD_FAILURE() << "no edit for group " << group;
   return {};
-}
-
-std::string input_error(const std::function<void()>& action) {
-  try {
-    action();
-  } catch (const InputError& error) {
-    return error.what();
-  }
-  return "no error";
 }
 
 TEST(GroupEdits, UnchangedScaledAndReshadedGroups) {
@@ -113,13 +105,13 @@ TEST(GroupEdits, AddedAndRemovedGroupsAreReshaded) {
 TEST(GroupEdits, LightsOutsideEveryGroupCannotBeEdited) {
   Scene scene = grouped_scene();
   scene.lights[3].color *= 2.0;
-  EXPECT_NE(input_error([&] { group_edits(scene); }).find("grouped.json: a light in no light group differs"),
+  EXPECT_NE(input_error_of([&] { group_edits(scene); }).find("grouped.json: a light in no light group differs"),
             std::string::npos);
   scene = grouped_scene();
   scene.lights.push_back(grouped_light("", {1, 1, 1}, {1, 1, 1}));
-  EXPECT_NE(input_error([&] { group_edits(scene); }).find("a light in no light group differs"), std::string::npos);
+  EXPECT_NE(input_error_of([&] { group_edits(scene); }).find("a light in no light group differs"), std::string::npos);
   scene.rendered.reset();
-  EXPECT_NE(input_error([&] { group_edits(scene); }).find("has no \"rendered\" lights"), std::string::npos);
+  EXPECT_NE(input_error_of([&] { group_edits(scene); }).find("has no \"rendered\" lights"), std::string::npos);
 }
 
 Image filled(int width, int height, float r, float g, float b, float a) {
@@ -200,14 +192,14 @@ TEST(RenderPasses, CombinedAndGroupPassesOfOneViewLayer) {
   ASSERT_EQ(passes.group_passes.count("key"), 1u);
   EXPECT_EQ(passes.group_passes.at("key").pixel(5)[1], key.pixel(5)[1]);
 
-  EXPECT_NE(input_error([&] { read_render_passes(dir / "render.exr", {"rim"}); })
+  EXPECT_NE(input_error_of([&] { read_render_passes(dir / "render.exr", {"rim"}); })
                 .find("render.exr: no pass for light group 'rim' (ViewLayer.Combined_rim.R, G, B)"),
             std::string::npos);
   write_render(dir / "two.exr", {{"A.Combined", &combined}, {"B.Combined", &combined}});
-  EXPECT_NE(input_error([&] { read_render_passes(dir / "two.exr", {}); }).find("more than one view layer (A., B.)"),
+  EXPECT_NE(input_error_of([&] { read_render_passes(dir / "two.exr", {}); }).find("more than one view layer (A., B.)"),
             std::string::npos);
   write_render(dir / "none.exr", {{"ViewLayer.Diffuse", &combined}});
-  EXPECT_NE(input_error([&] { read_render_passes(dir / "none.exr", {}); }).find("none.exr: no Combined pass"),
+  EXPECT_NE(input_error_of([&] { read_render_passes(dir / "none.exr", {}); }).find("none.exr: no Combined pass"),
             std::string::npos);
 }
 

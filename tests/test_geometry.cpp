@@ -4,7 +4,6 @@
 
 #include <cmath>
 #include <cstring>
-#include <functional>
 #include <iterator>
 #include <fstream>
 #include <limits>
@@ -25,23 +24,16 @@
 #include "peers/knot_mesh.h"
 #include "scene/scene.h"
 #include "scene/transform.h"
+#include "input_error_of.h"
 #include "temp_dir.h"
 
 namespace phongcl {
 namespace {
 
+using testing::input_error_of;
 using testing::TempDir;
 
 void write_text(const std::filesystem::path& file, const std::string& text) { std::ofstream(file) << text; }
-
-std::string error_of(const std::function<void()>& action) {
-  try {
-    action();
-  } catch (const InputError& error) {
-    return error.what();
-  }
-  return "";
-}
 
 TEST(MeshFile, BinaryPlyRoundTrips) {
   TempDir dir;
@@ -81,11 +73,11 @@ TEST(MeshFile, ObjPolygonsAreTriangulatedAndPointsDropped) {
 
 TEST(MeshFile, BadFilesAreOneLineErrorsNamingTheFile) {
   TempDir dir;
-  const std::string missing = error_of([&] { read_mesh(dir / "missing.ply"); });
+  const std::string missing = input_error_of([&] { read_mesh(dir / "missing.ply"); });
   EXPECT_NE(missing.find("missing.ply"), std::string::npos) << missing;
 
   write_text(dir / "garbage.ply", "ply\nformat binary_little_endian 1.0\nelement vertex 99999999\nproperty float x\nend_header\nxx");
-  const std::string garbage = error_of([&] { read_mesh(dir / "garbage.ply"); });
+  const std::string garbage = input_error_of([&] { read_mesh(dir / "garbage.ply"); });
   EXPECT_NE(garbage.find("garbage.ply"), std::string::npos) << garbage;
   EXPECT_EQ(garbage.find('\n'), std::string::npos) << garbage;
 
@@ -93,22 +85,22 @@ TEST(MeshFile, BadFilesAreOneLineErrorsNamingTheFile) {
   write_text(dir / "huge.ply", "ply\nformat binary_little_endian 1.0\nelement vertex 2000000000\nproperty float x\n"
                                "property float y\nproperty float z\nelement face 2000000000\n"
                                "property list uchar int vertex_indices\nend_header\n0123456789");
-  const std::string huge = error_of([&] { read_mesh(dir / "huge.ply"); });
+  const std::string huge = input_error_of([&] { read_mesh(dir / "huge.ply"); });
   EXPECT_NE(huge.find("huge.ply: its header declares elements that need at least 26000000000 bytes"), std::string::npos) << huge;
   // A file cut short.
   write_ply(dir / "knot.ply", trefoil_knot(10, 4));
   std::ifstream whole(dir / "knot.ply", std::ios::binary);
   const std::string bytes((std::istreambuf_iterator<char>(whole)), std::istreambuf_iterator<char>());
   std::ofstream(dir / "cut.ply", std::ios::binary) << bytes.substr(0, bytes.size() - 100);
-  EXPECT_NE(error_of([&] { read_mesh(dir / "cut.ply"); }).find("cut.ply"), std::string::npos);
+  EXPECT_NE(input_error_of([&] { read_mesh(dir / "cut.ply"); }).find("cut.ply"), std::string::npos);
 
   write_text(dir / "points.obj", "v 0 0 0\nv 1 0 0\np 1\np 2\n");
-  EXPECT_NE(error_of([&] { read_mesh(dir / "points.obj"); }).find("points.obj"), std::string::npos);
+  EXPECT_NE(input_error_of([&] { read_mesh(dir / "points.obj"); }).find("points.obj"), std::string::npos);
 
   TriangleMesh broken = trefoil_knot(3, 3);
   broken.vertices[4].y = std::numeric_limits<float>::quiet_NaN();
   write_ply(dir / "nan.ply", broken);
-  const std::string nan = error_of([&] { read_mesh(dir / "nan.ply"); });
+  const std::string nan = input_error_of([&] { read_mesh(dir / "nan.ply"); });
   EXPECT_NE(nan.find("nan.ply"), std::string::npos) << nan;
   EXPECT_NE(nan.find("not finite"), std::string::npos) << nan;
 }
@@ -135,7 +127,7 @@ TEST(MeshFile, AFaceWithNoCornersIsAnError) {
   write_text(dir / "ascii.ply", triangle_header("ascii", 2) + "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n0\n");
   std::ofstream(dir / "binary.ply", std::ios::binary) << binary_triangle(0);
   for (const char* name : {"ascii.ply", "binary.ply"}) {
-    const std::string error = error_of([&] { read_mesh(dir / name); });
+    const std::string error = input_error_of([&] { read_mesh(dir / name); });
     EXPECT_NE(error.find(std::string(name) + ": face "), std::string::npos) << error;
     EXPECT_NE(error.find("with no corners"), std::string::npos) << error;
   }
@@ -149,11 +141,11 @@ TEST(MeshFile, AHeaderCutAnywhereIsAnError) {
   const std::string header = triangle_header("ascii", 1);
   for (std::size_t cut = 4; cut < header.size(); cut += 7) {
     write_text(dir / "cut.ply", header.substr(0, cut));
-    const std::string error = error_of([&] { read_mesh(dir / "cut.ply"); });
+    const std::string error = input_error_of([&] { read_mesh(dir / "cut.ply"); });
     EXPECT_NE(error.find("cut.ply: "), std::string::npos) << "cut at " << cut << ": " << error;
   }
   write_text(dir / "cut.ply", header.substr(0, header.size() - 3));
-  EXPECT_NE(error_of([&] { read_mesh(dir / "cut.ply"); }).find("ends before end_header"), std::string::npos);
+  EXPECT_NE(input_error_of([&] { read_mesh(dir / "cut.ply"); }).find("ends before end_header"), std::string::npos);
 }
 
 // Assimp allocates a list's claimed length before reading it: 4 billion corners in a few bytes is
@@ -169,13 +161,13 @@ TEST(MeshFile, ClaimedCountsAreHeldToTheFilesSize) {
   bytes.append(reinterpret_cast<const char*>(&corners), sizeof corners);
   bytes.append(12, '\0');
   std::ofstream(dir / "list.ply", std::ios::binary) << bytes;
-  const std::string list = error_of([&] { read_mesh(dir / "list.ply"); });
+  const std::string list = input_error_of([&] { read_mesh(dir / "list.ply"); });
   EXPECT_NE(list.find("list.ply: face 0 of 1: a list of 4294967280 vertex_indices runs past the end"), std::string::npos)
       << list;
   // In ASCII: 188 bytes that took 9 GB before failing.
   std::string ascii = triangle_header("ascii", 1);
   write_text(dir / "ascii.ply", ascii.replace(ascii.find("uchar int"), 9, "uint int") + "0 0 0\n1 0 0\n0 1 0\n1999999999 0 1 2\n");
-  const std::string ascii_list = error_of([&] { read_mesh(dir / "ascii.ply"); });
+  const std::string ascii_list = input_error_of([&] { read_mesh(dir / "ascii.ply"); });
   EXPECT_NE(ascii_list.find("ascii.ply: face 0 of 1: a list of 1999999999 vertex_indices runs past the end"),
             std::string::npos)
       << ascii_list;
@@ -183,7 +175,7 @@ TEST(MeshFile, ClaimedCountsAreHeldToTheFilesSize) {
   std::string padded = triangle_header("ascii", 200000000);
   padded.insert(padded.find("element vertex"), std::string(70000, 'c').replace(0, 8, "comment ") + "\n");
   write_text(dir / "padded.ply", padded + "0 0 0\n");
-  const std::string claimed = error_of([&] { read_mesh(dir / "padded.ply"); });
+  const std::string claimed = input_error_of([&] { read_mesh(dir / "padded.ply"); });
   EXPECT_NE(claimed.find("padded.ply: its header declares elements that need at least"), std::string::npos) << claimed;
 }
 
@@ -194,7 +186,7 @@ TEST(MeshFile, MalformedHeadersSayWhatIsWrong) {
     std::string text = header + data;
     text.replace(text.find(from), from.size(), to);
     write_text(dir / "bad.ply", text);
-    return error_of([&] { read_mesh(dir / "bad.ply"); });
+    return input_error_of([&] { read_mesh(dir / "bad.ply"); });
   };
   EXPECT_NE(error_with("face 1", "face -10").find("has count '-10', not a whole number >= 0"), std::string::npos);
   EXPECT_NE(error_with("float z", "float w").find("no vertex element with x, y and z"), std::string::npos);
@@ -217,27 +209,27 @@ TEST(MeshFile, MalformedHeadersSayWhatIsWrong) {
 TEST(MeshFile, EveryFileThePlyReaderCouldTakeIsCheckedFirst) {
   TempDir dir;
   write_text(dir / "twice.ply", "plyply\n" + triangle_header("ascii", 1).substr(4) + "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
-  EXPECT_NE(error_of([&] { read_mesh(dir / "twice.ply"); }).find("twice.ply: header line 1: must be 'ply'"),
+  EXPECT_NE(input_error_of([&] { read_mesh(dir / "twice.ply"); }).find("twice.ply: header line 1: must be 'ply'"),
             std::string::npos);
   write_text(dir / "mesh.xyz1", triangle_header("ascii", 1) + "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
   EXPECT_EQ(read_mesh(dir / "mesh.xyz1").triangles.size(), 1u) << "a PLY file by its content";
   write_text(dir / "notes.xyz1", "not a mesh, though ply appears in it\n");
-  EXPECT_NE(error_of([&] { read_mesh(dir / "notes.xyz1"); }).find("'.xyz1' is not a mesh format Assimp reads"),
+  EXPECT_NE(input_error_of([&] { read_mesh(dir / "notes.xyz1"); }).find("'.xyz1' is not a mesh format Assimp reads"),
             std::string::npos);
 }
 
 TEST(MeshFile, WhatIsNotARegularFileIsNamedForWhatItIs) {
   TempDir dir;
   std::filesystem::create_directory(dir / "folder.ply");
-  EXPECT_NE(error_of([&] { read_mesh(dir / "folder.ply"); }).find("folder.ply: cannot read the mesh: it is a directory"),
+  EXPECT_NE(input_error_of([&] { read_mesh(dir / "folder.ply"); }).find("folder.ply: cannot read the mesh: it is a directory"),
             std::string::npos);
   ASSERT_EQ(::mkfifo((dir / "fifo.ply").c_str(), 0600), 0);
-  EXPECT_NE(error_of([&] { read_mesh(dir / "fifo.ply"); }).find("fifo.ply: cannot read the mesh: it is not a regular file"),
+  EXPECT_NE(input_error_of([&] { read_mesh(dir / "fifo.ply"); }).find("fifo.ply: cannot read the mesh: it is not a regular file"),
             std::string::npos);
   std::filesystem::create_symlink(dir / "loop.ply", dir / "loop.ply");
-  const std::string loop = error_of([&] { read_mesh(dir / "loop.ply"); });
+  const std::string loop = input_error_of([&] { read_mesh(dir / "loop.ply"); });
   EXPECT_NE(loop.find("loop.ply: cannot read the mesh: Too many levels of symbolic links"), std::string::npos) << loop;
-  EXPECT_NE(error_of([&] { read_mesh(dir / "absent.ply"); }).find("absent.ply: cannot read the mesh: no such file"),
+  EXPECT_NE(input_error_of([&] { read_mesh(dir / "absent.ply"); }).find("absent.ply: cannot read the mesh: no such file"),
             std::string::npos);
 }
 
