@@ -188,6 +188,12 @@ class HeaderReader {
           "a property is 'property TYPE NAME' or 'property list COUNT_TYPE "
           "TYPE NAME'");
     }
+    // Readers find a property by its name: a second of one name (a vertex's z twice, its x missing)
+    // is laid out by the header but read as neither.
+    for (const Property& declared : header_.elements.back().properties)
+      if (declared.name == property.name)
+        fail("property " + shown(property.name) + " of element " + shown(header_.elements.back().name) +
+             " is declared twice");
     header_.elements.back().properties.push_back(std::move(property));
   }
 
