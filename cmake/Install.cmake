@@ -12,7 +12,9 @@ install(TARGETS phongcl RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 install(DIRECTORY include/phongcl DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 foreach(header common/error.h exr/pixel_window.h scene/scene.h gbuffer/gbuffer.h image/image.h
                color/color_config.h color/display.h color/color_conversion.h
-               shading/precision.h shading/shade_stats.h shading/shadow_settings.h cl/device_info.h cl/cache_outcome.h)
+               shading/precision.h shading/shade_stats.h shading/shadow_settings.h cl/device_info.h cl/cache_outcome.h
+               composite/relight_over.h composite/composite.h composite/group_edits.h composite/group_fit.h
+               composite/render_passes.h)
   get_filename_component(room ${header} DIRECTORY)
   install(FILES host/${header} DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/phongcl/${room})
 endforeach()

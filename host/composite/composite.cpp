@@ -24,8 +24,8 @@ void add_change(Image& out, const glm::dvec3& gain, const Image* added, const Im
   }
 }
 
-const Image* diffuse_of(const std::optional<GroupTerms>& terms) { return terms ? &terms->diffuse : nullptr; }
-const Image* specular_of(const std::optional<GroupTerms>& terms) { return terms ? &terms->specular : nullptr; }
+const Image* diffuse_of(const GroupTerms* terms) { return terms ? &terms->diffuse : nullptr; }
+const Image* specular_of(const GroupTerms* terms) { return terms ? &terms->specular : nullptr; }
 
 }  // namespace
 
@@ -45,19 +45,20 @@ Composite composite_over(const RenderPasses& render, const std::vector<GroupEdit
     const auto terms = changed.find(edit.group);
     if (terms == changed.end()) throw std::invalid_argument("no shading of the changed light group '" + edit.group + "'");
     const ChangedGroup& group = terms->second;
-    for (const std::optional<GroupTerms>* shaded : {&group.then, &group.now})
-      for (const Image* image : {diffuse_of(*shaded), specular_of(*shaded)})
+    const GroupTerms* now = group.now ? &*group.now : nullptr;
+    for (const GroupTerms* shaded : {group.then, now})
+      for (const Image* image : {diffuse_of(shaded), specular_of(shaded)})
         require_size(image, render.combined, "phongcl's image of '" + edit.group + "'");
-    if (!group.now) {
+    if (now == nullptr) {
       add_change(result.image, glm::dvec3(1.0), nullptr, pass);  // its lights are gone: so is its light
-    } else if (pass != nullptr && group.then) {
-      const GroupFit fit = fit_group(*pass, *group.then);
+    } else if (pass != nullptr && group.then != nullptr) {
+      const GroupFit fit = group.fit ? *group.fit : fit_group(*pass, *group.then);
       result.fits.emplace(edit.group, fit);
-      add_change(result.image, fit.diffuse_gain, &group.now->diffuse, &group.then->diffuse);
-      add_change(result.image, fit.specular_gain, &group.now->specular, &group.then->specular);
+      add_change(result.image, fit.diffuse_gain, &now->diffuse, &group.then->diffuse);
+      add_change(result.image, fit.specular_gain, &now->specular, &group.then->specular);
     } else if (pass == nullptr) {
-      add_change(result.image, glm::dvec3(1.0), &group.now->diffuse, nullptr);  // a group new to the render
-      add_change(result.image, glm::dvec3(1.0), &group.now->specular, nullptr);
+      add_change(result.image, glm::dvec3(1.0), &now->diffuse, nullptr);  // a group new to the render
+      add_change(result.image, glm::dvec3(1.0), &now->specular, nullptr);
     } else {
       throw std::invalid_argument("no shading of light group '" + edit.group + "' as rendered");
     }

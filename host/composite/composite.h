@@ -10,10 +10,10 @@
 #include <string>
 #include <vector>
 
-#include "composite/group_edits.h"
-#include "composite/group_fit.h"
-#include "composite/render_passes.h"
-#include "image/image.h"
+#include "group_edits.h"
+#include "group_fit.h"
+#include "render_passes.h"
+#include "../image/image.h"
 
 namespace phongcl {
 
@@ -22,10 +22,14 @@ struct Composite {
   std::map<std::string, GroupFit> fits;  // per changed group the render had
 };
 
-// phongcl's terms of one changed group, alone: with its lights as rendered (none for a group the render
-// did not have) and as edited (none when its lights are all gone).
+// phongcl's terms of one changed group, alone: with its lights as rendered (nullptr for a group the
+// render did not have; held by the caller, who may keep them from frame to frame) and as edited (none
+// when its lights are all gone). `fit`: the fit of `then` to the group's pass when the caller knows
+// it already; nullptr: fitted here.
 struct ChangedGroup {
-  std::optional<GroupTerms> then, now;
+  const GroupTerms* then = nullptr;
+  std::optional<GroupTerms> now;
+  const GroupFit* fit = nullptr;
 };
 
 // Works on premultiplied values, so an edge pixel's new light is mixed as its coverage was rendered;

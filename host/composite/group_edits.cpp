@@ -45,8 +45,6 @@ bool uniform_scale(const GroupLights& edited, const GroupLights& rendered, glm::
   return true;
 }
 
-bool same(const GroupLights& a, const GroupLights& b) { return a.lights == b.lights && a.area_lights == b.area_lights; }
-
 }  // namespace
 
 GroupLights lights_of(const std::string& group, const std::vector<Light>& lights, const std::vector<AreaLight>& areas) {
@@ -72,7 +70,7 @@ std::vector<GroupEdit> group_edits(const Scene& scene) {
                                    "were rendered (scripts/blender/export_scene.py writes them) to tell which light "
                                    "groups changed");
   const RenderedLights& rendered = *scene.rendered;
-  if (!same(lights_of("", scene.lights, scene.area_lights), lights_of("", rendered.lights, rendered.area_lights)))
+  if (lights_of("", scene.lights, scene.area_lights) != lights_of("", rendered.lights, rendered.area_lights))
     throw InputError(scene.source, "a light in no light group differs from the rendered ones: its light is part of "
                                    "the render's Combined pass and cannot be taken out; give it a group in Blender "
                                    "(Object > Shading > Light Group) and render again");
@@ -85,7 +83,7 @@ std::vector<GroupEdit> group_edits(const Scene& scene) {
     const GroupLights now = lights_of(group, scene.lights, scene.area_lights);
     const GroupLights then = lights_of(group, rendered.lights, rendered.area_lights);
     GroupEdit edit{group};
-    if (same(now, then))
+    if (now == then)
       edit.change = GroupChange::unchanged;
     else if (uniform_scale(now, then, edit.scale))
       edit.change = GroupChange::scaled;

@@ -7,7 +7,7 @@
 
 #include <glm/vec3.hpp>
 
-#include "scene/scene.h"
+#include "../scene/scene.h"
 
 namespace phongcl {
 
@@ -29,6 +29,8 @@ const char* to_string(GroupChange change);  // "unchanged", "scaled", "re-shaded
 struct GroupLights {
   std::vector<Light> lights;
   std::vector<AreaLight> area_lights;
+
+  bool operator==(const GroupLights&) const = default;
 };
 GroupLights lights_of(const std::string& group, const std::vector<Light>& lights, const std::vector<AreaLight>& area_lights);
 

@@ -8,7 +8,7 @@
 // difference) stays as rendered, and a small move changes the image by a small amount.
 #include <glm/vec3.hpp>
 
-#include "image/image.h"
+#include "../image/image.h"
 
 namespace phongcl {
 

@@ -34,9 +34,26 @@ void read_pass(exr::InputExr& input, const std::string& prefix, bool alpha, Imag
   input.read(slices);
 }
 
+// The groups whose Combined_<group> pass is under `layer` ("ViewLayer.Combined_key.R" -> "key").
+std::vector<std::string> group_pass_names(const exr::InputExr& input, const std::string& layer) {
+  const std::string prefix = layer + "Combined_", suffix = ".R";
+  std::vector<std::string> groups;
+  for (const std::string& name : input.channel_names())
+    if (name.size() > prefix.size() + suffix.size() && name.compare(0, prefix.size(), prefix) == 0 &&
+        name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0)
+      groups.push_back(name.substr(prefix.size(), name.size() - prefix.size() - suffix.size()));
+  return groups;
+}
+
 }  // namespace
 
-RenderPasses read_render_passes(const std::filesystem::path& file, const std::vector<std::string>& groups) {
+InputError missing_group_pass(const std::filesystem::path& render, const RenderPasses& passes, const std::string& group) {
+  const std::string prefix = passes.layer + "Combined_" + group + ".";
+  return InputError(render, "no pass for light group '" + group + "' (" + prefix + "R, G, B): render it with the group "
+                            "in the view layer's Light Groups");
+}
+
+RenderPasses read_render_passes(const std::filesystem::path& file, const std::vector<std::string>& required) {
   exr::InputExr input(file);
   const std::vector<std::string> layers = combined_layers(input);
   if (layers.empty()) throw InputError(file, "no Combined pass (channels <layer>.Combined.R, G, B, A): not a render to composite over");
@@ -48,15 +65,13 @@ RenderPasses read_render_passes(const std::filesystem::path& file, const std::ve
   if (!input.has_channel(combined + "A")) throw InputError(file, "its Combined pass has no alpha (" + combined + "A)");
   passes.combined = blank_like(input);
   read_pass(input, combined, true, passes.combined);
-  for (const std::string& group : groups) {
-    const std::string prefix = passes.layer + "Combined_" + group + ".";
-    if (!input.has_channel(prefix + "R"))
-      throw InputError(file, "no pass for light group '" + group + "' (" + prefix + "R, G, B): render it with the group "
-                             "in the view layer's Light Groups");
+  for (const std::string& group : group_pass_names(input, passes.layer)) {
     Image pass = blank_like(input);
-    read_pass(input, prefix, false, pass);
+    read_pass(input, passes.layer + "Combined_" + group + ".", false, pass);
     passes.group_passes.emplace(group, std::move(pass));
   }
+  for (const std::string& group : required)
+    if (passes.group_passes.count(group) == 0) throw missing_group_pass(file, passes, group);
   return passes;
 }
 

@@ -1,13 +1,14 @@
 #pragma once
 // The passes of a render that a composite starts from: the Combined pass (RGBA, premultiplied, as
-// renderers write it) and the Combined pass of each light group it needs (Cycles' Combined_<group>,
+// renderers write it) and the Combined pass of each light group it has (Cycles' Combined_<group>,
 // Blender 3.2 and newer), read as float from a multilayer EXR of Blender 3.x to 5.x.
 #include <filesystem>
 #include <map>
 #include <string>
 #include <vector>
 
-#include "image/image.h"
+#include "../common/error.h"
+#include "../image/image.h"
 
 namespace phongcl {
 
@@ -17,8 +18,11 @@ struct RenderPasses {
   std::string layer;                          // the view layer's channel prefix, e.g. "ViewLayer." ("" when none)
 };
 
-// InputError naming the file when it has no Combined pass, more than one view layer with one (the
-// composite would not know which), or no Combined_<group> pass for a group in `groups`.
-RenderPasses read_render_passes(const std::filesystem::path& file, const std::vector<std::string>& groups);
+// Every light group's pass the file has. InputError naming the file when it has no Combined pass, more
+// than one view layer with one (the composite would not know which), or no pass for a group in `required`.
+RenderPasses read_render_passes(const std::filesystem::path& file, const std::vector<std::string>& required);
+
+// InputError naming the render: `group` has no pass in it, and how to render one.
+InputError missing_group_pass(const std::filesystem::path& render, const RenderPasses& passes, const std::string& group);
 
 }  // namespace phongcl

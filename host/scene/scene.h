@@ -83,6 +83,8 @@ struct Material {
   glm::dvec3 ka{0.0}, kd{0.0}, ks{0.0};
   double shininess = 1.0;  // >= 0, validated
   SpecularModel specular_model = SpecularModel::phong;
+
+  bool operator==(const Material&) const = default;
 };
 
 // Geometry for the G-buffer generator and for shadows. A tagged struct rather than a variant: transforms nest.

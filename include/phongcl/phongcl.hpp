@@ -11,6 +11,8 @@
 //   phongcl::write_exr("out.exr", image);
 //   phongcl::ColorConfig blender = phongcl::ColorConfig::load("blender");   // OpenColorIO
 //   phongcl::write_png(image, "out.png", phongcl::DisplayTransform(blender, {.view = "Filmic"}));
+//   phongcl::RenderCompositor over("render.exr");               // relight over the render itself
+//   phongcl::Image composite = over.relight(relighter, relighter.scene()).composite.image;
 //
 // Errors are exceptions whose what() is the one-line message the command line prints: InputError
 // (common/error.h) for bad files and values, std::invalid_argument and std::runtime_error otherwise.
@@ -19,6 +21,7 @@
 #include "color/color_conversion.h"
 #include "color/display.h"
 #include "common/error.h"
+#include "composite/relight_over.h"
 #include "gbuffer/gbuffer.h"
 #include "image/image.h"
 #include "gbuffer_view.hpp"
