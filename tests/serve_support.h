@@ -5,6 +5,7 @@
 
 #include <chrono>
 #include <filesystem>
+#include <optional>
 #include <thread>
 
 #include "cli_runner.h"
@@ -20,9 +21,10 @@ class RunningServer {
  public:
   explicit RunningServer(const std::filesystem::path& save_path = {}, const HttpLimits& limits = {})
       : RunningServer(read_gbuffer(PHONGCL_SOURCE_DIR "/scenes/default/gbuffer.exr"), kServeSceneFile, save_path, limits) {}
+  // `over`: a render every frame is composited over (serve --over).
   RunningServer(GBuffer gbuffer, const std::filesystem::path& scene_file, const std::filesystem::path& save_path = {},
-                const HttpLimits& limits = {})
-      : session_(std::move(gbuffer), ""),
+                const HttpLimits& limits = {}, std::optional<std::filesystem::path> over = std::nullopt)
+      : session_(std::move(gbuffer), "", std::move(over)),
         live_(session_, read_text(scene_file), scene_file, RenderSettings{}, ColorConfig::builtin()),
         server_(live_, {"127.0.0.1", 0, save_path, "test device", limits}) {
     port_ = server_.bind();

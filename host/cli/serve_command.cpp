@@ -37,6 +37,7 @@ struct ServeArguments {
   std::string save;
   std::string device;
   std::string precision = "precise";
+  std::string over;  // a render to composite every frame over
 };
 
 std::string read_text(const std::string& file) {
@@ -45,6 +46,16 @@ std::string read_text(const std::string& file) {
   std::ostringstream text;
   text << stream.rdbuf();
   return text.str();
+}
+
+// "shot.exr, view layer ViewLayer, light-group passes key, fill, rim".
+std::string over_description(const RenderCompositor& over) {
+  const RenderPasses& passes = over.passes();
+  std::string groups;
+  for (const auto& [group, pass] : passes.group_passes) groups += (groups.empty() ? "" : ", ") + group;
+  return over.file().string() + (passes.layer.empty() ? "" : ", view layer " + passes.layer.substr(0, passes.layer.size() - 1)) +
+         (groups.empty() ? ", no light-group passes" : ", light-group passes " + groups) +
+         " (each frame composited over it: docs/compositing.md)";
 }
 
 bool is_loopback(const std::string& host) { return host == "127.0.0.1" || host == "localhost" || host == "::1"; }
@@ -68,6 +79,7 @@ void run_serve(const ServeArguments& args) {
   // --save is checked now, not at the first POST /api/save: it must be writable and not an input.
   const auto refuse_save_over_inputs = [&](const Scene* scene) {
     std::vector<NamedFile> files = args.inputs.named_files(scene);
+    if (!args.over.empty()) files.push_back({"--over", args.over});
     if (!args.save.empty()) files.push_back({"--save", args.save, true});
     refuse_shared_files(files);
   };
@@ -77,7 +89,8 @@ void run_serve(const ServeArguments& args) {
   refuse_save_over_inputs(&scene);
   const LoadedGBuffer loaded = args.inputs.load_described_gbuffer(scene, /*with_beauty=*/true);
   const std::string scene_text = read_text(args.inputs.scene_file);
-  RelightSession session(loaded.gbuffer, args.device);
+  RelightSession session(loaded.gbuffer, args.device,
+                         args.over.empty() ? std::nullopt : std::optional<std::filesystem::path>(args.over));
   const std::string device = session.device_description();
   RenderSettings settings;
   settings.precision = parse_precision(args.precision);
@@ -93,6 +106,7 @@ void run_serve(const ServeArguments& args) {
             << "  colour     " << args.inputs.color_config()->description() << ", working space "
             << args.inputs.color_config()->working_space() << "\n"
             << (loaded.beauty.empty() ? "" : "  beauty     " + loaded.beauty + " (GET /api/beauty, the page's before/after split)\n")
+            << (session.over() ? "  over       " + over_description(*session.over()) + "\n" : "")
             << (args.save.empty() ? "" : "  save       " + args.save + " (POST /api/save, the page's Save button)\n");
   if (!is_loopback(args.host))
     std::cout << "  warning    listening on " << args.host
@@ -142,6 +156,9 @@ void add_serve_command(CLI::App& app) {
   command->add_option("--device", args->device, "OpenCL device: index or name (default: first CPU device)");
   command->add_option("--precision", args->precision, "Starting precision: double, precise (default), fast or half-storage")
       ->check(CLI::IsMember({"double", "precise", "fast", "half-storage"}));
+  command->add_option("--over", args->over,
+                      "A render of the G-buffer with light-group passes (Blender's Combined_<group>): every frame is "
+                      "that render with the groups the page changed scaled or re-shaded by phongcl (docs/compositing.md)");
   command->callback([args] { run_serve(*args); });
 }
 

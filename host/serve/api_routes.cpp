@@ -127,6 +127,27 @@ json timings_json(const FrameTimings& t) {
 
 json vec3_json(const glm::dvec3& v) { return json::array({v.x, v.y, v.z}); }
 
+// The render frames are composited over, and what the frame did with each of its light groups.
+json over_json(const RenderCompositor& over, const std::optional<OverGroups>& frame_groups) {
+  const RenderPasses& passes = over.passes();
+  json groups = json::array();
+  for (const GroupEdit& edit : frame_groups ? frame_groups->edits : std::vector<GroupEdit>{}) {
+    json group{{"name", edit.group}, {"change", to_string(edit.change)}, {"pass", passes.group_passes.count(edit.group) > 0}};
+    if (edit.change == GroupChange::scaled) group["scale"] = vec3_json(edit.scale);
+    if (const auto fit = frame_groups->fits.find(edit.group); fit != frame_groups->fits.end())
+      group["fit"] = {{"diffuse_gain", vec3_json(fit->second.diffuse_gain)},
+                      {"specular_gain", vec3_json(fit->second.specular_gain)},
+                      {"residual", fit->second.residual}};
+    groups.push_back(group);
+  }
+  json pass_names = json::array();
+  for (const auto& [name, pass] : passes.group_passes) pass_names.push_back(name);
+  return {{"render", over.file().string()},
+          {"view_layer", passes.layer.empty() ? "" : passes.layer.substr(0, passes.layer.size() - 1)},
+          {"passes", pass_names},
+          {"groups", groups}};
+}
+
 // "r,g,b": three finite numbers.
 glm::dvec3 parse_rgb(const std::string& text) {
   glm::dvec3 rgb;
@@ -351,6 +372,8 @@ void ApiRoutes::get_stats(const HttpRequest& request, HttpResponse& response) {
              {"shade_fps", counters.frames_per_second},
              {"save_path", options_.save_path.string()},
              {"beauty", live_.session().beauty() != nullptr}};
+  if (const RenderCompositor* over = live_.session().over())
+    stats["over"] = over_json(*over, frame ? frame->frame.over : std::nullopt);
   if (frame) {
     stats["frame"] = {{"version", frame->version},
                       {"scene_version", frame->scene_version},

@@ -24,12 +24,23 @@ std::optional<Image> beauty_image(const GBuffer& gbuffer) {
 
 }  // namespace
 
-RelightSession::RelightSession(GBuffer gbuffer, std::string device)
-    : gbuffer_(std::move(gbuffer)), beauty_(beauty_image(gbuffer_)), device_(std::move(device)) {}
+RelightSession::RelightSession(GBuffer gbuffer, std::string device, std::optional<std::filesystem::path> over)
+    : gbuffer_(std::move(gbuffer)), beauty_(beauty_image(gbuffer_)), device_(std::move(device)) {
+  if (!over) return;
+  over_.emplace(*over);
+  const Image& render = over_->passes().combined;
+  if (render.width != gbuffer_.width || render.height != gbuffer_.height)
+    throw InputError(*over, "is " + std::to_string(render.width) + " x " + std::to_string(render.height) + ", the G-buffer " +
+                                std::to_string(gbuffer_.width) + " x " + std::to_string(gbuffer_.height) +
+                                ": composite over the render of this G-buffer");
+}
 
 RelightSession::~RelightSession() = default;
 
-void RelightSession::check(const Scene& scene) const { material_check_.check(gbuffer_, scene.materials.size()); }
+void RelightSession::check(const Scene& scene) const {
+  material_check_.check(gbuffer_, scene.materials.size());
+  if (over_) group_edits(scene);  // its "rendered" lights, and no edit of a light in no group
+}
 
 std::vector<RelightSession::MeshStamp> RelightSession::mesh_stamps(const std::vector<Object>& objects) {
   std::vector<MeshStamp> stamps;
@@ -61,6 +72,7 @@ Relighter& RelightSession::relighter_for(const Scene& scene, const RenderSetting
     options.terms = settings.terms;
     options.shadows = settings.shadows;
     relighter_.emplace(scene, gbuffer_, options);
+    if (over_) over_->forget_rendered_terms();
     relighter_settings_ = settings;
     relighter_meshes_ = std::move(meshes);
   }
@@ -73,20 +85,22 @@ Relighter& RelightSession::relighter_for(const Scene& scene, const RenderSetting
 
 namespace {
 
-// Whether solo and mute leave out a light of `group`.
-bool left_out(const std::string& group, const RenderSettings& settings) {
+// Whether solo and mute leave out a light of `group`. Over a render, a light in no group stays: its
+// light cannot be taken out of the render's Combined pass.
+bool left_out(const std::string& group, const RenderSettings& settings, bool over_render) {
+  if (group.empty() && over_render) return false;
   const bool muted =
       !group.empty() && std::find(settings.muted.begin(), settings.muted.end(), group) != settings.muted.end();
   return muted || (!settings.solo.empty() && group != settings.solo);
 }
 
 // The scene with the lights that solo and mute leave out at colour 0, area lights too.
-Scene soloed_and_muted(const Scene& scene, const RenderSettings& settings) {
+Scene soloed_and_muted(const Scene& scene, const RenderSettings& settings, bool over_render) {
   Scene lit = scene;
   for (Light& light : lit.lights)
-    if (left_out(light.group, settings)) light.color = glm::dvec3(0.0);
+    if (left_out(light.group, settings, over_render)) light.color = glm::dvec3(0.0);
   for (AreaLight& light : lit.area_lights)
-    if (left_out(light.group, settings)) light.color = glm::dvec3(0.0);
+    if (left_out(light.group, settings, over_render)) light.color = glm::dvec3(0.0);
   return lit;
 }
 
@@ -95,9 +109,17 @@ Scene soloed_and_muted(const Scene& scene, const RenderSettings& settings) {
 Frame RelightSession::shade(const Scene& scene, const RenderSettings& settings, Image canvas) {
   const auto start = std::chrono::steady_clock::now();
   const bool solo_or_mute = !settings.solo.empty() || !settings.muted.empty();
-  Relighter& relighter = relighter_for(solo_or_mute ? soloed_and_muted(scene, settings) : scene, settings);
+  const Scene lit = solo_or_mute ? soloed_and_muted(scene, settings, over_.has_value()) : scene;
+  RenderSettings relighter_settings = settings;
+  relighter_settings.terms = settings.terms || over_.has_value();  // a composite shades the changed groups' terms
+  Relighter& relighter = relighter_for(lit, relighter_settings);
   Frame frame;
-  if (settings.terms) {
+  if (over_) {
+    RelitOver relit = over_->relight(relighter, lit);
+    frame.image = std::move(relit.composite.image);
+    frame.over = OverGroups{std::move(relit.edits), std::move(relit.composite.fits)};
+    if (settings.terms) relighter.shade(frame.terms);
+  } else if (settings.terms) {
     frame.image = relighter.shade(frame.terms);
   } else if (canvas.width == gbuffer_.width && canvas.height == gbuffer_.height) {
     relighter.shade_into(canvas.rgba.data(), canvas.rgba.size());

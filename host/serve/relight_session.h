@@ -4,12 +4,14 @@
 // page shows one), and read back under the cursor.
 #include <cstdint>
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
 
+#include "composite/relight_over.h"
 #include "gbuffer/gbuffer.h"
 #include "gbuffer/material_check.h"
 #include "image/image.h"
@@ -35,8 +37,15 @@ struct FrameTimings {
   double build_ms = 0.0, kernel_ms = 0.0, transfer_ms = 0.0, shade_ms = 0.0;
 };
 
+// Over a render: what became of each of its light groups in this frame (composite/relight_over.h).
+struct OverGroups {
+  std::vector<GroupEdit> edits;
+  std::map<std::string, GroupFit> fits;  // per re-shaded group the render had
+};
+
 struct Frame {
-  Image image;
+  Image image;                // over a render: the composite
+  std::optional<OverGroups> over;
   TermImages terms;        // empty unless RenderSettings::terms
   FrameTimings timings;
   std::string kernel;      // what was compiled in: "precise, specialised: 2 point (unrolled) + ..."
@@ -53,12 +62,16 @@ struct SurfacePick {
 
 class RelightSession {
  public:
-  // `device` as `phongcl shade --device` takes it (empty: the default device).
-  RelightSession(GBuffer gbuffer, std::string device);
+  // `device` as `phongcl shade --device` takes it (empty: the default device). With `over`, a render
+  // of this G-buffer with light-group passes, every frame is composited over it: unchanged groups
+  // stay as rendered, solo and mute take groups' passes out (the world and lights in no group stay).
+  // InputError naming the render when it cannot be read or is of another size.
+  RelightSession(GBuffer gbuffer, std::string device, std::optional<std::filesystem::path> over = std::nullopt);
   ~RelightSession();
 
   // Throws InputError (naming the G-buffer) when the scene cannot shade this G-buffer, e.g. a
-  // material index beyond the scene's table: call it before accepting a scene.
+  // material index beyond the scene's table, or (naming the scene) when it cannot be composited over
+  // the render (composite/group_edits.h): call it before accepting a scene.
   void check(const Scene& scene) const;
   // Not thread-safe: one render thread calls it. `canvas`, an earlier frame's image that nobody
   // reads any more, is shaded into when it has this G-buffer's size: a new 1080p image costs a
@@ -72,6 +85,8 @@ class RelightSession {
   const GBuffer& gbuffer() const { return gbuffer_; }
   // The renderer's own image from the G-buffer file (alpha 1), or nullptr when it has none.
   const Image* beauty() const { return beauty_ ? &*beauty_ : nullptr; }
+  // The render every frame is composited over, or nullptr.
+  const RenderCompositor* over() const { return over_ ? &*over_ : nullptr; }
   std::string device_description() const;
 
  private:
@@ -87,6 +102,7 @@ class RelightSession {
   GBuffer gbuffer_;
   MaterialCheck material_check_;  // of check()
   std::optional<Image> beauty_;
+  std::optional<RenderCompositor> over_;
   std::string device_;
   std::optional<Relighter> relighter_;
   RenderSettings relighter_settings_;
