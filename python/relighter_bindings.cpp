@@ -65,7 +65,7 @@ py::dict shade_over(Relighter& relighter, const std::string& render, const std::
     py::dict group;
     group["change"] = to_string(edit.change);
     if (edit.change == GroupChange::scaled) group["scale"] = py::make_tuple(edit.scale.r, edit.scale.g, edit.scale.b);
-    if (const auto fit = relit.composite.fits.find(edit.group); fit != relit.composite.fits.end()) {
+    if (const auto fit = relit.fits.find(edit.group); fit != relit.fits.end()) {
       const GroupFit& f = fit->second;
       group["diffuse_gain"] = py::make_tuple(f.diffuse_gain.r, f.diffuse_gain.g, f.diffuse_gain.b);
       group["specular_gain"] = py::make_tuple(f.specular_gain.r, f.specular_gain.g, f.specular_gain.b);
@@ -74,7 +74,7 @@ py::dict shade_over(Relighter& relighter, const std::string& render, const std::
     groups[py::str(edit.group)] = group;
   }
   py::dict out;
-  out["image"] = array_of(relit.composite.image);
+  out["image"] = array_of(relit.image);
   out["groups"] = groups;
   return out;
 }

@@ -20,6 +20,7 @@
 #include "common/error.h"
 #include "composite/composite.h"
 #include "composite/group_edits.h"
+#include "composite/group_fit.h"
 #include "composite/render_passes.h"
 #include "exr/exr_channels.h"
 #include "image/image.h"
@@ -123,55 +124,74 @@ Image filled(int width, int height, float r, float g, float b, float a) {
   return image;
 }
 
+TEST(GroupFit, DiffuseAndSpecularGainsOfTheRenderedPass) {
+  // phongcl's rim as rendered, and a pass that is twice its diffuse plus half its specular light.
+  GroupTerms rim{filled(3, 2, 0.05f, 0.05f, 0.05f, 0.5f), filled(3, 2, 0.05f, 0.05f, 0.05f, 0.5f)};
+  for (std::size_t i = 0; i < 6; ++i)  // specular not a multiple of diffuse, so the two gains are apart
+    for (int c = 0; c < 3; ++c) rim.specular.pixel(i)[c] *= static_cast<float>(1 + i % 3 + c);
+  Image pass(3, 2);
+  for (std::size_t i = 0; i < 6; ++i)
+    for (int c = 0; c < 3; ++c) pass.pixel(i)[c] = 2.0f * rim.diffuse.pixel(i)[c] + 0.5f * rim.specular.pixel(i)[c];
+  const GroupFit fit = fit_group(pass, rim);
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_NEAR(fit.diffuse_gain[c], 2.0, 1e-4) << c;
+    EXPECT_NEAR(fit.specular_gain[c], 0.5, 1e-4) << c;
+  }
+  EXPECT_NEAR(fit.residual, 0.0, 1e-5);
+  EXPECT_EQ(fit.pixels, 6u);
+
+  // A pass that falls where phongcl's specular rises: the best gains have a negative specular one,
+  // which light cannot have; the specular gain is 0 and the diffuse fitted alone.
+  for (std::size_t i = 0; i < 6; ++i)
+    for (int c = 0; c < 3; ++c) pass.pixel(i)[c] = 2.0f * rim.diffuse.pixel(i)[c] - 0.1f * rim.specular.pixel(i)[c];
+  const GroupFit bounded = fit_group(pass, rim);
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_EQ(bounded.specular_gain[c], 0.0) << c;
+    EXPECT_GT(bounded.diffuse_gain[c], 0.0) << c;
+  }
+  EXPECT_THROW(fit_group(Image(2, 2), rim), std::invalid_argument);
+}
+
 TEST(CompositeOver, KeepsScalesAndChangesPassesOnPremultipliedValues) {
   RenderPasses render;
   render.combined = filled(3, 2, 1.0f, 2.0f, 3.0f, 0.5f);
   render.group_passes["key"] = filled(3, 2, 0.25f, 0.5f, 0.75f, 0.0f);
   render.group_passes["rim"] = filled(3, 2, 0.125f, 0.125f, 0.125f, 0.0f);
-  // phongcl's rim as rendered: the pass is twice its diffuse plus half its specular light, exactly.
-  GroupTerms then{filled(3, 2, 0.05f, 0.05f, 0.05f, 0.5f), filled(3, 2, 0.05f, 0.05f, 0.05f, 0.5f)};
-  for (std::size_t i = 0; i < 6; ++i)  // specular not a multiple of diffuse, so the two gains are apart
-    for (int c = 0; c < 3; ++c) then.specular.pixel(i)[c] *= static_cast<float>(1 + i % 3 + c);
-  Image& rim = render.group_passes["rim"];
-  for (std::size_t i = 0; i < 6; ++i)
-    for (int c = 0; c < 3; ++c) rim.pixel(i)[c] = 2.0f * then.diffuse.pixel(i)[c] + 0.5f * then.specular.pixel(i)[c];
-  const GroupTerms now{filled(3, 2, 0.5f, 0.25f, 0.0f, 0.5f), filled(3, 2, 0.1f, 0.2f, 0.3f, 0.5f)};
-  const std::map<std::string, ChangedGroup> changed = {{"rim", {&then, now}}};
+  // phongcl's fitted light of the rim as rendered and as edited.
+  const Image then = filled(3, 2, 0.1f, 0.1f, 0.1f, 0.5f), now = filled(3, 2, 0.5f, 0.25f, 0.0f, 0.5f);
+  const std::map<std::string, ChangedGroup> changed = {{"rim", {&then, &now}}};
 
-  const Composite same = composite_over(render, {{"key"}, {"rim"}}, changed);
-  EXPECT_EQ(same.image.rgba, render.combined.rgba) << "nothing changed: the render, bit for bit";
+  const Image same = composite_over(render, {{"key"}, {"rim"}}, changed);
+  EXPECT_EQ(same.rgba, render.combined.rgba) << "nothing changed: the render, bit for bit";
 
-  const Composite out =
+  const Image out =
       composite_over(render, {{"key", GroupChange::scaled, {2.0, 1.0, 0.0}}, {"rim", GroupChange::reshaded}}, changed);
-  ASSERT_EQ(out.fits.count("rim"), 1u);
-  for (int c = 0; c < 3; ++c) {
-    EXPECT_NEAR(out.fits.at("rim").diffuse_gain[c], 2.0, 1e-4) << c;
-    EXPECT_NEAR(out.fits.at("rim").specular_gain[c], 0.5, 1e-4) << c;
-  }
-  EXPECT_NEAR(out.fits.at("rim").residual, 0.0, 1e-5);
-  EXPECT_EQ(out.fits.at("rim").pixels, 6u);
-  for (std::size_t i = 0; i < out.image.pixel_count(); ++i) {
+  for (std::size_t i = 0; i < out.pixel_count(); ++i) {
     const float* c = render.combined.pixel(i);
     const float* key = render.group_passes["key"].pixel(i);
     float expected[3] = {c[0] + key[0], c[1], c[2] - key[2]};
-    for (int k = 0; k < 3; ++k)
-      expected[k] += 2.0f * (now.diffuse.pixel(i)[k] - then.diffuse.pixel(i)[k]) +
-                     0.5f * (now.specular.pixel(i)[k] - then.specular.pixel(i)[k]);
-    for (int k = 0; k < 3; ++k) EXPECT_NEAR(out.image.pixel(i)[k], expected[k], 1e-4) << "pixel " << i << " channel " << k;
-    EXPECT_EQ(out.image.pixel(i)[3], c[3]) << "alpha is the render's";
+    for (int k = 0; k < 3; ++k) expected[k] += now.pixel(i)[k] - then.pixel(i)[k];
+    for (int k = 0; k < 3; ++k) EXPECT_NEAR(out.pixel(i)[k], expected[k], 1e-5) << "pixel " << i << " channel " << k;
+    EXPECT_EQ(out.pixel(i)[3], c[3]) << "alpha is the render's";
   }
+  // Made in a canvas of the render's size: the same image.
+  EXPECT_EQ(composite_over(render, {{"key", GroupChange::scaled, {2.0, 1.0, 0.0}}, {"rim", GroupChange::reshaded}},
+                           changed, Image(3, 2)).rgba,
+            out.rgba);
 
   // A group whose lights are all gone: its rendered light taken out, exactly.
-  const Composite removed = composite_over(render, {{"rim", GroupChange::reshaded}}, {{"rim", {&then, std::nullopt}}});
-  EXPECT_EQ(removed.image.pixel(0)[0], render.combined.pixel(0)[0] - rim.pixel(0)[0]);
-  // A group the render did not have: phongcl's shading added as it is.
-  const Composite added = composite_over(render, {{"new", GroupChange::reshaded}}, {{"new", {nullptr, now}}});
-  EXPECT_FLOAT_EQ(added.image.pixel(1)[2], render.combined.pixel(1)[2] + now.diffuse.pixel(1)[2] + now.specular.pixel(1)[2]);
+  const Image& rim = render.group_passes["rim"];
+  const Image removed = composite_over(render, {{"rim", GroupChange::reshaded}}, {{"rim", {&then, nullptr}}});
+  EXPECT_EQ(removed.pixel(0)[0], render.combined.pixel(0)[0] - rim.pixel(0)[0]);
+  // A group the render did not have: phongcl's light added as it is.
+  const Image added = composite_over(render, {{"new", GroupChange::reshaded}}, {{"new", {nullptr, &now}}});
+  EXPECT_FLOAT_EQ(added.pixel(1)[2], render.combined.pixel(1)[2] + now.pixel(1)[2]);
 
-  const GroupTerms small{Image(2, 2), Image(2, 2)};
-  EXPECT_THROW(composite_over(render, {{"rim", GroupChange::reshaded}}, {{"rim", {&then, small}}}), std::invalid_argument);
+  const Image small(2, 2);
+  EXPECT_THROW(composite_over(render, {{"rim", GroupChange::reshaded}}, {{"rim", {&then, &small}}}), std::invalid_argument);
   EXPECT_THROW(composite_over(render, {{"fill", GroupChange::scaled, {2, 2, 2}}}, changed), std::invalid_argument);
   EXPECT_THROW(composite_over(render, {{"rim", GroupChange::reshaded}}, {}), std::invalid_argument);
+  EXPECT_THROW(composite_over(render, {{"rim", GroupChange::reshaded}}, {{"rim", {nullptr, &now}}}), std::invalid_argument);
 }
 
 void write_render(const fs::path& file, const std::vector<std::pair<std::string, const Image*>>& passes) {

@@ -117,7 +117,7 @@ TEST(ServeOver, FramesAreTheRenderWithTheChangedGroupsComposited) {
   RelighterOptions options;
   options.terms = true;
   Relighter relighter(load_scene(dir / "scene.json"), read_gbuffer(kGBufferFile), options);
-  const Image expected = relight_over(relighter, dir / "render.exr", load_scene(dir / "moved.json")).composite.image;
+  const Image expected = relight_over(relighter, dir / "render.exr", load_scene(dir / "moved.json")).image;
   EXPECT_LT(worst_covered_difference(served_exr(client), expected), 1e-5f);
   over = over_groups(client);
   ASSERT_EQ(over["groups"].size(), 3u);

@@ -229,6 +229,7 @@ async function refreshKernel() {
   $('precision').value = stats.settings.precision;
   $('shadows').value = stats.settings.shadows;
   showLightGroups(stats);
+  showOverRender(stats.over);
   $('save-server').disabled = !stats.save_path;
   $('save-server').title = stats.save_path ? `writes ${stats.save_path}` : 'start phongcl serve with --save FILE';
 }
@@ -250,6 +251,28 @@ function showLightGroups(stats) {
   }
   $('solo').value = stats.settings.solo || '';
   for (const box of $('mute-groups').querySelectorAll('input')) box.checked = (stats.settings.mute || []).includes(box.value);
+}
+
+// serve --over: the render every frame is composited over, and what the frame did with each of its
+// light groups; a group's button selects its first light, which a drag on the image then moves.
+function showOverRender(over) {
+  $('over').hidden = !over;
+  if (!over) return;
+  $('over-render').textContent = `${over.render}${over.view_layer ? ` (view layer ${over.view_layer})` : ''}: ` +
+    'unchanged groups stay as rendered; colour edits scale a group\'s pass; anything else re-shades it';
+  const times = (v) => `×(${v.map((x) => Number(x).toFixed(2)).join(', ')})`;
+  $('over-groups').replaceChildren(...over.groups.map((group) => {
+    const first = (state.scene?.lights || []).findIndex((light) => light.group === group.name);
+    const detail = group.change === 'scaled' ? ` ${times(group.scale)}`
+      : group.fit ? ` (fit: diffuse ${times(group.fit.diffuse_gain)}, specular ${times(group.fit.specular_gain)}, ` +
+        `residual ${Number(group.fit.residual).toFixed(3)})` : '';
+    const pick = el('button', { type: 'button', textContent: 'select', disabled: first < 0,
+                                title: first < 0 ? 'no point, spot or directional light in this group' : `drag moves light ${first}` });
+    pick.addEventListener('click', () => { state.selectedLight = first; renderLights(); });
+    const pass = group.pass ? '' : ' · no pass in the render';
+    return el('li', {}, [el('div', { className: 'head' }, [
+      el('span', { className: 'grow', textContent: `${group.name}: ${group.change}${detail}${pass}` }), pick])]);
+  }));
 }
 
 async function putLightGroupSettings() {

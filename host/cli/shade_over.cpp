@@ -35,9 +35,9 @@ std::string describe(const GroupEdit& edit, const std::map<std::string, GroupFit
 OverResult shade_over(const std::string& render_file, const Scene& scene, Relighter& relighter) {
   RelitOver relit = relight_over(relighter, render_file, scene);
   std::string groups;
-  for (const GroupEdit& edit : relit.edits) groups += (groups.empty() ? "" : ", ") + describe(edit, relit.composite.fits);
+  for (const GroupEdit& edit : relit.edits) groups += (groups.empty() ? "" : ", ") + describe(edit, relit.fits);
   const std::string layer = relit.view_layer.empty() ? "" : " (view layer " + relit.view_layer + ")";
-  return {std::move(relit.composite.image),
+  return {std::move(relit.image),
           render_file + layer + (groups.empty() ? ": no light groups, the render as it is" : ": " + groups)};
 }
 

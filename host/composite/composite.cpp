@@ -1,11 +1,16 @@
 #include "composite/composite.h"
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
+
+#include "common/host_threads.h"
 
 namespace phongcl {
 
 namespace {
+
+constexpr std::size_t kPixelsPerRange = 4096;
 
 void require_size(const Image* image, const Image& render, const std::string& what) {
   if (image != nullptr && (image->width != render.width || image->height != render.height))
@@ -14,24 +19,32 @@ void require_size(const Image* image, const Image& render, const std::string& wh
 }
 
 // out += gain * (added - taken), channel by channel; a missing image counts as black.
-void add_change(Image& out, const glm::dvec3& gain, const Image* added, const Image* taken) {
-  for (std::size_t i = 0; i < out.pixel_count(); ++i) {
-    float* pixel = out.pixel(i);
-    for (int c = 0; c < 3; ++c) {
-      const float change = (added ? added->pixel(i)[c] : 0.0f) - (taken ? taken->pixel(i)[c] : 0.0f);
-      pixel[c] += static_cast<float>(gain[c] * change);
+void add_change(Image& out, const glm::vec3& gain, const Image* added, const Image* taken) {
+  for_each_core_range(out.pixel_count(), kPixelsPerRange, [&](std::size_t, std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) {
+      float* pixel = out.pixel(i);
+      for (int c = 0; c < 3; ++c)
+        pixel[c] += gain[c] * ((added ? added->pixel(i)[c] : 0.0f) - (taken ? taken->pixel(i)[c] : 0.0f));
     }
-  }
+  });
 }
 
-const Image* diffuse_of(const GroupTerms* terms) { return terms ? &terms->diffuse : nullptr; }
-const Image* specular_of(const GroupTerms* terms) { return terms ? &terms->specular : nullptr; }
+// `canvas` holding the render's Combined pass, its memory kept when it has the size already.
+Image copy_of(const Image& combined, Image canvas) {
+  if (canvas.rgba.size() != combined.rgba.size()) return combined;
+  canvas.width = combined.width, canvas.height = combined.height;
+  canvas.data_window = combined.data_window, canvas.display_window = combined.display_window;
+  for_each_core_range(combined.rgba.size(), 4 * kPixelsPerRange, [&](std::size_t, std::size_t begin, std::size_t end) {
+    std::copy(combined.rgba.begin() + begin, combined.rgba.begin() + end, canvas.rgba.begin() + begin);
+  });
+  return canvas;
+}
 
 }  // namespace
 
-Composite composite_over(const RenderPasses& render, const std::vector<GroupEdit>& edits,
-                         const std::map<std::string, ChangedGroup>& changed) {
-  Composite result{render.combined, {}};
+Image composite_over(const RenderPasses& render, const std::vector<GroupEdit>& edits,
+                     const std::map<std::string, ChangedGroup>& changed, Image canvas) {
+  Image image = copy_of(render.combined, std::move(canvas));
   for (const GroupEdit& edit : edits) {
     if (edit.change == GroupChange::unchanged) continue;
     const auto found = render.group_passes.find(edit.group);
@@ -39,31 +52,24 @@ Composite composite_over(const RenderPasses& render, const std::vector<GroupEdit
     require_size(pass, render.combined, "the pass of '" + edit.group + "'");
     if (edit.change == GroupChange::scaled) {
       if (pass == nullptr) throw std::invalid_argument("light group '" + edit.group + "' has no rendered pass to scale");
-      add_change(result.image, edit.scale - 1.0, pass, nullptr);
+      add_change(image, glm::vec3(edit.scale - 1.0), pass, nullptr);
       continue;
     }
-    const auto terms = changed.find(edit.group);
-    if (terms == changed.end()) throw std::invalid_argument("no shading of the changed light group '" + edit.group + "'");
-    const ChangedGroup& group = terms->second;
-    const GroupTerms* now = group.now ? &*group.now : nullptr;
-    for (const GroupTerms* shaded : {group.then, now})
-      for (const Image* image : {diffuse_of(shaded), specular_of(shaded)})
-        require_size(image, render.combined, "phongcl's image of '" + edit.group + "'");
-    if (now == nullptr) {
-      add_change(result.image, glm::dvec3(1.0), nullptr, pass);  // its lights are gone: so is its light
-    } else if (pass != nullptr && group.then != nullptr) {
-      const GroupFit fit = group.fit ? *group.fit : fit_group(*pass, *group.then);
-      result.fits.emplace(edit.group, fit);
-      add_change(result.image, fit.diffuse_gain, &now->diffuse, &group.then->diffuse);
-      add_change(result.image, fit.specular_gain, &now->specular, &group.then->specular);
-    } else if (pass == nullptr) {
-      add_change(result.image, glm::dvec3(1.0), &now->diffuse, nullptr);  // a group new to the render
-      add_change(result.image, glm::dvec3(1.0), &now->specular, nullptr);
-    } else {
+    const auto shaded = changed.find(edit.group);
+    if (shaded == changed.end()) throw std::invalid_argument("no shading of the changed light group '" + edit.group + "'");
+    const ChangedGroup& group = shaded->second;
+    for (const Image* light : {group.then, group.now})
+      require_size(light, render.combined, "phongcl's image of '" + edit.group + "'");
+    if (group.now == nullptr)
+      add_change(image, glm::vec3(1.0f), nullptr, pass);  // its lights are gone: so is its light
+    else if (pass != nullptr && group.then != nullptr)
+      add_change(image, glm::vec3(1.0f), group.now, group.then);
+    else if (pass == nullptr)
+      add_change(image, glm::vec3(1.0f), group.now, nullptr);  // a group new to the render
+    else
       throw std::invalid_argument("no shading of light group '" + edit.group + "' as rendered");
-    }
   }
-  return result;
+  return image;
 }
 
 }  // namespace phongcl

@@ -1,5 +1,6 @@
 #include "composite/group_fit.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -35,7 +36,16 @@ GroupFit fit_group(const Image& rendered, const GroupTerms& terms) {
       fit.diffuse_gain[c] = (rd[c] * ss[c] - rs[c] * ds[c]) / determinant;
       fit.specular_gain[c] = (rs[c] * dd[c] - rd[c] * ds[c]) / determinant;
     } else if (const double sum = dd[c] + 2.0 * ds[c] + ss[c]; sum > 0.0) {
-      fit.diffuse_gain[c] = fit.specular_gain[c] = (rd[c] + rs[c]) / sum;
+      fit.diffuse_gain[c] = fit.specular_gain[c] = std::max(0.0, (rd[c] + rs[c]) / sum);
+    }
+    // Light is not negative: where the best gains have one below 0, that term's gain is 0 and the
+    // other's is fitted alone (the least-squares solution with both gains >= 0).
+    if (fit.diffuse_gain[c] < 0.0) {
+      fit.diffuse_gain[c] = 0.0;
+      fit.specular_gain[c] = ss[c] > 0.0 ? std::max(0.0, rs[c] / ss[c]) : 0.0;
+    } else if (fit.specular_gain[c] < 0.0) {
+      fit.specular_gain[c] = 0.0;
+      fit.diffuse_gain[c] = dd[c] > 0.0 ? std::max(0.0, rd[c] / dd[c]) : 0.0;
     }
   }
   double left = 0.0;

@@ -24,7 +24,8 @@ struct GroupFit {
 };
 
 // `rendered`: the group's pass; `terms`: phongcl's terms of the same lights. A channel whose specular
-// (or diffuse) term is nothing, or no independent of the other, gets one gain for their sum.
+// (or diffuse) term is nothing, or no independent of the other, gets one gain for their sum. Gains
+// are never negative (the least-squares solution under that bound).
 // std::invalid_argument when the sizes differ.
 GroupFit fit_group(const Image& rendered, const GroupTerms& terms);
 

@@ -115,9 +115,9 @@ Frame RelightSession::shade(const Scene& scene, const RenderSettings& settings, 
   Relighter& relighter = relighter_for(lit, relighter_settings);
   Frame frame;
   if (over_) {
-    RelitOver relit = over_->relight(relighter, lit);
-    frame.image = std::move(relit.composite.image);
-    frame.over = OverGroups{std::move(relit.edits), std::move(relit.composite.fits)};
+    RelitOver relit = over_->relight(relighter, lit, std::move(canvas));
+    frame.image = std::move(relit.image);
+    frame.over = OverGroups{std::move(relit.edits), std::move(relit.fits)};
     if (settings.terms) relighter.shade(frame.terms);
   } else if (settings.terms) {
     frame.image = relighter.shade(frame.terms);

@@ -12,7 +12,7 @@
 //   phongcl::ColorConfig blender = phongcl::ColorConfig::load("blender");   // OpenColorIO
 //   phongcl::write_png(image, "out.png", phongcl::DisplayTransform(blender, {.view = "Filmic"}));
 //   phongcl::RenderCompositor over("render.exr");               // relight over the render itself
-//   phongcl::Image composite = over.relight(relighter, relighter.scene()).composite.image;
+//   phongcl::Image composite = over.relight(relighter, relighter.scene()).image;
 //
 // Errors are exceptions whose what() is the one-line message the command line prints: InputError
 // (common/error.h) for bad files and values, std::invalid_argument and std::runtime_error otherwise.

@@ -3,7 +3,9 @@
 (chromedriver, Python's standard library only). Edits a light through the page, checks the served and
 the displayed image against the scalar reference of the edited scene, saves the scene, takes a
 screenshot, and measures input-event-to-image-displayed rates at 640x480 and 1920x1080. On a Blender
-render it adds a spot through its controls and checks the before/after split against the beauty pass."""
+render it adds a spot through its controls and checks the before/after split against the beauty pass.
+Over a 1080p render with light-group passes (serve --over; the render is phongcl's own, written by the
+Python module as Blender writes one), it drags one group's light and measures the same rates."""
 import argparse, base64, json, os, socket, statistics, struct, subprocess, sys, time, urllib.request, zlib
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python", "tests"))
@@ -299,6 +301,46 @@ def spot_and_split(driver, url, args, work):
     return left_count, right_count
 
 
+def write_grouped_render(args, work):
+    """scenes/large with its lights in three groups (key, fill, sun), shaded by phongcl and written as
+    a render with a Combined_<group> pass per group; returns the scene file and the render."""
+    sys.path.insert(0, args.python_module)
+    import phongcl
+    scene = json.load(open("scenes/large/scene.json"))
+    scene["gbuffer"] = os.path.abspath(args.large_gbuffer)
+    for light, group in zip(scene["lights"], ["key", "fill", "fill", "sun", "sun"]):
+        light["group"] = group
+    scene["rendered"] = {"lights": scene["lights"]}
+    scene_file, render = os.path.join(work, "grouped.json"), os.path.join(work, "render.exr")
+    json.dump(scene, open(scene_file, "w"))
+    relighter = phongcl.Relighter(phongcl.load_scene(scene_file), phongcl.read_gbuffer(args.large_gbuffer), terms=True)
+    shaded = relighter.shade_terms()
+    passes = {"ViewLayer.Combined": shaded["image"]}
+    passes.update({f"ViewLayer.Combined_{group}": image for group, image in shaded["groups"].items()})
+    phongcl.write_exr(render, passes, keep_color_where_transparent=True)
+    return scene_file, render
+
+
+def over_render_rate(driver, args, work, processes):
+    """The 1080p drag of the key group's light over a render, and the page's list of groups after it."""
+    scene_file, render = write_grouped_render(args, work)
+    log = open(os.path.join(work, "serve-over.log"), "w")
+    server, url = start_server(args.phongcl, ["--scene", scene_file, "--gbuffer", args.large_gbuffer, "--over", render], log)
+    processes.append(server)
+    driver.call("POST", "/url", {"url": url})
+    driver.wait("return window.phongclState.imageSize[0] === 1920 && window.phongclMetrics.displayed.length > 0 && "
+                "!document.getElementById('over').hidden", "the first 1080p frame over the render")
+    driver.run("document.querySelector('#over-groups li button').click();")  # the key group's light
+    time.sleep(1)
+    rate = measure(driver, args.seconds)
+    driver.wait("return document.getElementById('over-groups').textContent.includes('key: re-shaded (fit');",
+                "the page listing the dragged group as re-shaded", timeout=10)
+    groups = driver.run("return [...document.querySelectorAll('#over-groups li')].map((li) => li.textContent);")
+    server.terminate()
+    server.wait(timeout=30)
+    return rate, groups
+
+
 def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("--phongcl", required=True)
@@ -307,6 +349,7 @@ def main():
     parser.add_argument("--large-gbuffer", required=True)
     parser.add_argument("--screenshot", required=True)
     parser.add_argument("--seconds", type=float, default=5)
+    parser.add_argument("--python-module", required=True, help="the folder holding the built phongcl module")
     args = parser.parse_args()
     work = args.work
     processes, driver = [], None
@@ -428,6 +471,8 @@ def main():
             set_control(driver, "#view", "Filmic")
             time.sleep(1)
             rates.append(("1920x1080 streamed at full size, Blender's Filmic", measure(driver, args.seconds)))
+        over_rate, over_groups = over_render_rate(driver, args, work, processes)
+        rates.append(("1920x1080 over a render, one group's light dragged", over_rate))
         for name, r in rates:
             print(f"70-browser: {name}: {r['fps']:.1f} frames/s displayed while dragging, "
                   f"displayed at {r['width']}x{r['height']}, "
@@ -439,6 +484,7 @@ def main():
         print(f"70-browser: spot added and set through its controls (cone, penumbra clamped to A/2 + P <= 90, falloff, "
               f"range, light linking), a light switched off, served EXR within {RELATIVE_BOUND:g} of the reference; split within "
               f"1/255 of the relit reference on {split_left} pixels and of the beauty pass on {split_right}")
+        print("70-browser: over a render, the page lists " + "; ".join(over_groups))
     finally:
         # The session first: chromedriver leaves its Chromium running when it is terminated.
         if driver is not None:

@@ -34,7 +34,7 @@ float doubled_group_over_render(phongcl::Scene scene, const phongcl::GBuffer& gb
   scene.lights[0].color *= 2.0;
   relighter.set_lights(scene.lights);
   phongcl::RenderCompositor over(render);
-  const phongcl::Image composite = over.relight(relighter, relighter.scene()).composite.image;
+  const phongcl::Image composite = over.relight(relighter, relighter.scene()).image;
   float worst = 0.0f;
   for (std::size_t i = 0; i < composite.pixel_count(); ++i)
     for (int c = 0; c < 4; ++c) {
