@@ -94,13 +94,15 @@ void bind_images(py::module_& module) {
       "The OCIO config's displays (with their views), looks, colour spaces and working space, as a dict.");
   module.def(
       "read_exr",
-      [](const std::filesystem::path& path) {
-        Image image = read_exr(path);
+      [](const std::filesystem::path& path, const std::string& layer) {
+        Image image = read_exr(path, layer);
         py::array_t<float> out({image.height, image.width, 4});
         std::copy(image.rgba.begin(), image.rgba.end(), out.mutable_data());
         return out;
       },
-      py::arg("path"), "Reads R G B (and A, else 1) of an EXR as float32 (H, W, 4).");
+      py::arg("path"), py::arg("layer") = "",
+      "Reads R G B (and A, else 1) of an EXR as float32 (H, W, 4); with `layer`, <layer>.R, .G, .B (.A) of a "
+      "multilayer EXR, such as a render's 'ViewLayer.Combined'.");
 }
 
 }  // namespace phongcl::python

@@ -111,19 +111,20 @@ std::string encode_exr(const Image& image, const ExrWriteOptions& options) {
                               options.compression, options.chromaticities);
 }
 
-Image read_exr(const std::filesystem::path& file) {
+Image read_exr(const std::filesystem::path& file, const std::string& layer) {
   exr::InputExr input(file);
+  const std::string prefix = layer.empty() ? "" : layer + ".";
   for (int c = 0; c < 3; ++c)
-    if (!input.has_channel(kChannelNames[c]))
-      throw InputError(file, std::string("missing channel ") + kChannelNames[c]);
+    if (!input.has_channel(prefix + kChannelNames[c]))
+      throw InputError(file, "missing channel " + prefix + kChannelNames[c]);
 
   const PixelWindow data_window = input.data_window();
   Image image(data_window.width(), data_window.height());
   image.data_window = data_window;
   image.display_window = input.display_window();
-  const bool has_alpha = input.has_channel("A");
+  const bool has_alpha = input.has_channel(prefix + "A");
   std::vector<exr::ReadSlice> slices;
-  for (int c = 0; c < (has_alpha ? 4 : 3); ++c) slices.push_back({kChannelNames[c], image.rgba.data() + c, 4});
+  for (int c = 0; c < (has_alpha ? 4 : 3); ++c) slices.push_back({prefix + kChannelNames[c], image.rgba.data() + c, 4});
   if (!has_alpha)
     for (std::size_t i = 0; i < image.pixel_count(); ++i) image.pixel(i)[3] = 1.0f;  // opaque
   input.read(slices);

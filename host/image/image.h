@@ -61,8 +61,9 @@ struct ExrLayer {
 // where its image's alpha is 0 unless the options keep it (with_alpha only says whether A is written).
 void write_layered_exr(const std::vector<ExrLayer>& layers, const std::filesystem::path& file,
                        const ExrWriteOptions& options = {});
-// Reads R G B (and A if present, else 1) from an EXR. Throws InputError on a bad file.
-Image read_exr(const std::filesystem::path& file);
+// Reads R G B (and A if present, else 1) from an EXR, or <layer>.R, .G, .B (.A) of a multilayer one
+// (a render's "ViewLayer.Combined"). Throws InputError on a bad file or a missing channel.
+Image read_exr(const std::filesystem::path& file, const std::string& layer = "");
 
 // Exposure within +-40 stops (a factor of 1e12 either way): beyond it the 8-bit steps of a
 // display curve fall outside float's range, and no image needs it.

@@ -378,6 +378,9 @@ def test_shade_over_a_render_changes_only_the_edited_groups(tmp_path, gbuffer):
         passes["ViewLayer.Combined_" + name] = layer[..., :3]
     render = tmp_path / "render.exr"
     phongcl.write_exr(str(render), passes, keep_color_where_transparent=True)
+    np.testing.assert_array_equal(phongcl.read_exr(str(render), layer="ViewLayer.Combined"), shaded["image"])
+    with pytest.raises(phongcl.InputError, match="missing channel ViewLayer.Diffuse.R"):
+        phongcl.read_exr(str(render), layer="ViewLayer.Diffuse")
 
     same = relighter.shade_over(str(render))
     np.testing.assert_array_equal(same["image"], shaded["image"])
