@@ -51,15 +51,8 @@ py::array_t<float> array_of(const Image& image) {
   return out;
 }
 
-// The composite over a render (composite/relight_over.h) of the relighter's scene as edited so far, or
-// of `scene`: the image, and per light group what became of it.
-py::dict shade_over(Relighter& relighter, const std::string& render, const std::optional<Scene>& scene) {
-  const Scene edited = scene ? *scene : relighter.scene();
-  RelitOver relit;
-  {
-    py::gil_scoped_release release;
-    relit = relight_over(relighter, render, edited);
-  }
+// A composite as Python sees it: the image, and per light group what became of it.
+py::dict relit_dict(const RelitOver& relit) {
   py::dict groups;
   for (const GroupEdit& edit : relit.edits) {
     py::dict group;
@@ -77,6 +70,26 @@ py::dict shade_over(Relighter& relighter, const std::string& render, const std::
   out["image"] = array_of(relit.image);
   out["groups"] = groups;
   return out;
+}
+
+// The composite over a render held by `compositor` of the relighter's scene as edited so far, or of `scene`.
+py::dict relight_with(RenderCompositor& compositor, Relighter& relighter, const std::optional<Scene>& scene) {
+  const Scene edited = scene ? *scene : relighter.scene();
+  RelitOver relit;
+  {
+    py::gil_scoped_release release;
+    relit = compositor.relight(relighter, edited);
+  }
+  return relit_dict(relit);
+}
+
+py::dict shade_over(Relighter& relighter, const std::string& render, const std::optional<Scene>& scene) {
+  std::optional<RenderCompositor> compositor;
+  {
+    py::gil_scoped_release release;
+    compositor.emplace(render);
+  }
+  return relight_with(*compositor, relighter, scene);
 }
 
 // The image and its terms as arrays; groups maps each light group's name to its image.
@@ -181,7 +194,8 @@ void bind_relighter(py::module_& module) {
            "each light group that the scene (default: this relighter's, as set_lights left it) changed since its "
            "\"rendered\" lights scaled or changed by phongcl's change of it. A dict: 'image' float32 (H, W, 4), and "
            "'groups', each group's name to {'change': 'unchanged', 'scaled' or 're-shaded', with 'scale', or the "
-           "fit's 'diffuse_gain', 'specular_gain' and 'residual'}. Raises InputError naming the file or scene.")
+           "fit's 'diffuse_gain', 'specular_gain' and 'residual'}. Raises InputError naming the file or scene. "
+           "Reads the render each call: RenderCompositor keeps it, and what it fitted, for a loop of edits.")
       .def(
           "set_lights", [](Relighter& r, const py::object& lights) { r.set_lights(lights_from_python(lights)); },
           py::arg("lights"),
@@ -216,7 +230,9 @@ void bind_relighter(py::module_& module) {
           "A new eye position (the G-buffer is re-packed relative to it at the next shade).")
       .def_property_readonly("width", &Relighter::width)
       .def_property_readonly("height", &Relighter::height)
-      .def_property_readonly("scene", &Relighter::scene, "The scene with every change so far (a copy).")
+      .def_property_readonly(
+          "scene", [](const Relighter& r) { return r.scene(); },  // a copy: set_frame replaces the held one
+          "The scene with every change so far (a copy).")
       .def_property_readonly(
           "device", [](const Relighter& r) { return describe(r.device()); }, "The OpenCL device, in one line.")
       .def_property_readonly("kernel_summary", &Relighter::kernel_summary, "The kernel's recipe in one line.")
@@ -228,6 +244,20 @@ void bind_relighter(py::module_& module) {
                              "What the last shade() found, as phongcl shade prints it: pixel counts (shaded, "
                              "background, non-finite), launches (tiles), tiled culling, the kernel's recipe "
                              "with the reason for each decision, and warnings.");
+
+  py::class_<RenderCompositor>(module, "RenderCompositor",
+                                "A render held for relighting over it again and again (docs/compositing.md): its passes "
+                                "read once, and each light group's fit and phongcl's light of it as rendered kept "
+                                "between calls, so that a loop of edits costs one shade per changed group.")
+      .def(py::init([](const std::filesystem::path& render) {
+             py::gil_scoped_release release;
+             return RenderCompositor(render);
+           }),
+           py::arg("render"), "Reads the EXR's Combined pass and every light group's pass; InputError naming the file.")
+      .def("relight", &relight_with, py::arg("relighter"), py::arg("scene") = py::none(),
+           "The composite as Relighter.shade_over returns it, of `scene` (default: the relighter's, as "
+           "set_lights left it); the relighter needs terms=True.")
+      .def_property_readonly("render", [](const RenderCompositor& c) { return c.file().string(); });
 
   module.def(
       "devices",

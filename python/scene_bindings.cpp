@@ -61,6 +61,14 @@ void vec3_property(Class& type, const char* name, glm::dvec3 T::*member, const c
       [member](T& self, const std::array<double, 3>& value) { self.*member = to_vec3(value); }, doc);
 }
 
+// A list attribute of T, read as a list of copies and set whole.
+template <class T, class Item, class Class>
+void copied_list_property(Class& type, const char* name, std::vector<Item> T::*member, const char* doc) {
+  type.def_property(
+      name, [member](const T& self) { return self.*member; },
+      [member](T& self, const std::vector<Item>& value) { self.*member = value; }, doc);
+}
+
 }  // namespace
 
 std::vector<Light> lights_from_python(const py::handle& lights) {
@@ -163,10 +171,12 @@ void bind_scene(py::module_& module) {
           "`ocio` (as --ocio: a file, 'blender', 'builtin'; default $OCIO, else built-in) when it names a "
           "\"color_space\"; raises InputError naming the bad entry.")
       .def_readwrite("camera", &Scene::camera)
-      .def_readwrite("lights", &Scene::lights)
-      .def_readwrite("area_lights", &Scene::area_lights)
-      .def_readwrite("materials", &Scene::materials)
       .def_readonly("source", &Scene::source, "The scene file, or '<dict>'.");
+  // Lists of copies, set whole: a list of references into the scene's vectors would dangle once the
+  // vector is replaced (scene.lights = ..., or a Relighter's set_lights) and the list is used again.
+  copied_list_property(scene, "lights", &Scene::lights, "The point, spot and directional lights (copies: set the list whole).");
+  copied_list_property(scene, "area_lights", &Scene::area_lights, "The area lights (copies: set the list whole).");
+  copied_list_property(scene, "materials", &Scene::materials, "The material table (copies: set the list whole).");
   vec3_property(scene, "ambient", &Scene::ambient, "Ambient light La, RGB.");
   vec3_property(scene, "background", &Scene::background, "Colour of background pixels, RGB.");
 

@@ -362,6 +362,22 @@ def test_a_sequence_hands_each_frame_to_one_relighter(scene, gbuffer):
 
 
 @needs_device
+def test_lights_read_from_a_relighter_stay_valid_across_edits(gbuffer):
+    # The lists are copies: set_lights replacing the relighter's lights leaves them whole, so the same
+    # list can be edited and sent again (they once pointed into the vector it replaced).
+    relighter = phongcl.Relighter(phongcl.load_scene(str(DEFAULT)), gbuffer)
+    lights = relighter.scene.lights
+    for step in range(3):
+        lights[0].position = [4.0 + step, 6.0, 5.0]
+        relighter.set_lights(lights)
+        assert lights[0].type == "point" and list(lights[0].position) == [4.0 + step, 6.0, 5.0]
+        assert list(relighter.scene.lights[0].position) == [4.0 + step, 6.0, 5.0]
+    scene = relighter.scene
+    materials = scene.materials
+    scene.materials = materials[:1]
+    assert materials[0].name == scene.materials[0].name and len(materials) > 1
+
+
 def test_shade_over_a_render_changes_only_the_edited_groups(tmp_path, gbuffer):
     # A "render" that phongcl made itself, passes written as Blender's: over it, no edit is the render, a
     # brighter group its pass scaled, and a moved light phongcl's own shading of the edit (the fit is 1).
@@ -399,3 +415,12 @@ def test_shade_over_a_render_changes_only_the_edited_groups(tmp_path, gbuffer):
 
     with pytest.raises(phongcl.InputError, match="missing.exr"):
         relighter.shade_over(str(tmp_path / "missing.exr"))
+
+    # Held for a loop of edits: the same composites, the render read once.
+    compositor = phongcl.RenderCompositor(str(render))
+    np.testing.assert_array_equal(compositor.relight(relighter)["image"], over["image"])
+    lights[0].position = [lights[0].position[0] + 0.25, lights[0].position[1], lights[0].position[2]]
+    relighter.set_lights(lights)
+    np.testing.assert_allclose(compositor.relight(relighter)["image"], relighter.shade(), rtol=1e-5, atol=1e-6)
+    with pytest.raises(phongcl.InputError, match="missing.exr"):
+        phongcl.RenderCompositor(str(tmp_path / "missing.exr"))
