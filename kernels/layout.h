@@ -48,6 +48,7 @@ typedef struct {
   layout_uint area_lights;        /* AreaLightRecord: rects and disks */
   layout_uint shadow_casters;     /* SHADOWS: 1 + the light's place among the casters where it casts shadows, else 0 */
   layout_uint light_groups;       /* LIGHT_GROUPS: the light's group, LIGHT_GROUPS for none */
+  layout_uint area_shadow_rays;   /* SOFT_SHADOWS: uint shadow rays per area light (1: one ray to the centre) */
 } SceneTables;
 
 /* Tiled culling's block (cull.cl): tile t's point lights are lights[offsets[t] ...], counts[t] of
@@ -79,7 +80,7 @@ typedef struct {
   layout_uint plane_stride;                       /* values per plane in every buffer, a multiple of PHONGCL_LANES */
   layout_int area_count;                          /* entries in the area light table */
   layout_uint shadow_tiles;                       /* tiled shadow culling's tiles; 0 without its lists */
-  layout_uint padding;
+  layout_uint first_pixel;                        /* the frame pixel of this launch's slot 0 (soft shadows' sequence) */
   SceneTables scene;                              /* where the blocks' tables start */
   TileListTables tile_lists;
   ShadowGeometryTables shadow_geometry;

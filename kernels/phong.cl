@@ -8,7 +8,8 @@
  * sums, pending powers, culled lists). The tuned arithmetic (robust normalisation, the power,
  * compensated sums, streaming stores) is phong_math.h's.
  * With AREA_LIGHTS rects and disks add theirs too (area_light.h: the diffuse term exact, the
- * specular one by quadrature), looped over untiled; their shadows are one ray to the centre.
+ * specular one by quadrature), looped over untiled; their shadows are one ray to the centre, or
+ * with SOFT_SHADOWS the visible fraction of the emitter from several (soft_shadow.h).
  * With SHADOWS a light that casts shadows is multiplied by its visibility (shadow.h: a ray traced
  * against the scene's geometry, or with SCREEN_SHADOWS marched across the frame's depth plane).
  * With LIGHT_GROUPS the lights are summed group by group, and each group's terms also written apart.
@@ -24,6 +25,7 @@
 #include "material.h"
 #include "phong_math.h"
 #include "shadow.h"
+#include "soft_shadow.h"
 #include "specular.h"
 #include "storage.h"
 #include "tiles.h"
@@ -66,6 +68,8 @@ typedef struct {
                                                         place in the culling's casters (shadow.h), else 0 */
   UNIFORM_SPACE const uint* directional_casters;     /* SHADOWS: the same per directional light */
   UNIFORM_SPACE const uint* area_casters;            /* SHADOWS: the same per area light */
+  UNIFORM_SPACE const uint* area_shadow_rays;        /* SOFT_SHADOWS: rays per area light (1: the hard shadow) */
+  uint first_pixel;                                  /* SOFT_SHADOWS: the frame pixel of the launch's slot 0 */
   const ShadowInputs* shadows;                       /* SHADOWS: what the shadow rays test (shadow.h) */
   UNIFORM_SPACE const uint* point_groups;            /* LIGHT_GROUPS: point light i's group, LIGHT_GROUPS for none */
   UNIFORM_SPACE const uint* directional_groups;      /* LIGHT_GROUPS: the same per directional light */
@@ -241,13 +245,24 @@ static inline void add_directional_light(LightSums* sums, PendingLobes* pending,
                      surface->specular_model, l, 1, light->color, weight);
 }
 
-/* An area light's hard shadow: its E and S are 0 in the lanes where the one ray to the emitter's
- * centre is blocked, as a point light's there would be (lanes whose horizon hides the centre trace
- * nothing and stay lit). Selects, not products, as shadowed_weight's. */
+/* An area light's shadow. With SOFT_SHADOWS and more than one ray its E and S are multiplied by
+ * the visible fraction of the emitter (soft_shadow.h). Otherwise the hard shadow: E and S are 0 in
+ * the lanes where the one ray to the emitter's centre is blocked, as a point light's there would be
+ * (lanes whose horizon hides the centre trace nothing and stay lit); selects, not products, as
+ * shadowed_weight's. */
 static inline void shadow_area_light(realv* irradiance, realv* highlight, const Surface* surface, const Lights* lights,
-                                     UNIFORM_SPACE const AreaLightRecord* light, uint casts) {
+                                     int k, uint casts) {
+  UNIFORM_SPACE const AreaLightRecord* light = &lights->area[k];
   const intv lit = LANE_MASK(*irradiance > 0) | LANE_MASK(*highlight > 0);
   const intv pending = lit & LANE_MASK(surface->material != PHONGCL_BACKGROUND);
+  const uint rays = SOFT_SHADOWS ? lights->area_shadow_rays[k] : 1;
+  if (rays > 1) {
+    const realv visible = area_light_visibility(lights->shadows, surface->p, surface->n, light, casts - 1, rays,
+                                                lattice_shift(lights->first_pixel, (uint)k), pending);
+    *irradiance *= visible;
+    *highlight *= visible;
+    return;
+  }
   const intv blocked = light_blocked(lights->shadows, surface->p, surface->n, area_vector(light->center), 0,
                                      SCREEN_SHADOWS, casts - 1, pending);
   *irradiance = SELECT(TO_REALV(blocked) != 0, 0, *irradiance);
@@ -265,7 +280,7 @@ static inline void add_area_light(LightSums* sums, const Surface* surface, const
   realv irradiance, highlight;
   area_light_terms(light, surface->p, n, r, surface->shininess, SPECULAR, &irradiance, &highlight);
   if (SHADOWS && lights->area_casters[k])
-    shadow_area_light(&irradiance, &highlight, surface, lights, light, lights->area_casters[k]);
+    shadow_area_light(&irradiance, &highlight, surface, lights, k, lights->area_casters[k]);
   sums->diffuse.x += light->color[0] * irradiance;
   sums->diffuse.y += light->color[1] * irradiance;
   sums->diffuse.z += light->color[2] * irradiance;
@@ -533,6 +548,8 @@ __kernel void phong_shade(
       .point_casters = casters,
       .directional_casters = casters + frame.point_count,
       .area_casters = casters + frame.point_count + frame.directional_count,
+      .area_shadow_rays = TABLE(UNIFORM_SPACE, uint, scene, frame.scene.area_shadow_rays),
+      .first_pixel = frame.first_pixel,
       .shadows = &shadows,
       .point_groups = groups,
       .directional_groups = groups + frame.point_count,

@@ -59,6 +59,10 @@ inline constexpr SpecularModel kSpecularModels[] = {SpecularModel::phong, Specul
 // spot and directional lights has to know about it.
 enum class AreaShape { rect, disk };
 
+// The most shadow rays a light traces per pixel: 1024 rays put the penumbra's sampling error near
+// float's rounding of the fraction (docs/shadows.md "Soft shadows"); more only costs.
+inline constexpr int kMaxShadowRays = 1024;
+
 struct AreaLight {
   AreaShape shape = AreaShape::rect;
   glm::dvec3 position{0.0};
@@ -67,7 +71,9 @@ struct AreaLight {
   glm::dvec2 size{1.0};                  // rect: width, height; disk: the diameter in x (the reader sets y to it too)
   glm::dvec3 color{1.0};
   double range = 0.0;  // > 0: windowed to 0 at this distance from the centre (as a point light's); 0: no range
-  bool shadows = false;  // casts a hard shadow, decided by one ray to the centre (when the shadow mode is not off)
+  bool shadows = false;  // casts a shadow (when the shadow mode is not off): soft, or hard with one ray
+  int shadow_rays = 0;   // rays over the emitter for its shadow in geometry mode, 1 to 1024 (1: one ray to the
+                         // centre, a hard shadow); 0: the shade's ShadowSettings::rays
   std::string group{};   // light group, as a Light's; empty: none
 
   bool has_range() const { return range > 0.0; }

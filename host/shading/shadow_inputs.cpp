@@ -57,24 +57,33 @@ std::string describe_shadows(ShadowMode mode, int casters, const ShadowSettings&
 
 namespace {
 
-ShadowLight shadow_light(const glm::dvec3& where, bool directional) {
-  return {{static_cast<float>(where.x), static_cast<float>(where.y), static_cast<float>(where.z)}, directional ? 1u : 0u};
+ShadowLight shadow_light(const glm::dvec3& where, bool directional, float half_extent) {
+  return {{static_cast<float>(where.x), static_cast<float>(where.y), static_cast<float>(where.z)},
+          directional ? 1u : 0u,
+          {half_extent, half_extent, half_extent},
+          0.0f};
 }
 
 }  // namespace
 
-ShadowCasters shadow_casters(const Scene& scene) {
+ShadowCasters shadow_casters(const Scene& scene, const ShadowSettings& settings) {
   ShadowCasters casters;
   const glm::dvec3& eye = scene.camera.eye;
-  auto add = [&](bool casts, const glm::dvec3& where, bool directional) {
+  auto add = [&](bool casts, const glm::dvec3& where, bool directional, float half_extent = 0.0f) {
     casters.words.push_back(casts ? static_cast<cl_uint>(casters.lights.size() + 1) : 0u);
-    if (casts) casters.lights.push_back(shadow_light(where, directional));
+    if (casts) casters.lights.push_back(shadow_light(where, directional, half_extent));
   };
   for_each_light_in_kernel_order(scene.lights, [&](const Light& light) {
     const bool directional = light.type == LightType::directional;
     add(light.shadows, directional ? -glm::normalize(light.direction) : light.position - eye, directional);
   });
-  for (const AreaLight& light : scene.area_lights) add(light.shadows, light.position - eye, false);
+  for (const AreaLight& light : scene.area_lights) {
+    const int rays = area_shadow_rays(light, settings);
+    // Half the emitter's diagonal bounds it in any orientation, rounded up past float's rounding.
+    const double radius = rays > 1 ? 0.5 * std::hypot(light.size.x, light.size.y) * (1.0 + 0x1p-20) : 0.0;
+    add(light.shadows, light.position - eye, false, static_cast<float>(radius));
+    casters.area_rays.push_back(static_cast<cl_uint>(rays));
+  }
   return casters;
 }
 

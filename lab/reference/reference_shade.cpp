@@ -80,7 +80,8 @@ double reference_specular_lobe(SpecularModel model, const glm::dvec3& n, const g
   return 0.0;
 }
 
-ShadingTerms reference_shade_point(const Scene& scene, const SurfacePoint& point, const LightReach& reaches) {
+ShadingTerms reference_shade_point(const Scene& scene, const SurfacePoint& point, const LightReach& reaches,
+                                   const AreaVisibility& area_visibility) {
   ShadingTerms terms;
   terms.ambient = point.ka * scene.ambient;
 
@@ -109,9 +110,10 @@ ShadingTerms reference_shade_point(const Scene& scene, const SurfacePoint& point
   const glm::dvec3 r = 2.0 * glm::dot(n, v) * n - v;
   for (const AreaLight& light : scene.area_lights) {
     if (n == glm::dvec3(0.0)) break;
-    if (reaches && light.shadows && !reaches(point, area_shadow_light(light))) continue;
+    const bool soft = area_visibility && light.shadows;
+    if (!soft && reaches && light.shadows && !reaches(point, area_shadow_light(light))) continue;
     const AreaIntegrals integrals = reference_area_integrals(light, point.position, n, r, point.shininess);
-    const double window = area_range_window(light, point.position);
+    const double window = area_range_window(light, point.position) * (soft ? area_visibility(point, light) : 1.0);
     diffuse += product(light.color, glm::dvec3(integrals.irradiance * window));
     specular += product(light.color, glm::dvec3(integrals.highlight * window));
   }

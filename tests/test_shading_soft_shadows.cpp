@@ -1,0 +1,209 @@
+// Soft shadows of area lights in the shading kernel (kernels/soft_shadow.h) against the double
+// reference (reference_soft_shadows.h), which integrates the emitter's visibility on a 64 x 64 grid
+// of its own. The ratio estimator is exact where the emitter is wholly seen or wholly hidden, so
+// there the kernel is held to the accuracy bound at any ray count; in the penumbra its fraction is an
+// estimate from N rays, held to the error of N independent samples of a 0/1 visibility, whose
+// standard deviation is at most 1/(2 sqrt N) (stratified points do better), and it must converge.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <phongcl/relighter.hpp>
+
+#include "accuracy_bound.h"
+#include "geometry/scene_shapes.h"
+#include "raycast/raycast.h"
+#include "reference/reference.h"
+#include "reference/reference_soft_shadows.h"
+
+extern "C" {
+#include "kernels/shadow_layout.h"
+}
+
+namespace phongcl {
+namespace {
+
+// Two spheres and a box of triangles on a floor under one area light, grey Lambertian materials,
+// seen from above at an angle. `scale` multiplies every length (the light's colour is a radiance,
+// so the image does not change with it).
+Scene soft_scene(AreaShape shape, double scale = 1.0) {
+  Scene scene;
+  scene.camera.eye = glm::dvec3(0.0, 4.0, 6.0) * scale;
+  scene.camera.look_at = glm::dvec3(0.0, 0.4, 0.0) * scale;
+  scene.camera.width = 64;
+  scene.camera.height = 48;
+  Material grey;
+  grey.kd = glm::dvec3(0.8);
+  scene.materials = {grey};
+  Object floor, ball, small;
+  floor.kind = Object::Kind::plane;
+  floor.normal = {0, 1, 0};
+  ball.kind = Object::Kind::sphere;
+  ball.center = glm::dvec3(-1.0, 0.6, 0.0) * scale;
+  ball.radius = 0.6 * scale;
+  small = ball;
+  small.center = glm::dvec3(1.2, 0.35, 0.6) * scale;
+  small.radius = 0.35 * scale;
+  scene.objects = {floor, ball, small};
+  // A box's lid hovering 0.3 above the floor, two triangles: a sharp-edged occluder.
+  for (const auto& corners : {std::array<glm::dvec3, 3>{glm::dvec3(0.0, 0.3, -1.4), glm::dvec3(0.0, 0.3, -0.6),
+                                                        glm::dvec3(0.8, 0.3, -0.6)},
+                              std::array<glm::dvec3, 3>{glm::dvec3(0.0, 0.3, -1.4), glm::dvec3(0.8, 0.3, -0.6),
+                                                        glm::dvec3(0.8, 0.3, -1.4)}}) {
+    Object lid;
+    lid.kind = Object::Kind::triangle;
+    lid.vertices = {corners[0] * scale, corners[1] * scale, corners[2] * scale};  // counter-clockwise from above
+    scene.objects.push_back(lid);
+  }
+  AreaLight light;
+  light.shape = shape;
+  light.position = glm::dvec3(0.3, 2.6, -0.2) * scale;
+  light.direction = {-0.1, -1.0, 0.05};
+  light.up = {0.0, 0.0, 1.0};
+  light.size = glm::dvec2(1.6, 1.0) * scale;
+  if (shape == AreaShape::disk) light.size = glm::dvec2(1.6 * scale);
+  light.color = glm::dvec3(3.0);
+  light.shadows = true;
+  scene.area_lights = {light};
+  return scene;
+}
+
+// `soft`: whether the kernel is to be built with SOFT_SHADOWS (its build options say so).
+Image shade(const Scene& scene, const GBuffer& gbuffer, int rays, bool soft = true) {
+  RelighterOptions options;
+  options.shadows.mode = ShadowMode::geometry;
+  options.shadows.rays = rays;
+  Relighter relighter(scene, gbuffer, options);
+  Image image = relighter.shade();
+  EXPECT_NE(relighter.last_report().build_options.find(soft ? "-DSOFT_SHADOWS=1" : "-DSOFT_SHADOWS=0"), std::string::npos)
+      << relighter.last_report().build_options;
+  return image;
+}
+
+// Per shaded pixel lit by the light: the reference's visible fraction, and the kernel's and the
+// reference's shadowed values as fractions of the unshadowed one (red channel: everything is grey).
+struct SoftPixels {
+  std::vector<double> fraction, kernel, reference;
+  std::vector<int> index;
+};
+
+SoftPixels soft_pixels(const Scene& scene, const GBuffer& gbuffer, const Image& kernel) {
+  const SceneShapes shapes = flatten_objects(scene.objects);
+  const AreaVisibility visibility = [&](const SurfacePoint& point, const AreaLight& light) {
+    return reference_area_visibility(shapes, light, point, scene.camera.eye, PHONGCL_SHADOW_OFFSET_FLOAT);
+  };
+  const Image lit = reference_image(scene, gbuffer);
+  SoftPixels pixels;
+  for (std::size_t i = 0; i < gbuffer.pixel_count(); ++i) {
+    if (classify_pixel(gbuffer, i) != PixelClass::shaded || !(lit.pixel(i)[0] > 1e-6f)) continue;
+    const SurfacePoint point = reference_surface(scene, gbuffer, i);
+    const double unshadowed = lit.pixel(i)[0];
+    const double fraction = visibility(point, scene.area_lights[0]);
+    pixels.fraction.push_back(fraction);
+    pixels.reference.push_back(reference_shade_point(scene, point, {}, visibility).total()[0] / unshadowed);
+    pixels.kernel.push_back(kernel.pixel(i)[0] / unshadowed);
+    pixels.index.push_back(static_cast<int>(i));
+  }
+  return pixels;
+}
+
+struct SoftError {
+  double exact_worst = 0.0, penumbra_rms = 0.0, penumbra_worst = 0.0;
+  int exact_worst_pixel = -1, penumbra_worst_pixel = -1;
+  std::size_t exact = 0, penumbra = 0;
+};
+
+SoftError soft_error(const SoftPixels& pixels) {
+  SoftError error;
+  double sum_sq = 0.0;
+  for (std::size_t k = 0; k < pixels.kernel.size(); ++k) {
+    const double difference = std::abs(pixels.kernel[k] - pixels.reference[k]);
+    if (pixels.fraction[k] == 0.0 || pixels.fraction[k] == 1.0) {
+      ++error.exact;
+      if (difference > error.exact_worst) error.exact_worst = difference, error.exact_worst_pixel = pixels.index[k];
+    } else {
+      ++error.penumbra;
+      sum_sq += difference * difference;
+      if (difference > error.penumbra_worst)
+        error.penumbra_worst = difference, error.penumbra_worst_pixel = pixels.index[k];
+    }
+  }
+  error.penumbra_rms = error.penumbra > 0 ? std::sqrt(sum_sq / static_cast<double>(error.penumbra)) : 0.0;
+  return error;
+}
+
+void print(const char* what, int rays, const SoftError& error, int width) {
+  std::cout << "[          ] " << what << " " << rays << " rays: " << error.exact << " lit or hidden pixels, worst "
+            << error.exact_worst << " at (" << error.exact_worst_pixel % width << ", " << error.exact_worst_pixel / width
+            << "); " << error.penumbra << " in the penumbra, rms " << error.penumbra_rms << ", worst "
+            << error.penumbra_worst << " at (" << error.penumbra_worst_pixel % width << ", "
+            << error.penumbra_worst_pixel / width << ") (of the unshadowed light)\n";
+}
+
+// The reference's grid decides a point wholly lit or hidden from 4096 points; a sliver of the
+// emitter between them (under 1/64 of its side) may still reach some of the kernel's rays. Such
+// pixels lie at the penumbra's rim: a few per cent of the exact pixels are let through with an error
+// at most that of the penumbra's bound.
+constexpr double kRimShare = 0.03;
+
+void expect_soft_shadows_match(AreaShape shape, int rays, double scale = 1.0) {
+  const Scene scene = soft_scene(shape, scale);
+  const GBuffer gbuffer = generate_gbuffer(scene);
+  const SoftPixels pixels = soft_pixels(scene, gbuffer, shade(scene, gbuffer, rays));
+  const SoftError error = soft_error(pixels);
+  print(shape == AreaShape::rect ? "rect" : "disk", rays, error, gbuffer.width);
+  const double bound = 1.0 / (2.0 * std::sqrt(static_cast<double>(rays)));
+  std::size_t off_exact = 0;
+  for (std::size_t k = 0; k < pixels.kernel.size(); ++k) {
+    if (pixels.fraction[k] != 0.0 && pixels.fraction[k] != 1.0) continue;
+    const double difference = std::abs(pixels.kernel[k] - pixels.reference[k]);
+    off_exact += difference > testing::kRelativeBound;
+    EXPECT_LE(difference, bound) << "pixel " << pixels.index[k] % gbuffer.width << ", " << pixels.index[k] / gbuffer.width;
+  }
+  EXPECT_LE(static_cast<double>(off_exact), kRimShare * static_cast<double>(error.exact))
+      << off_exact << " wholly lit or hidden pixels off the exact value";
+  EXPECT_GT(error.penumbra, pixels.kernel.size() / 20) << "a penumbra to get wrong";
+  EXPECT_GT(error.exact, pixels.kernel.size() / 4) << "lit and hidden pixels to keep exact";
+  EXPECT_LE(error.penumbra_rms, bound) << rays << " rays";
+}
+
+TEST(SoftShadows, RectAgreesWithTheDenseReference) { expect_soft_shadows_match(AreaShape::rect, 16); }
+TEST(SoftShadows, DiskAgreesWithTheDenseReference) { expect_soft_shadows_match(AreaShape::disk, 16); }
+TEST(SoftShadows, FourRaysAgreeWithinTheirBound) { expect_soft_shadows_match(AreaShape::rect, 4); }
+TEST(SoftShadows, AMillimetreSceneAgrees) { expect_soft_shadows_match(AreaShape::rect, 16, 1e-3); }
+TEST(SoftShadows, AHundredMetreLightAgrees) { expect_soft_shadows_match(AreaShape::rect, 16, 1e2); }
+
+// More rays, less error: 64 stratified rays leave at most half the penumbra's error of 4 (independent
+// samples would leave a quarter of it, R2's points about an eighth).
+TEST(SoftShadows, ThePenumbraConverges) {
+  const Scene scene = soft_scene(AreaShape::rect);
+  const GBuffer gbuffer = generate_gbuffer(scene);
+  const SoftError few = soft_error(soft_pixels(scene, gbuffer, shade(scene, gbuffer, 4)));
+  const SoftError many = soft_error(soft_pixels(scene, gbuffer, shade(scene, gbuffer, 64)));
+  print("rect", 4, few, gbuffer.width);
+  print("rect", 64, many, gbuffer.width);
+  EXPECT_LE(many.penumbra_rms, 0.5 * few.penumbra_rms);
+}
+
+// One ray is the hard shadow, through the kernel without SOFT_SHADOWS: the same image, bit for bit,
+// as a light that asks for one ray itself.
+TEST(SoftShadows, OneRayIsTheHardShadow) {
+  Scene scene = soft_scene(AreaShape::rect);
+  const GBuffer gbuffer = generate_gbuffer(scene);
+  const Image by_default = shade(scene, gbuffer, 1, false);
+  scene.area_lights[0].shadow_rays = 1;
+  const Image by_light = shade(scene, gbuffer, 64, false);
+  EXPECT_EQ(by_default.rgba, by_light.rgba);
+  scene.area_lights[0].shadow_rays = 0;
+  const Image soft = shade(scene, gbuffer, 16);
+  EXPECT_NE(by_default.rgba, soft.rgba) << "16 rays are not the hard shadow";
+}
+
+TEST(SoftShadows, RayCountsOutOfRangeAreRefused) {
+  const Scene scene = soft_scene(AreaShape::rect);
+  const GBuffer gbuffer = generate_gbuffer(scene);
+  for (int rays : {0, -3, kMaxShadowRays + 1})
+    EXPECT_THROW(shade(scene, gbuffer, rays), std::invalid_argument) << rays;
+}
+
+}  // namespace
+}  // namespace phongcl
