@@ -14,6 +14,7 @@
 #include "raycast/raycast.h"
 #include "reference/reference.h"
 #include "reference/reference_soft_shadows.h"
+#include "shading_support.h"
 
 extern "C" {
 #include "kernels/shadow_layout.h"
@@ -196,6 +197,21 @@ TEST(SoftShadows, OneRayIsTheHardShadow) {
   scene.area_lights[0].shadow_rays = 0;
   const Image soft = shade(scene, gbuffer, 16);
   EXPECT_NE(by_default.rgba, soft.rgba) << "16 rays are not the hard shadow";
+}
+
+// One shader, one kernel for 4 and for 64 rays: the rays' table follows the options, not the kernel.
+TEST(SoftShadows, AShaderFollowsTheRayCount) {
+  PHONGCL_REQUIRE_DEVICE(shader);
+  const Scene scene = soft_scene(AreaShape::rect);
+  const GBuffer gbuffer = generate_gbuffer(scene);
+  ShadeOptions options;
+  options.shadows.mode = ShadowMode::geometry;
+  options.shadows.rays = 4;
+  const Image four = shader.shade(scene, gbuffer, options).image;
+  options.shadows.rays = 64;
+  const Image many = shader.shade(scene, gbuffer, options).image;
+  EXPECT_NE(four.rgba, many.rgba);
+  EXPECT_EQ(many.rgba, shade(scene, gbuffer, 64).rgba);
 }
 
 TEST(SoftShadows, RayCountsOutOfRangeAreRefused) {
