@@ -48,7 +48,7 @@ typedef struct {
   layout_uint area_lights;        /* AreaLightRecord: rects and disks */
   layout_uint shadow_casters;     /* SHADOWS: 1 + the light's place among the casters where it casts shadows, else 0 */
   layout_uint light_groups;       /* LIGHT_GROUPS: the light's group, LIGHT_GROUPS for none */
-  layout_uint area_shadow_rays;   /* SOFT_SHADOWS: uint shadow rays per area light (1: one ray to the centre) */
+  layout_uint soft_lights;        /* SOFT_SHADOWS: SoftLight per light, in the casters' order */
 } SceneTables;
 
 /* Tiled culling's block (cull.cl): tile t's point lights are lights[offsets[t] ...], counts[t] of
@@ -186,6 +186,14 @@ typedef struct {
   layout_float area;      /* of the emitter */
   layout_float padding;
 } AreaLightRecord;
+
+/* A light's soft shadow (soft_shadow.h): its rays per pixel (1: one ray, the hard shadow) and its
+ * size: a sphere light's radius, a sun's tan(half its angular diameter), 0 for an area light (its
+ * record holds its shape). */
+typedef struct {
+  layout_uint rays;
+  layout_float size;
+} SoftLight;
 
 /* One entry of the scene's material table. */
 typedef struct {

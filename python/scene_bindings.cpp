@@ -116,6 +116,11 @@ void bind_scene(py::module_& module) {
   vec3_property(light, "color", &Light::color, "Radiance, RGB, >= 0.");
   light.def_readwrite("shadows", &Light::shadows,
                       "Casts shadows (as the Relighter's shadows= mode makes them; docs/shadows.md).");
+  light.def_readwrite("radius", &Light::radius, "Point lights: a sphere's radius, for a soft shadow (0: a point).");
+  light.def_readwrite("angle_deg", &Light::angle_deg,
+                      "Directional lights: the sun's angular diameter in degrees, for a soft shadow (0: none).");
+  light.def_readwrite("shadow_rays", &Light::shadow_rays,
+                      "Rays for a soft shadow, 1 to 1024; 0: the Relighter's shadow_rays.");
   light.def_readwrite("group", &Light::group,
                       "Light group ('' for none): Relighter.shade_terms() returns each group's light apart.");
 

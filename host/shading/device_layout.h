@@ -20,7 +20,7 @@ static_assert(sizeof(SceneTables) == 36 && sizeof(TileListTables) == 16 && sizeo
 static_assert(PHONGCL_UNROLL_LIGHT_LIMIT <= PHONGCL_LIGHT_BLOCK, "an unrolled light loop is one compensated block");
 static_assert(sizeof(PointLight) == 48 && offsetof(PointLight, color) == 16 && offsetof(PointLight, position_rest) == 32);
 static_assert(sizeof(DirectionalLight) == 32 && offsetof(DirectionalLight, color) == 16);
-static_assert(sizeof(MaterialRecord) == 64);
+static_assert(sizeof(MaterialRecord) == 64 && sizeof(SoftLight) == 8);
 static_assert(offsetof(FrameScalars, area_count) == 52);
 static_assert(sizeof(AreaLightRecord) == 96 && offsetof(AreaLightRecord, color) == 64 && offsetof(AreaLightRecord, shape) == 80);
 static_assert(offsetof(MaterialRecord, ka) == MATERIAL_KA * sizeof(float) &&

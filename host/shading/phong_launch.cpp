@@ -81,7 +81,7 @@ DeviceUniforms upload_uniforms(const cl::Context& context, const UniformData& un
                    .area_lights = block.add(uniforms.area_lights),
                    .shadow_casters = block.add(shadow_casters.words),
                    .light_groups = block.add(uniforms.light_groups),
-                   .area_shadow_rays = block.add(shadow_casters.area_rays)};
+                   .soft_lights = block.add(shadow_casters.soft)};
   scalars.plane_stride = static_cast<layout_uint>(plane_stride);
   return DeviceUniforms{.scene = block.upload(context, CL_MEM_READ_ONLY),
                         .point_bounds = uniform_buffer(context, uniforms.point_bounds),

@@ -290,23 +290,24 @@ void decide_materials(Recipe& recipe, const Scene& scene, const GBuffer& gbuffer
   per_pixel("PER_PIXEL_Q", recipe.per_pixel_shininess, "shininess");
 }
 
-// Soft shadows: area lights that cast them with more than one ray, traced against the geometry
-// (screen space keeps one ray to the centre). Without one, nothing of them is compiled in, and the
-// hard shadows shade as before, bit for bit.
+// Soft shadows: lights with a size (area lights, spheres, suns with an angle) that cast them with
+// more than one ray, traced against the geometry (screen space keeps one ray to the centre).
+// Without one, nothing of them is compiled in, and the hard shadows shade as before, bit for bit.
 void decide_soft_shadows(Recipe& recipe, const Scene& scene) {
   int soft = 0, most_rays = 0;
+  auto count = [&](bool shadows, int rays) {
+    if (!shadows || rays < 2) return;
+    ++soft;
+    most_rays = std::max(most_rays, rays);
+  };
   if (recipe.shadows == ShadowMode::geometry) {
-    for (const AreaLight& light : scene.area_lights) {
-      const int rays = area_shadow_rays(light, recipe.shadow_settings);
-      if (!light.shadows || rays < 2) continue;
-      ++soft;
-      most_rays = std::max(most_rays, rays);
-    }
+    for (const Light& light : scene.lights) count(light.shadows, shadow_rays(light, recipe.shadow_settings));
+    for (const AreaLight& light : scene.area_lights) count(light.shadows, shadow_rays(light, recipe.shadow_settings));
   }
-  const std::string why = soft > 0 ? "soft shadows: " + plural(soft, "area light") + ", up to " +
+  const std::string why = soft > 0 ? "soft shadows: " + plural(soft, "light") + " with a size, up to " +
                                          std::to_string(most_rays) + " rays each over the emitter"
-                                   : "soft shadows: compiled out (no area light traces more than one ray)";
-  add_flag(recipe, "SOFT_SHADOWS", soft > 0, why, soft > 0 ? "soft shadows (" + plural(soft, "area light") + ")" : "");
+                                   : "soft shadows: compiled out (no light with a size traces more than one ray)";
+  add_flag(recipe, "SOFT_SHADOWS", soft > 0, why, soft > 0 ? "soft shadows (" + plural(soft, "light") + ")" : "");
 }
 
 // Lights cast shadows when they ask ("shadows": true) and the mode is not off: auto traces the

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <numbers>
 
 #include "geometry/device_geometry.h"
 #include "geometry/scene_bvh.h"
@@ -69,21 +70,26 @@ ShadowLight shadow_light(const glm::dvec3& where, bool directional, float half_e
 ShadowCasters shadow_casters(const Scene& scene, const ShadowSettings& settings) {
   ShadowCasters casters;
   const glm::dvec3& eye = scene.camera.eye;
-  auto add = [&](bool casts, const glm::dvec3& where, bool directional, float half_extent = 0.0f) {
+  // `extent`: how far from `where` a soft light's rays may end (its bounding sphere), 0 when hard.
+  auto add = [&](bool casts, const glm::dvec3& where, bool directional, int rays, double size, double extent) {
     casters.words.push_back(casts ? static_cast<cl_uint>(casters.lights.size() + 1) : 0u);
+    // Rounded up past float's rounding of the kernel's sample points.
+    const float half_extent = rays > 1 ? static_cast<float>(extent * (1.0 + 0x1p-20)) : 0.0f;
     if (casts) casters.lights.push_back(shadow_light(where, directional, half_extent));
+    casters.soft.push_back({static_cast<cl_uint>(rays), static_cast<float>(size)});
   };
   for_each_light_in_kernel_order(scene.lights, [&](const Light& light) {
-    const bool directional = light.type == LightType::directional;
-    add(light.shadows, directional ? -glm::normalize(light.direction) : light.position - eye, directional);
+    const int rays = shadow_rays(light, settings);
+    if (light.type == LightType::directional) {
+      const double half_angle = light.angle_deg / 2.0 * std::numbers::pi / 180.0;
+      add(light.shadows, -glm::normalize(light.direction), true, rays, std::tan(half_angle), 0.0);
+    } else {
+      add(light.shadows, light.position - eye, false, rays, light.radius, light.radius);
+    }
   });
-  for (const AreaLight& light : scene.area_lights) {
-    const int rays = area_shadow_rays(light, settings);
-    // Half the emitter's diagonal bounds it in any orientation, rounded up past float's rounding.
-    const double radius = rays > 1 ? 0.5 * std::hypot(light.size.x, light.size.y) * (1.0 + 0x1p-20) : 0.0;
-    add(light.shadows, light.position - eye, false, static_cast<float>(radius));
-    casters.area_rays.push_back(static_cast<cl_uint>(rays));
-  }
+  for (const AreaLight& light : scene.area_lights)  // half the diagonal bounds the emitter in any orientation
+    add(light.shadows, light.position - eye, false, shadow_rays(light, settings), 0.0,
+        0.5 * std::hypot(light.size.x, light.size.y));
   return casters;
 }
 

@@ -56,7 +56,12 @@ void check_shadow_settings(const ShadowSettings& settings) {
                                 std::to_string(settings.rays) + ")");
 }
 
-int area_shadow_rays(const AreaLight& light, const ShadowSettings& settings) {
+int shadow_rays(const AreaLight& light, const ShadowSettings& settings) {
+  return light.shadow_rays > 0 ? light.shadow_rays : settings.rays;
+}
+
+int shadow_rays(const Light& light, const ShadowSettings& settings) {
+  if (!light.has_size()) return 1;
   return light.shadow_rays > 0 ? light.shadow_rays : settings.rays;
 }
 

@@ -35,7 +35,9 @@ std::string format_shadow_thickness(double thickness);
 // Throws std::invalid_argument naming the setting that is out of range.
 void check_shadow_settings(const ShadowSettings& settings);
 
-// The rays an area light's shadow takes: its own "shadow_rays", else the settings'.
-int area_shadow_rays(const AreaLight& light, const ShadowSettings& settings);
+// The rays a light's shadow takes in geometry mode: its own "shadow_rays", else the settings'; 1
+// (one ray, a hard shadow) for a point, spot or directional light without a size.
+int shadow_rays(const AreaLight& light, const ShadowSettings& settings);
+int shadow_rays(const Light& light, const ShadowSettings& settings);
 
 }  // namespace phongcl

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include "reference/reference_shadows.h"
 
@@ -38,6 +39,24 @@ double reference_area_visibility(const SceneShapes& shapes, const AreaLight& lig
     }
   }
   return total > 0.0 ? seen / total : 1.0;
+}
+
+double reference_light_visibility(const SceneShapes& shapes, const Light& light, const SurfacePoint& point,
+                                  const glm::dvec3& eye, double offset_scale, int grid) {
+  AreaLight disk;
+  disk.shape = AreaShape::disk;
+  if (light.type == LightType::directional) {
+    const glm::dvec3 l = -glm::normalize(light.direction);
+    const double distance = 1e8 * (glm::length(point.position - eye) + 1.0);
+    disk.position = point.position + distance * l;
+    disk.direction = -l;
+    disk.size = glm::dvec2(2.0 * distance * std::tan(light.angle_deg / 2.0 * std::numbers::pi / 180.0));
+  } else {
+    disk.position = light.position;
+    disk.direction = point.position - light.position;
+    disk.size = glm::dvec2(2.0 * light.radius);
+  }
+  return reference_area_visibility(shapes, disk, point, eye, offset_scale, grid);
 }
 
 }  // namespace phongcl

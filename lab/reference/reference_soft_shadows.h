@@ -18,4 +18,11 @@ namespace phongcl {
 double reference_area_visibility(const SceneShapes& shapes, const AreaLight& light, const SurfacePoint& point,
                                  const glm::dvec3& eye, double offset_scale, int grid = 64);
 
+// The same for a light with a size: a sphere light as the disk of its radius through its centre
+// facing `point`; a sun as the disk of directions within its angular radius, a disk of radius
+// D tan(angle / 2) at distance D along l, D = 1e8 (|point - eye| + 1): its rays' directions differ
+// from parallel ones by under 1e-7 of the scene's extent over D.
+double reference_light_visibility(const SceneShapes& shapes, const Light& light, const SurfacePoint& point,
+                                  const glm::dvec3& eye, double offset_scale, int grid = 64);
+
 }  // namespace phongcl
