@@ -23,8 +23,9 @@ extern "C" {
 namespace phongcl {
 namespace {
 
-// Two spheres and a box of triangles on a floor under one area light, grey Lambertian materials,
-// seen from above at an angle. `scale` multiplies every length (the light's colour is a radiance,
+// Two spheres and a box's lid of triangles on a floor under one area light, grey Lambertian
+// materials, seen from above at an angle. The larger sphere rests on the floor: an occluder touching
+// the receiver, whose contact pixels are hidden from the whole emitter. `scale` multiplies every length (the light's colour is a radiance,
 // so the image does not change with it).
 Scene soft_scene(AreaShape shape, double scale = 1.0) {
   Scene scene;
@@ -206,6 +207,43 @@ TEST(SoftShadows, SpotWithARadiusAgreesWithTheDenseReference) {
 }
 TEST(SoftShadows, SunWithAnAngleAgreesWithTheDenseReference) {
   expect_soft_shadows_match(sized_scene(LightType::directional), "sun", 16);
+}
+
+// An emitter 1e-4 above a wider occluder (a quad of two triangles, 0.5 beyond the emitter on every
+// side): every ray from below ends 1e-4 past the quad, and must be blocked; the floor beneath the
+// quad's umbra gets exactly nothing, and the rest of the floor (the quad's own top faces away from the
+// light) is decided as the reference decides it, but for grazing rays from far pixels that pass the
+// quad's edge within the rays' own end offset (eps(L) ~ 1e-5 here: a stated limit of the float
+// rays), at most kRimShare of the lit pixels.
+TEST(SoftShadows, AnEmitterJustBehindAnOccluderIsHidden) {
+  Scene scene = soft_scene(AreaShape::rect);
+  scene.objects.resize(1);  // the floor alone
+  AreaLight& light = scene.area_lights[0];
+  light.direction = {0.0, -1.0, 0.0};
+  const double height = light.position.y - 1e-4;
+  for (const auto& corners : {std::array<glm::dvec2, 3>{glm::dvec2(-1.3, -1.0), glm::dvec2(-1.3, 0.6), glm::dvec2(1.3, 0.6)},
+                              std::array<glm::dvec2, 3>{glm::dvec2(-1.3, -1.0), glm::dvec2(1.3, 0.6), glm::dvec2(1.3, -1.0)}}) {
+    Object quad;
+    quad.kind = Object::Kind::triangle;
+    for (int k = 0; k < 3; ++k)
+      quad.vertices[k] = glm::dvec3(light.position.x + corners[k].x, height, light.position.z + corners[k].y);
+    scene.objects.push_back(quad);
+  }
+  const GBuffer gbuffer = generate_gbuffer(scene);
+  const SoftPixels pixels = soft_pixels(scene, gbuffer, shade(scene, gbuffer, 16));
+  const SoftError error = soft_error(pixels);
+  print("occluded rect", 16, error, gbuffer.width);
+  std::size_t hidden = 0, lit_off = 0;
+  for (std::size_t k = 0; k < pixels.kernel.size(); ++k) {
+    if (pixels.fraction[k] == 1.0) lit_off += std::abs(pixels.kernel[k] - pixels.reference[k]) > testing::kRelativeBound;
+    if (pixels.fraction[k] != 0.0) continue;
+    ++hidden;
+    EXPECT_EQ(pixels.kernel[k], 0.0) << "pixel " << pixels.index[k] % gbuffer.width << ", " << pixels.index[k] / gbuffer.width;
+  }
+  EXPECT_GT(hidden, pixels.kernel.size() / 10) << "an umbra to get wrong";
+  EXPECT_LE(static_cast<double>(lit_off), kRimShare * static_cast<double>(error.exact)) << lit_off << " lit pixels off";
+  std::cout << "[          ] " << hidden << " hidden pixels exact, " << lit_off << " lit ones off\n";
+  EXPECT_LE(error.penumbra_rms, 1.0 / (2.0 * std::sqrt(16.0)));
 }
 
 // More rays, less error: 64 stratified rays leave at most half the penumbra's error of 4 (independent
