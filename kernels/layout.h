@@ -48,6 +48,7 @@ typedef struct {
   layout_uint area_lights;        /* AreaLightRecord: rects and disks */
   layout_uint shadow_casters;     /* SHADOWS: 1 + the light's place among the casters where it casts shadows, else 0 */
   layout_uint light_groups;       /* LIGHT_GROUPS: the light's group, LIGHT_GROUPS for none */
+  layout_uint soft_lights;        /* SOFT_SHADOWS: SoftLight per light, in the casters' order */
 } SceneTables;
 
 /* Tiled culling's block (cull.cl): tile t's point lights are lights[offsets[t] ...], counts[t] of
@@ -79,7 +80,7 @@ typedef struct {
   layout_uint plane_stride;                       /* values per plane in every buffer, a multiple of PHONGCL_LANES */
   layout_int area_count;                          /* entries in the area light table */
   layout_uint shadow_tiles;                       /* tiled shadow culling's tiles; 0 without its lists */
-  layout_uint padding;
+  layout_uint first_pixel;                        /* the frame pixel of this launch's slot 0 (soft shadows' sequence) */
   SceneTables scene;                              /* where the blocks' tables start */
   TileListTables tile_lists;
   ShadowGeometryTables shadow_geometry;
@@ -185,6 +186,14 @@ typedef struct {
   layout_float area;      /* of the emitter */
   layout_float padding;
 } AreaLightRecord;
+
+/* A light's soft shadow (soft_shadow.h): its rays per pixel (1: one ray, the hard shadow) and its
+ * size: a sphere light's radius, a sun's tan(half its angular diameter), 0 for an area light (its
+ * record holds its shape). */
+typedef struct {
+  layout_uint rays;
+  layout_float size;
+} SoftLight;
 
 /* One entry of the scene's material table. */
 typedef struct {

@@ -8,7 +8,8 @@
  * sums, pending powers, culled lists). The tuned arithmetic (robust normalisation, the power,
  * compensated sums, streaming stores) is phong_math.h's.
  * With AREA_LIGHTS rects and disks add theirs too (area_light.h: the diffuse term exact, the
- * specular one by quadrature), looped over untiled; their shadows are one ray to the centre.
+ * specular one by quadrature), looped over untiled; their shadows are one ray to the centre, or
+ * with SOFT_SHADOWS the visible fraction of the emitter from several (soft_shadow.h).
  * With SHADOWS a light that casts shadows is multiplied by its visibility (shadow.h: a ray traced
  * against the scene's geometry, or with SCREEN_SHADOWS marched across the frame's depth plane).
  * With LIGHT_GROUPS the lights are summed group by group, and each group's terms also written apart.
@@ -24,6 +25,7 @@
 #include "material.h"
 #include "phong_math.h"
 #include "shadow.h"
+#include "soft_shadow.h"
 #include "specular.h"
 #include "storage.h"
 #include "tiles.h"
@@ -66,6 +68,10 @@ typedef struct {
                                                         place in the culling's casters (shadow.h), else 0 */
   UNIFORM_SPACE const uint* directional_casters;     /* SHADOWS: the same per directional light */
   UNIFORM_SPACE const uint* area_casters;            /* SHADOWS: the same per area light */
+  UNIFORM_SPACE const SoftLight* point_soft;         /* SOFT_SHADOWS: rays and size per point light (1 ray: hard) */
+  UNIFORM_SPACE const SoftLight* directional_soft;   /* SOFT_SHADOWS: the same per directional light */
+  UNIFORM_SPACE const SoftLight* area_soft;          /* SOFT_SHADOWS: the same per area light */
+  uint first_pixel;                                  /* SOFT_SHADOWS: the frame pixel of the launch's slot 0 */
   const ShadowInputs* shadows;                       /* SHADOWS: what the shadow rays test (shadow.h) */
   UNIFORM_SPACE const uint* point_groups;            /* LIGHT_GROUPS: point light i's group, LIGHT_GROUPS for none */
   UNIFORM_SPACE const uint* directional_groups;      /* LIGHT_GROUPS: the same per directional light */
@@ -179,14 +185,28 @@ void sum_pending_lobes(LightSums* sums, const PendingLobes* pending, realv shini
   }
 }
 
+/* Each light's own lattice shift (sampling.h): point light i's stream i, the other kinds' from these. */
+#define DIRECTIONAL_STREAMS 0x40000000u
+#define AREA_STREAMS 0x80000000u
+
 /* F times the light's visibility: 0 in the lanes where its shadow ray is blocked (a select, not a
  * product: F may be +Inf at a light), traced only where the light casts shadows (`casts`, its
  * caster word) and lights the lane. `where` is a point light's eye-relative position or a
- * directional light's unit l. */
+ * directional light's unit l. With SOFT_SHADOWS a light with a size (`soft`: more than one ray)
+ * takes the visible fraction of its sphere or sun instead (soft_shadow.h), `stream` numbering its
+ * lattice; 0 stays a select. */
 static inline SHADOW_INLINE realv shadowed_weight(realv weight, const Surface* surface, const Lights* lights,
-                                                  vec3 where, int directional, uint casts) {
+                                                  vec3 where, int directional, uint casts,
+                                                  UNIFORM_SPACE const SoftLight* soft, uint stream) {
   if (!casts) return weight;
   const intv pending = LANE_MASK(weight > 0) & LANE_MASK(surface->material != PHONGCL_BACKGROUND);
+  if (SOFT_SHADOWS && soft->rays > 1) {
+    const Emitter emitter =
+        directional ? sun_emitter(where, soft->size) : sphere_emitter(where, soft->size, surface->p);
+    const realv visible = emitter_visibility(lights->shadows, surface->p, surface->n, &emitter, casts - 1, soft->rays,
+                                             lattice_shift(lights->first_pixel, stream), pending);
+    return SELECT(visible > 0, weight * visible, 0);
+  }
   const intv blocked =
       light_blocked(lights->shadows, surface->p, surface->n, where, directional, SCREEN_SHADOWS, casts - 1, pending);
   return SELECT(TO_REALV(blocked) != 0, 0, weight);
@@ -224,7 +244,8 @@ static inline void add_point_light(LightSums* sums, PendingLobes* pending, const
   if (TILED_CULLING && SPOT_LIGHTS && outside_cone_in_every_lane(shape, toward, inverse)) return;
   const realv gate = link_gate(link_mask, surface->material);
   realv weight = POINT_SHAPES ? shape_weight(shape, toward, inverse, distance, inverse_distance, gate) : gate;
-  if (SHADOWS) weight = shadowed_weight(weight, surface, lights, position, 0, lights->point_casters[i]);
+  if (SHADOWS)
+    weight = shadowed_weight(weight, surface, lights, position, 0, lights->point_casters[i], &lights->point_soft[i], (uint)i);
   light_contribution(sums, pending, surface->n, surface->v, surface->shininess, surface->highlight_cutoff,
                      surface->specular_model, toward, inverse, light->color, weight);
 }
@@ -236,18 +257,32 @@ static inline void add_directional_light(LightSums* sums, PendingLobes* pending,
   UNIFORM_SPACE const LinkWord* link_mask = &lights->directional_links[k * LIGHT_LINKING];
   const vec3 l = make_vec3(light->to_light[0], light->to_light[1], light->to_light[2]);
   realv weight = link_gate(link_mask, surface->material);
-  if (SHADOWS) weight = shadowed_weight(weight, surface, lights, l, 1, lights->directional_casters[k]);
+  if (SHADOWS)
+    weight = shadowed_weight(weight, surface, lights, l, 1, lights->directional_casters[k], &lights->directional_soft[k],
+                             DIRECTIONAL_STREAMS + (uint)k);
   light_contribution(sums, pending, surface->n, surface->v, surface->shininess, surface->highlight_cutoff,
                      surface->specular_model, l, 1, light->color, weight);
 }
 
-/* An area light's hard shadow: its E and S are 0 in the lanes where the one ray to the emitter's
- * centre is blocked, as a point light's there would be (lanes whose horizon hides the centre trace
- * nothing and stay lit). Selects, not products, as shadowed_weight's. */
+/* An area light's shadow. With SOFT_SHADOWS and more than one ray its E and S are multiplied by
+ * the visible fraction of the emitter (soft_shadow.h). Otherwise the hard shadow: E and S are 0 in
+ * the lanes where the one ray to the emitter's centre is blocked, as a point light's there would be
+ * (lanes whose horizon hides the centre trace nothing and stay lit); selects, not products, as
+ * shadowed_weight's. */
 static inline void shadow_area_light(realv* irradiance, realv* highlight, const Surface* surface, const Lights* lights,
-                                     UNIFORM_SPACE const AreaLightRecord* light, uint casts) {
+                                     int k, uint casts) {
+  UNIFORM_SPACE const AreaLightRecord* light = &lights->area[k];
   const intv lit = LANE_MASK(*irradiance > 0) | LANE_MASK(*highlight > 0);
   const intv pending = lit & LANE_MASK(surface->material != PHONGCL_BACKGROUND);
+  const uint rays = SOFT_SHADOWS ? lights->area_soft[k].rays : 1;
+  if (rays > 1) {
+    const Emitter emitter = area_emitter(light);
+    const realv visible = emitter_visibility(lights->shadows, surface->p, surface->n, &emitter, casts - 1, rays,
+                                             lattice_shift(lights->first_pixel, AREA_STREAMS + (uint)k), pending);
+    *irradiance *= visible;
+    *highlight *= visible;
+    return;
+  }
   const intv blocked = light_blocked(lights->shadows, surface->p, surface->n, area_vector(light->center), 0,
                                      SCREEN_SHADOWS, casts - 1, pending);
   *irradiance = SELECT(TO_REALV(blocked) != 0, 0, *irradiance);
@@ -265,7 +300,7 @@ static inline void add_area_light(LightSums* sums, const Surface* surface, const
   realv irradiance, highlight;
   area_light_terms(light, surface->p, n, r, surface->shininess, SPECULAR, &irradiance, &highlight);
   if (SHADOWS && lights->area_casters[k])
-    shadow_area_light(&irradiance, &highlight, surface, lights, light, lights->area_casters[k]);
+    shadow_area_light(&irradiance, &highlight, surface, lights, k, lights->area_casters[k]);
   sums->diffuse.x += light->color[0] * irradiance;
   sums->diffuse.y += light->color[1] * irradiance;
   sums->diffuse.z += light->color[2] * irradiance;
@@ -515,6 +550,7 @@ __kernel void phong_shade(
   UNIFORM_SPACE const LinkWord* links = TABLE(UNIFORM_SPACE, LinkWord, scene, frame.scene.links);
   UNIFORM_SPACE const uint* casters = TABLE(UNIFORM_SPACE, uint, scene, frame.scene.shadow_casters);
   UNIFORM_SPACE const uint* groups = TABLE(UNIFORM_SPACE, uint, scene, frame.scene.light_groups);
+  UNIFORM_SPACE const SoftLight* soft = TABLE(UNIFORM_SPACE, SoftLight, scene, frame.scene.soft_lights);
   __global const uint* tile_offsets = TABLE(__global, uint, tile_lists, frame.tile_lists.offsets);
   __global const uint* tile_lights = TABLE(__global, uint, tile_lists, frame.tile_lists.lights);
   const Lights lights = {
@@ -533,6 +569,10 @@ __kernel void phong_shade(
       .point_casters = casters,
       .directional_casters = casters + frame.point_count,
       .area_casters = casters + frame.point_count + frame.directional_count,
+      .point_soft = soft,
+      .directional_soft = soft + frame.point_count,
+      .area_soft = soft + frame.point_count + frame.directional_count,
+      .first_pixel = frame.first_pixel,
       .shadows = &shadows,
       .point_groups = groups,
       .directional_groups = groups + frame.point_count,

@@ -29,7 +29,8 @@ __kernel void merge_tile_boxes(__global const TileBox* restrict fine, const uint
 }
 
 /* The hull at parameter s is a box: centre c + s d, half size h - s k (a point light: d = L - c,
- * k = h, s in [0, 1]; a directional light: d = l, k = 0, s >= 0). */
+ * k = h - e for a light box of half size e, s in [0, 1]: the convex hull of the tile's box and the
+ * light's; a directional light: d = l, k = 0, s >= 0). */
 typedef struct {
   float centre[3], half_size[3], toward[3], shrink[3];
   float s_max;
@@ -44,7 +45,7 @@ static inline ShadowHull tile_hull(const TileBox* box, ShadowLight light, float 
     hull.centre[axis] = 0.5f * (box->lo[axis] + box->hi[axis]);
     hull.half_size[axis] = 0.5f * (box->hi[axis] - box->lo[axis]) + grow;
     hull.toward[axis] = light.directional ? light.where[axis] : light.where[axis] - hull.centre[axis];
-    hull.shrink[axis] = light.directional ? 0 : hull.half_size[axis];
+    hull.shrink[axis] = light.directional ? 0 : hull.half_size[axis] - light.half_extent[axis];
   }
   hull.s_max = light.directional ? INFINITY : 1;
   return hull;
@@ -71,13 +72,14 @@ static inline bool hull_meets_box(const ShadowHull* hull, const float lo[3], con
 }
 
 /* Whether the plane can cut the hull: the signed distances of the box's corners lie in
- * [middle - spread, middle + spread]; the light's (a point light) or the sweep's direction (a
- * directional light) must not put the whole hull on one side. */
+ * [middle - spread, middle + spread]; the light's (a point light, within its box's light_spread) or
+ * the sweep's direction (a directional light) must not put the whole hull on one side. */
 static inline bool hull_meets_plane(const ShadowHull* hull, __global const ShadowPlane* plane, ShadowLight light) {
-  float middle = -plane->offset, spread = 0, size = fabs(plane->offset), along = 0;
+  float middle = -plane->offset, spread = 0, size = fabs(plane->offset), along = 0, light_spread = 0;
   for (int axis = 0; axis < 3; ++axis) {
     middle += plane->normal[axis] * hull->centre[axis];
     spread += fabs(plane->normal[axis]) * hull->half_size[axis];
+    light_spread += fabs(plane->normal[axis]) * light.half_extent[axis];
     size += fabs(plane->normal[axis]) * (fabs(hull->centre[axis]) + fabs(light.where[axis]));
     along += plane->normal[axis] * light.where[axis];
   }
@@ -88,8 +90,8 @@ static inline bool hull_meets_plane(const ShadowHull* hull, __global const Shado
     return true;
   }
   const float at_light = along - plane->offset;
-  if (middle - spread > margin && at_light > margin) return false;
-  if (middle + spread < -margin && at_light < -margin) return false;
+  if (middle - spread > margin && at_light - light_spread > margin) return false;
+  if (middle + spread < -margin && at_light + light_spread < -margin) return false;
   return true;
 }
 

@@ -86,10 +86,13 @@ typedef struct {
 } CullLevel;
 
 /* A shadow-casting light as the culling sees it: a point or spot light's position, or a
- * directional light's unit l (toward the light), eye-relative. */
+ * directional light's unit l (toward the light), eye-relative; a light whose rays end anywhere on
+ * it (a soft area light) has the half size of its bounding box around `where`, else 0. */
 typedef struct {
   float where[3];
   unsigned int directional;
+  float half_extent[3];
+  float padding;
 } ShadowLight;
 
 /* Screen-space shadows march across the frame's depth plane (the view depth of each pixel's surface,

@@ -164,10 +164,11 @@ void bind_relighter(py::module_& module) {
                         "rebuilt only when the recipe changes (e.g. the number of lights).")
       .def(py::init([](const Scene& scene, const GBuffer& gbuffer, const py::object& device,
                        const std::string& precision, bool specialise, int lanes, const std::string& shadows,
-                       int shadow_steps, const std::string& shadow_thickness, bool terms) {
+                       int shadow_steps, const std::string& shadow_thickness, int shadow_rays, bool terms) {
              RelighterOptions options{device_selector(device), parse_precision(precision), specialise, lanes};
              options.terms = terms;
-             options.shadows = {parse_shadow_mode(shadows), shadow_steps, parse_shadow_thickness(shadow_thickness)};
+             options.shadows = {parse_shadow_mode(shadows), shadow_steps, parse_shadow_thickness(shadow_thickness),
+                                shadow_rays};
              check_options(options);  // before the device starts
              py::gil_scoped_release release;  // the kernel build and the packing take a while
              return Relighter(scene, gbuffer, options);
@@ -175,13 +176,15 @@ void bind_relighter(py::module_& module) {
            py::arg("scene"), py::arg("gbuffer"), py::arg("device") = py::none(), py::arg("precision") = "precise",
            py::arg("specialise") = true, py::arg("lanes") = 0, py::arg("shadows") = "auto",
            py::arg("shadow_steps") = ShadowSettings{}.steps,
-           py::arg("shadow_thickness") = format_shadow_thickness(ShadowSettings{}.thickness), py::arg("terms") = false,
+           py::arg("shadow_thickness") = format_shadow_thickness(ShadowSettings{}.thickness),
+           py::arg("shadow_rays") = ShadowSettings{}.rays, py::arg("terms") = false,
            "device: None (the default device, as phongcl shade picks it), an index or a name; precision: "
            "'precise', 'fast', 'double' or 'half-storage'; specialise=False for the general kernel; lanes: "
            "pixels per work-item (0: the device's choice); shadows: how lights with shadows=True cast them, "
            "'auto' (geometry when the scene has objects, else screen), 'screen', 'geometry' or 'off'; "
            "shadow_steps and shadow_thickness ('0.25' world units or '6%' of the depth): the screen-space "
-           "march's (docs/shadows.md); terms=True for shade_terms().")
+           "march's (docs/shadows.md); shadow_rays: geometry shadows' rays per pixel over an area light "
+           "without its own (1: a hard shadow); terms=True for shade_terms().")
       .def("shade", &shade, py::arg("out") = py::none(),
            "Shades the frame: float32 (H, W, 4), RGBA, background alpha 0. With out=, writes into that "
            "array (C-contiguous float32 (H, W, 4)) and returns it. Releases the GIL while shading.")

@@ -124,6 +124,11 @@ void bind_scene(py::module_& module) {
   vec3_property(light, "color", &Light::color, "Radiance, RGB, >= 0.");
   light.def_readwrite("shadows", &Light::shadows,
                       "Casts shadows (as the Relighter's shadows= mode makes them; docs/shadows.md).");
+  light.def_readwrite("radius", &Light::radius, "Point lights: a sphere's radius, for a soft shadow (0: a point).");
+  light.def_readwrite("angle_deg", &Light::angle_deg,
+                      "Directional lights: the sun's angular diameter in degrees, for a soft shadow (0: none).");
+  light.def_readwrite("shadow_rays", &Light::shadow_rays,
+                      "Rays for a soft shadow, 1 to 1024; 0: the Relighter's shadow_rays.");
   light.def_readwrite("group", &Light::group,
                       "Light group ('' for none): Relighter.shade_terms() returns each group's light apart.");
 
@@ -144,7 +149,10 @@ void bind_scene(py::module_& module) {
       "Rect: (width, height); disk: (diameter, diameter).");
   vec3_property(area, "color", &AreaLight::color, "Radiance, RGB, >= 0.");
   area.def_readwrite("range", &AreaLight::range, "> 0: windowed to 0 at this distance from the centre; 0: no range.")
-      .def_readwrite("shadows", &AreaLight::shadows, "Casts a hard shadow (one ray to the centre).")
+      .def_readwrite("shadows", &AreaLight::shadows, "Casts a shadow: soft, or hard with one ray (shadow_rays).")
+      .def_readwrite("shadow_rays", &AreaLight::shadow_rays,
+                     "Geometry shadows' rays over the emitter, 1 to 1024 (1: one ray to the centre); 0: the "
+                     "Relighter's shadow_rays.")
       .def_readwrite("group", &AreaLight::group, "Light group ('' for none).");
 
   py::class_<Material> material(module, "Material", "A Phong material: ka, kd, ks (RGB) and shininess.");

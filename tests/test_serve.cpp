@@ -30,6 +30,7 @@
 #include "color/color_conversion.h"
 #include "color/display.h"
 #include "serve/relight_server.h"
+#include "shading/shadow_settings.h"
 #include "serve_process.h"
 #include "serve_support.h"
 #include "temp_dir.h"
@@ -444,9 +445,11 @@ TEST_F(Serve, ShadowsAreASettingAndRejectBadInput) {
   EXPECT_EQ(settings["shadows"], "off");
   EXPECT_EQ(settings["shadow_steps"], 16);
   EXPECT_EQ(settings["shadow_thickness"], "0.5");
+  EXPECT_EQ(settings["shadow_rays"], ShadowSettings{}.rays);
   expect_error(client.Put("/api/settings", R"({"shadows": "soft"})", "application/json"), 400, "shadow mode");
   expect_error(client.Put("/api/settings", R"({"shadow_steps": 0})", "application/json"), 400, "steps");
   expect_error(client.Put("/api/settings", R"({"shadow_thickness": "-1"})", "application/json"), 400, "thickness");
+  expect_error(client.Put("/api/settings", R"({"shadow_rays": 2000})", "application/json"), 400, "shadow rays");
   EXPECT_EQ(body_json(client.Get("/api/settings"))["shadows"], "off");
 }
 

@@ -43,8 +43,8 @@ Scene casting_scene(const std::filesystem::path& dir, const glm::dvec3& offset, 
 // Decides one light's reference ray.
 using Decide = std::function<RayOutcome(const ReferenceShadowRay&)>;
 
-// The test scene lit also by two rects casting shadows from above (an area light's shadow is one
-// ray to its centre), every material's ks 0: the area lights' S is a stated quadrature
+// The test scene lit also by two rects casting hard shadows from above (one ray to the centre),
+// every material's ks 0: the area lights' S is a stated quadrature
 // (docs/shading.md "Area lights"), not held to the accuracy bound.
 Scene area_casting_scene(const std::filesystem::path& dir) {
   Scene scene = casting_scene(dir, {0, 0, 0});
@@ -56,6 +56,7 @@ Scene area_casting_scene(const std::filesystem::path& dir) {
   above.size = {0.8, 0.5};
   above.color = glm::dvec3(2.0);
   above.shadows = true;
+  above.shadow_rays = 1;
   AreaLight side = above;
   side.position = {-3.0, 2.5, 3.0};
   side.direction = {0.7, -0.3, -0.7};

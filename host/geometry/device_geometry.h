@@ -15,7 +15,8 @@ static_assert(sizeof(float) == 4 && sizeof(unsigned int) == 4);
 static_assert(sizeof(BvhNode) == 64 && offsetof(BvhNode, hi_x) == 24 && offsetof(BvhNode, first) == 48 &&
               offsetof(BvhNode, kind_count) == 56);
 static_assert(sizeof(ShadowPrimitive) == 48 && sizeof(ShadowPlane) == 16 && sizeof(ShadowBounds) == 24);
-static_assert(sizeof(ShadowCandidate) == 8 && sizeof(ShadowLight) == 16 && offsetof(ShadowLight, directional) == 12);
+static_assert(sizeof(ShadowCandidate) == 8 && sizeof(ShadowLight) == 32 && offsetof(ShadowLight, directional) == 12 &&
+              offsetof(ShadowLight, half_extent) == 16);
 static_assert(sizeof(CullLevel) == 16);
 static_assert(sizeof(ScreenMarch) == 96 && offsetof(ScreenMarch, scale_x) == 48 && offsetof(ScreenMarch, width) == 64 &&
               offsetof(ScreenMarch, steps) == 80);

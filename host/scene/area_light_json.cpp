@@ -44,8 +44,15 @@ AreaShape parse_area_shape(const std::string& name) {
   throw std::invalid_argument("'" + name + "' is not an area light shape (expected rect or disk)");
 }
 
+int read_shadow_rays(const JsonValue& value) {
+  const int rays = value.integer();
+  if (rays < 1 || rays > kMaxShadowRays)
+    value.fail("must be a whole number from 1 to " + std::to_string(kMaxShadowRays) + " (got " + std::to_string(rays) + ")");
+  return rays;
+}
+
 AreaLight read_area_light(const JsonObject& object) {
-  object.expect_keys({"type", "shape", "position", "direction", "up", "size", "color", "range", "shadows", "group"});
+  object.expect_keys({"type", "shape", "position", "direction", "up", "size", "color", "range", "shadows", "shadow_rays", "group"});
   AreaLight light;
   light.shape = read_shape(object.at("shape"));
   light.position = object.at("position").vec3();
@@ -78,6 +85,7 @@ AreaLight read_area_light(const JsonObject& object) {
     if (!(light.range > 0.0)) range->fail("must be > 0 (got " + format_number(light.range) + ")");
   }
   if (auto shadows = object.find("shadows")) light.shadows = shadows->boolean();
+  if (auto rays = object.find("shadow_rays")) light.shadow_rays = read_shadow_rays(*rays);
   if (auto group = object.find("group")) {
     light.group = group->string();
     if (!valid_light_group_name(light.group)) group->fail(kLightGroupNameRule);
@@ -103,6 +111,8 @@ void check_area_lights(const std::vector<AreaLight>& lights) {
     if (light.shape == AreaShape::rect)
       require(finite(light.up) && up_sine(light) > kMinimumUpSine, "up", "must not be zero or parallel to direction");
     require(std::isfinite(light.range) && light.range >= 0.0, "range", "must be finite and > 0 (0: no range)");
+    require(light.shadow_rays >= 0 && light.shadow_rays <= kMaxShadowRays, "shadow_rays",
+            "must be 1 to " + std::to_string(kMaxShadowRays) + " (0: the shade's default)");
     require(light.group.empty() || valid_light_group_name(light.group), "group", kLightGroupNameRule);
   }
 }

@@ -16,6 +16,9 @@ inline constexpr double kMaxAreaLightSize = 1e18;
 // light type uses).
 AreaLight read_area_light(const JsonObject& object);
 
+// A light's "shadow_rays": a whole number from 1 to kMaxShadowRays, else fails naming the file.
+int read_shadow_rays(const JsonValue& value);
+
 // The checks of read_area_light for area lights built in code: std::invalid_argument naming the
 // entry ("area_lights[0].size: must be finite and > 0").
 void check_area_lights(const std::vector<AreaLight>& lights);

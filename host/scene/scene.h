@@ -25,6 +25,10 @@ enum class LightType { point, directional, spot };
 // How a point or spot light dims with distance d: 1, 1/d, 1/d^2, 1/d^3 (the enum value is the power).
 enum class Falloff { none = 0, linear = 1, quadratic = 2, cubic = 3 };
 
+// The most shadow rays a light traces per pixel: 1024 rays put the penumbra's sampling error near
+// float's rounding of the fraction (docs/shadows.md "Soft shadows"); more only costs.
+inline constexpr int kMaxShadowRays = 1024;
+
 struct Light {
   LightType type = LightType::point;
   glm::dvec3 position{0.0};   // point and spot lights
@@ -36,9 +40,13 @@ struct Light {
   double cosine_power = 0.0;                           // spot: F gains max(0, dot(-l, axis))^p; 0: none
   std::optional<std::vector<int>> materials{};         // light linking: lights only these; absent: every material
   bool shadows = false;                                // casts shadows (when the shade's shadow mode is not off)
+  double radius = 0.0;     // point and spot: a sphere's radius, whose shadow is soft (docs/shadows.md); 0: a point
+  double angle_deg = 0.0;  // directional: the sun's angular diameter, in [0, 180), whose shadow is soft; 0: none
+  int shadow_rays = 0;     // with a size: rays for its soft shadow (1 to kMaxShadowRays); 0: the shade's
   std::string group{};                                 // light group: its light also goes to that layer; empty: none
 
   bool has_range() const { return range > 0.0; }
+  bool has_size() const { return radius > 0.0 || angle_deg > 0.0; }
   bool reaches(int material) const;  // light linking
   bool operator==(const Light&) const = default;
 };
@@ -67,7 +75,9 @@ struct AreaLight {
   glm::dvec2 size{1.0};                  // rect: width, height; disk: the diameter in x (the reader sets y to it too)
   glm::dvec3 color{1.0};
   double range = 0.0;  // > 0: windowed to 0 at this distance from the centre (as a point light's); 0: no range
-  bool shadows = false;  // casts a hard shadow, decided by one ray to the centre (when the shadow mode is not off)
+  bool shadows = false;  // casts a shadow (when the shadow mode is not off): soft, or hard with one ray
+  int shadow_rays = 0;   // rays over the emitter for its shadow in geometry mode, 1 to 1024 (1: one ray to the
+                         // centre, a hard shadow); 0: the shade's ShadowSettings::rays
   std::string group{};   // light group, as a Light's; empty: none
 
   bool has_range() const { return range > 0.0; }

@@ -27,7 +27,14 @@ void check_lights(const std::vector<Light>& lights, std::size_t material_count) 
     if (light.type != LightType::directional) {
       require(finite(light.position), entry + ".position", "must be finite");
       require(std::isfinite(light.range) && light.range >= 0.0, entry + ".range", "must be finite and > 0 (0: no range)");
+      require(std::isfinite(light.radius) && light.radius >= 0.0, entry + ".radius", "must be finite and >= 0 (0: a point)");
+      require(light.angle_deg == 0.0, entry + ".angle_deg", "is used only by directional lights");
+    } else {
+      require(light.angle_deg >= 0.0 && light.angle_deg < 180.0, entry + ".angle_deg", "must be in [0, 180) degrees");
+      require(light.radius == 0.0, entry + ".radius", "is not used by a directional light");
     }
+    require(light.shadow_rays >= 0 && light.shadow_rays <= kMaxShadowRays, entry + ".shadow_rays",
+            "must be 0 (the shade's) to 1024");
     if (light.type != LightType::point) {
       require(finite(light.direction), entry + ".direction", "must be finite");
       require(light.direction != glm::dvec3(0.0), entry + ".direction", "must not be zero");

@@ -102,7 +102,8 @@ std::vector<int> read_linked_materials(const JsonValue& value, std::size_t mater
 Light read_light(const JsonValue& value, std::size_t material_count) {
   const JsonObject object = value.object();
   object.expect_keys({"type", "position", "direction", "color", "falloff", "range", "cone_angle_deg",
-                      "penumbra_angle_deg", "cosine_power", "materials", "shadows", "group"});
+                      "penumbra_angle_deg", "cosine_power", "materials", "shadows", "radius", "angle",
+                      "shadow_rays", "group"});
   const std::string type = object.at("type").string();
   Light light;
   if (type == "point" || type == "spot") {
@@ -110,11 +111,18 @@ Light read_light(const JsonValue& value, std::size_t material_count) {
     light.position = object.at("position").vec3();
     if (auto falloff = object.find("falloff")) light.falloff = read_falloff(*falloff);
     if (auto range = object.find("range")) light.range = read_positive(*range);
+    if (auto radius = object.find("radius")) light.radius = read_non_negative(*radius);
+    if (object.has("angle")) object.at("angle").fail("is used only by directional lights (a point or spot takes 'radius')");
   } else if (type == "directional") {
     light.type = LightType::directional;
     if (object.has("position")) object.at("position").fail("is not used by a directional light (use 'direction')");
-    for (const char* key : {"falloff", "range"})
+    for (const char* key : {"falloff", "range", "radius"})
       if (object.has(key)) object.at(key).fail("is not used by a directional light (it has no distance)");
+    if (auto angle = object.find("angle")) {
+      light.angle_deg = angle->number();
+      if (!(light.angle_deg >= 0.0 && light.angle_deg < 180.0))
+        angle->fail("must be in [0, 180) degrees (got " + format_number(light.angle_deg) + ")");
+    }
   } else {
     throw InputError(value.file(), "unknown light type '" + type + "' in " + value.place() +
                                        " (expected point, spot, directional or area)");
@@ -136,6 +144,7 @@ Light read_light(const JsonValue& value, std::size_t material_count) {
   if (auto color = object.find("color")) light.color = read_non_negative_vec3(*color);
   if (auto materials = object.find("materials")) light.materials = read_linked_materials(*materials, material_count);
   if (auto shadows = object.find("shadows")) light.shadows = shadows->boolean();
+  if (auto rays = object.find("shadow_rays")) light.shadow_rays = read_shadow_rays(*rays);
   if (auto group = object.find("group")) {
     light.group = group->string();
     if (!valid_light_group_name(light.group)) group->fail(kLightGroupNameRule);

@@ -170,7 +170,8 @@ RenderSettings parse_settings(const std::string& body, RenderSettings settings, 
   const std::filesystem::path source = "settings";
   const json document = parse_json(body, source);
   const JsonObject object = JsonValue(document, "", source).object();
-  object.expect_keys({"precision", "specialise", "shadows", "shadow_steps", "shadow_thickness", "solo", "mute"});
+  object.expect_keys({"precision", "specialise", "shadows", "shadow_steps", "shadow_thickness", "shadow_rays", "solo",
+                      "mute"});
   if (auto value = object.find("precision")) {
     try {
       settings.precision = parse_precision(value->string());
@@ -198,6 +199,7 @@ RenderSettings parse_settings(const std::string& body, RenderSettings settings, 
   try {
     if (auto value = object.find("shadows")) settings.shadows.mode = parse_shadow_mode(value->string());
     if (auto value = object.find("shadow_steps")) settings.shadows.steps = value->integer();
+    if (auto value = object.find("shadow_rays")) settings.shadows.rays = value->integer();
     if (auto value = object.find("shadow_thickness"))
       settings.shadows.thickness = parse_shadow_thickness(value->string());
     check_shadow_settings(settings.shadows);
@@ -213,6 +215,7 @@ json settings_json(const RenderSettings& settings) {
           {"shadows", to_string(settings.shadows.mode)},
           {"shadow_steps", settings.shadows.steps},
           {"shadow_thickness", format_shadow_thickness(settings.shadows.thickness)},
+          {"shadow_rays", settings.shadows.rays},
           {"solo", settings.solo},
           {"mute", settings.muted}};
 }

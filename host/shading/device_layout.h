@@ -11,16 +11,16 @@ static_assert(sizeof(layout_float) == 4 && sizeof(layout_int) == 4 && sizeof(lay
 static_assert(offsetof(FrameScalars, background) == 16 && offsetof(FrameScalars, radiance_scale_a) == 32 &&
               offsetof(FrameScalars, point_count) == 40 && offsetof(FrameScalars, plane_stride) == 48 &&
               offsetof(FrameScalars, shadow_tiles) == 56 && offsetof(FrameScalars, scene) == 64 &&
-              offsetof(FrameScalars, tile_lists) == 96 && offsetof(FrameScalars, shadow_geometry) == 112 &&
-              offsetof(FrameScalars, shadow_lists) == 132 && offsetof(FrameScalars, grid) == 144 &&
-              offsetof(FrameScalars, shadow_grid) == 164 && offsetof(FrameScalars, shadow) == 184 &&
-              sizeof(FrameScalars) == 184 + sizeof(ShadowFrame));
-static_assert(sizeof(SceneTables) == 32 && sizeof(TileListTables) == 16 && sizeof(ShadowGeometryTables) == 20 &&
+              offsetof(FrameScalars, tile_lists) == 100 && offsetof(FrameScalars, shadow_geometry) == 116 &&
+              offsetof(FrameScalars, shadow_lists) == 136 && offsetof(FrameScalars, grid) == 148 &&
+              offsetof(FrameScalars, shadow_grid) == 168 && offsetof(FrameScalars, shadow) == 188 &&
+              offsetof(FrameScalars, first_pixel) == 60 && sizeof(FrameScalars) == 188 + sizeof(ShadowFrame));
+static_assert(sizeof(SceneTables) == 36 && sizeof(TileListTables) == 16 && sizeof(ShadowGeometryTables) == 20 &&
               sizeof(ShadowListTables) == 12);
 static_assert(PHONGCL_UNROLL_LIGHT_LIMIT <= PHONGCL_LIGHT_BLOCK, "an unrolled light loop is one compensated block");
 static_assert(sizeof(PointLight) == 48 && offsetof(PointLight, color) == 16 && offsetof(PointLight, position_rest) == 32);
 static_assert(sizeof(DirectionalLight) == 32 && offsetof(DirectionalLight, color) == 16);
-static_assert(sizeof(MaterialRecord) == 64);
+static_assert(sizeof(MaterialRecord) == 64 && sizeof(SoftLight) == 8);
 static_assert(offsetof(FrameScalars, area_count) == 52);
 static_assert(sizeof(AreaLightRecord) == 96 && offsetof(AreaLightRecord, color) == 64 && offsetof(AreaLightRecord, shape) == 80);
 static_assert(offsetof(MaterialRecord, ka) == MATERIAL_KA * sizeof(float) &&

@@ -70,7 +70,7 @@ std::size_t tile_pixels(const DeviceInfo& device, const Recipe& recipe, std::siz
 }
 
 DeviceUniforms upload_uniforms(const cl::Context& context, const UniformData& uniforms,
-                               const std::vector<cl_uint>& shadow_casters, std::size_t plane_stride) {
+                               const ShadowCasters& shadow_casters, std::size_t plane_stride) {
   TableBlockLayout block(kSceneTableAlignment);
   FrameScalars scalars = uniforms.scalars;
   scalars.scene = {.materials = block.add(uniforms.materials),
@@ -79,8 +79,9 @@ DeviceUniforms upload_uniforms(const cl::Context& context, const UniformData& un
                    .links = block.add(uniforms.links),
                    .directional_lights = block.add(uniforms.directional_lights),
                    .area_lights = block.add(uniforms.area_lights),
-                   .shadow_casters = block.add(shadow_casters),
-                   .light_groups = block.add(uniforms.light_groups)};
+                   .shadow_casters = block.add(shadow_casters.words),
+                   .light_groups = block.add(uniforms.light_groups),
+                   .soft_lights = block.add(shadow_casters.soft)};
   scalars.plane_stride = static_cast<layout_uint>(plane_stride);
   return DeviceUniforms{.scene = block.upload(context, CL_MEM_READ_ONLY),
                         .point_bounds = uniform_buffer(context, uniforms.point_bounds),

@@ -11,6 +11,7 @@
 #include "shading/pack.h"
 #include "shading/phong_arguments.h"
 #include "shading/recipe.h"
+#include "shading/shadow_inputs.h"
 
 namespace phongcl {
 
@@ -52,10 +53,10 @@ struct DeviceUniforms {
   cl::Buffer no_tables;     // stands in for a block the frame does not make (tile or shadow lists, geometry)
   FrameScalars scalars{};   // with scalars.scene saying where each table starts
 };
-// `shadow_casters`: ShadowCasters' words (shading/shadow_inputs.h); `plane_stride`: values per plane of
-// the tile the kernel will shade.
+// `shadow_casters`: the lights' shadow words and area lights' rays (shading/shadow_inputs.h);
+// `plane_stride`: values per plane of the tile the kernel will shade.
 DeviceUniforms upload_uniforms(const cl::Context& context, const UniformData& uniforms,
-                               const std::vector<cl_uint>& shadow_casters, std::size_t plane_stride);
+                               const ShadowCasters& shadow_casters, std::size_t plane_stride);
 
 // phong.cl's phong_shade in `program`.
 cl::Kernel phong_kernel(const cl::Program& program);

@@ -125,14 +125,16 @@ PhongShader::FrameSetup PhongShader::prepare(const Scene& scene, const GBuffer& 
   const std::size_t stride =
       round_up(tile_pixels(compute_.device.info, recipe, pixels, max_tile_pixels), static_cast<std::size_t>(recipe.lanes));
   const std::size_t plane_bytes = stride * recipe.plane_count() * (half ? sizeof(cl_half) : sizeof(cl_float));
-  if (!uniforms_ || uniforms_options_ != report.build_options || uniforms_stride_ != stride) {
+  if (!uniforms_ || uniforms_options_ != report.build_options || uniforms_stride_ != stride ||
+      uniforms_rays_ != recipe.shadow_settings.rays) {
     const auto upload_start = Clock::now();
-    const ShadowCasters casters = shadow_casters(scene);
-    uniforms_ = upload_uniforms(context, pack_uniforms(scene, recipe), casters.words, stride);
+    const ShadowCasters casters = shadow_casters(scene, recipe.shadow_settings);
+    uniforms_ = upload_uniforms(context, pack_uniforms(scene, recipe), casters, stride);
     shadow_lights_ = table_buffer(context, casters.lights);
     shadow_light_count_ = casters.lights.size();
     uniforms_options_ = report.build_options;
     uniforms_stride_ = stride;
+    uniforms_rays_ = recipe.shadow_settings.rays;
     report.timings.upload_ms += milliseconds(upload_start, Clock::now());
   }
   prepare_shadows(scene, gbuffer, recipe, report);
@@ -199,6 +201,7 @@ cl::Event PhongShader::cull_and_launch(cl::Kernel& kernel, FrameSetup& frame, co
   }
   const ShadowLists* lists = shadow_culler ? &shadow_culler->lists() : nullptr;
   FrameScalars scalars = uniforms.scalars;
+  scalars.first_pixel = static_cast<cl_uint>(first);
   if (culler) {
     scalars.grid = frame.tiles.grid;
     scalars.tile_lists = culler->tables();

@@ -127,9 +127,10 @@ class PhongShader {
   ProgramCache& cache_;
   std::optional<cl::Kernel> kernel_;  // built for kernel_options_
   std::string kernel_options_;
-  std::optional<DeviceUniforms> uniforms_;  // packed for uniforms_options_ and uniforms_stride_
+  std::optional<DeviceUniforms> uniforms_;  // packed for uniforms_options_, uniforms_stride_ and uniforms_rays_
   std::string uniforms_options_;
   std::size_t uniforms_stride_ = 0;
+  int uniforms_rays_ = 0;  // the default shadow rays the area lights' table was packed with
   std::optional<PackedFrame> packed_;  // the planes hold the whole frame, packed for this
   std::uint64_t packings_ = 0;         // the planes' packings so far: the last one's number (BoxesKey)
   std::optional<ResidentShadows> shadows_;

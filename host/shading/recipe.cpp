@@ -290,6 +290,26 @@ void decide_materials(Recipe& recipe, const Scene& scene, const GBuffer& gbuffer
   per_pixel("PER_PIXEL_Q", recipe.per_pixel_shininess, "shininess");
 }
 
+// Soft shadows: lights with a size (area lights, spheres, suns with an angle) that cast them with
+// more than one ray, traced against the geometry (screen space keeps one ray to the centre).
+// Without one, nothing of them is compiled in, and the hard shadows shade as before, bit for bit.
+void decide_soft_shadows(Recipe& recipe, const Scene& scene) {
+  int soft = 0, most_rays = 0;
+  auto count = [&](bool shadows, int rays) {
+    if (!shadows || rays < 2) return;
+    ++soft;
+    most_rays = std::max(most_rays, rays);
+  };
+  if (recipe.shadows == ShadowMode::geometry) {
+    for (const Light& light : scene.lights) count(light.shadows, shadow_rays(light, recipe.shadow_settings));
+    for (const AreaLight& light : scene.area_lights) count(light.shadows, shadow_rays(light, recipe.shadow_settings));
+  }
+  const std::string why = soft > 0 ? "soft shadows: " + plural(soft, "light") + " with a size, up to " +
+                                         std::to_string(most_rays) + " rays each over the emitter"
+                                   : "soft shadows: compiled out (no light with a size traces more than one ray)";
+  add_flag(recipe, "SOFT_SHADOWS", soft > 0, why, soft > 0 ? "soft shadows (" + plural(soft, "light") + ")" : "");
+}
+
 // Lights cast shadows when they ask ("shadows": true) and the mode is not off: auto traces the
 // scene's objects when it has some, else marches across the G-buffer's depth. Decided by the scene
 // in the general kernel too: without a light that casts them nothing of it is compiled in.
@@ -322,6 +342,7 @@ void decide_shadows(Recipe& recipe, const Scene& scene, const ShadeOptions& opti
            mode == ShadowMode::off ? "" : to_string(mode) + " shadows (" + casters + ")");
   add_flag(recipe, "SCREEN_SHADOWS", mode == ShadowMode::screen,
            mode == ShadowMode::screen ? "screen-space shadows: " + march : "screen-space shadows: none");
+  decide_soft_shadows(recipe, scene);
 }
 
 // Light groups are AOVs: their layers are written with the terms; without terms the kernel is the

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <numbers>
 
 #include "geometry/device_geometry.h"
 #include "geometry/scene_bvh.h"
@@ -57,24 +58,38 @@ std::string describe_shadows(ShadowMode mode, int casters, const ShadowSettings&
 
 namespace {
 
-ShadowLight shadow_light(const glm::dvec3& where, bool directional) {
-  return {{static_cast<float>(where.x), static_cast<float>(where.y), static_cast<float>(where.z)}, directional ? 1u : 0u};
+ShadowLight shadow_light(const glm::dvec3& where, bool directional, float half_extent) {
+  return {{static_cast<float>(where.x), static_cast<float>(where.y), static_cast<float>(where.z)},
+          directional ? 1u : 0u,
+          {half_extent, half_extent, half_extent},
+          0.0f};
 }
 
 }  // namespace
 
-ShadowCasters shadow_casters(const Scene& scene) {
+ShadowCasters shadow_casters(const Scene& scene, const ShadowSettings& settings) {
   ShadowCasters casters;
   const glm::dvec3& eye = scene.camera.eye;
-  auto add = [&](bool casts, const glm::dvec3& where, bool directional) {
+  // `extent`: how far from `where` a soft light's rays may end (its bounding sphere), 0 when hard.
+  auto add = [&](bool casts, const glm::dvec3& where, bool directional, int rays, double size, double extent) {
     casters.words.push_back(casts ? static_cast<cl_uint>(casters.lights.size() + 1) : 0u);
-    if (casts) casters.lights.push_back(shadow_light(where, directional));
+    // Rounded up past float's rounding of the kernel's sample points.
+    const float half_extent = rays > 1 ? static_cast<float>(extent * (1.0 + 0x1p-20)) : 0.0f;
+    if (casts) casters.lights.push_back(shadow_light(where, directional, half_extent));
+    casters.soft.push_back({static_cast<cl_uint>(rays), static_cast<float>(size)});
   };
   for_each_light_in_kernel_order(scene.lights, [&](const Light& light) {
-    const bool directional = light.type == LightType::directional;
-    add(light.shadows, directional ? -glm::normalize(light.direction) : light.position - eye, directional);
+    const int rays = shadow_rays(light, settings);
+    if (light.type == LightType::directional) {
+      const double half_angle = light.angle_deg / 2.0 * std::numbers::pi / 180.0;
+      add(light.shadows, -glm::normalize(light.direction), true, rays, std::tan(half_angle), 0.0);
+    } else {
+      add(light.shadows, light.position - eye, false, rays, light.radius, light.radius);
+    }
   });
-  for (const AreaLight& light : scene.area_lights) add(light.shadows, light.position - eye, false);
+  for (const AreaLight& light : scene.area_lights)  // half the diagonal bounds the emitter in any orientation
+    add(light.shadows, light.position - eye, false, shadow_rays(light, settings), 0.0,
+        0.5 * std::hypot(light.size.x, light.size.y));
   return casters;
 }
 

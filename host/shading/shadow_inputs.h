@@ -47,11 +47,13 @@ std::string describe_shadows(ShadowMode mode, int casters, const ShadowSettings&
 // The lights that cast shadows: one word per light in the kernel's table order (point and spot
 // lights, then directional ones, then area lights), 1 + the light's place in `lights` where it casts
 // shadows, else 0; and for tiled shadow culling each caster as its rays end, relative to the eye in
-// double as the light tables are (an area light's ray runs to its centre).
+// double as the light tables are (an area light's rays run to its centre; with several rays a
+// light's run anywhere in its bounding box); and each light's SoftLight, in the same order.
 struct ShadowCasters {
   std::vector<cl_uint> words;
   std::vector<ShadowLight> lights;
+  std::vector<SoftLight> soft;
 };
-ShadowCasters shadow_casters(const Scene& scene);
+ShadowCasters shadow_casters(const Scene& scene, const ShadowSettings& settings);
 
 }  // namespace phongcl

@@ -51,6 +51,18 @@ void check_shadow_settings(const ShadowSettings& settings) {
   if (!std::isfinite(settings.thickness) || settings.thickness == 0.0 || settings.thickness < -10.0)
     throw std::invalid_argument("shadow thickness must be a positive length or a percentage up to 1000% (got " +
                                 format_shadow_thickness(settings.thickness) + ")");
+  if (settings.rays < 1 || settings.rays > kMaxShadowRays)
+    throw std::invalid_argument("shadow rays must be 1 to " + std::to_string(kMaxShadowRays) + " (got " +
+                                std::to_string(settings.rays) + ")");
+}
+
+int shadow_rays(const AreaLight& light, const ShadowSettings& settings) {
+  return light.shadow_rays > 0 ? light.shadow_rays : settings.rays;
+}
+
+int shadow_rays(const Light& light, const ShadowSettings& settings) {
+  if (!light.has_size()) return 1;
+  return light.shadow_rays > 0 ? light.shadow_rays : settings.rays;
 }
 
 }  // namespace phongcl

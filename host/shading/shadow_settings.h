@@ -3,6 +3,8 @@
 // settings. A light casts shadows only when its "shadows" is true and the mode is not off.
 #include <string>
 
+#include "scene/scene.h"
+
 namespace phongcl {
 
 enum class ShadowMode {
@@ -20,6 +22,8 @@ struct ShadowSettings {
   ShadowMode mode = ShadowMode::automatic;
   int steps = 32;            // screen: samples along each ray, 1 to 1024
   double thickness = -0.06;  // screen: > 0 world units; < 0 that fraction of the surface's depth
+  int rays = 16;             // geometry: rays per pixel over an area light without its own "shadow_rays",
+                             // 1 to kMaxShadowRays (1: one ray to the centre, a hard shadow)
   bool operator==(const ShadowSettings&) const = default;
 };
 
@@ -30,5 +34,10 @@ std::string format_shadow_thickness(double thickness);
 
 // Throws std::invalid_argument naming the setting that is out of range.
 void check_shadow_settings(const ShadowSettings& settings);
+
+// The rays a light's shadow takes in geometry mode: its own "shadow_rays", else the settings'; 1
+// (one ray, a hard shadow) for a point, spot or directional light without a size.
+int shadow_rays(const AreaLight& light, const ShadowSettings& settings);
+int shadow_rays(const Light& light, const ShadowSettings& settings);
 
 }  // namespace phongcl

@@ -34,7 +34,9 @@ void add_bench_command(CLI::App& app) {
   command->add_option("--compressions", args->compressions, "--sequence: EXR compressions to measure (default zip,piz)");
   command->add_flag("--shadows", args->shadows,
                     "Shadows: screen-space marches against exact geometry shadows (error against run time), and the "
-                    "BVH traversal against Embree on the same rays");
+                    "BVH traversal against Embree on the same rays, and soft shadows' error against their rays");
+  command->add_flag("--soft-shadows", args->soft_shadows,
+                    "Soft shadows alone (a part of --shadows): area lights' error and time at 1 to 64 rays");
   command->add_option("--mesh-triangles", args->mesh_triangles, "--shadows: triangles of the mesh scene (default 128000)")
       ->check(CLI::Range(1000, 100000000));
   command->add_flag("--display", args->display,
@@ -44,13 +46,16 @@ void add_bench_command(CLI::App& app) {
                     "Time light groups: the scene at 1920x1080 under 4 groups of 4 point lights, against the same 16 "
                     "lights without groups (kernel and download apart)");
   command->callback([args] {
-    if (args->throughput + args->many_lights + args->sequence + args->shadows + args->display + args->groups > 1)
+    if (args->throughput + args->many_lights + args->sequence + args->shadows + args->soft_shadows + args->display +
+            args->groups > 1)
       throw CLI::ValidationError(
-          "--throughput, --sequence, --many-lights, --shadows, --display and --groups are separate benchmarks: pick one");
+          "--throughput, --sequence, --many-lights, --shadows, --soft-shadows, --display and --groups are separate "
+          "benchmarks: pick one");
     if (args->peer_schedules && !args->many_lights)
       throw CLI::ValidationError("--peer-schedules is an option of --many-lights");
     if (args->groups) return run_groups_bench(*args);
     if (args->shadows) return run_shadows_bench(*args);
+    if (args->soft_shadows) return run_soft_shadow_bench(*args);
     if (args->sequence) return run_sequence_bench(*args);
     if (args->display) return run_display_bench(*args);
     if (args->many_lights) return run_many_lights_bench(*args);

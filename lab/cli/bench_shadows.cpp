@@ -1,5 +1,5 @@
-// phongcl bench --shadows: shadows' error against run time, and the OpenCL traversal against Embree
-// on the same rays.
+// phongcl bench --shadows: shadows' error against run time, soft shadows' against their rays, and
+// the OpenCL traversal against Embree on the same rays.
 #include <iostream>
 
 #include "cli/bench_arguments.h"
@@ -17,6 +17,7 @@ void run_shadows_bench(const BenchArguments& args) {
   std::cout << "phongcl bench --shadows (" << args.runs << " timed runs per variant after one warm-up; load "
             << machine.load_start << ")\n";
   const std::vector<ShadowSceneResult> scenes = run_shadow_error_bench(args, scratch.path());
+  run_soft_shadow_bench(args);
   const ShadowRaysResult rays = run_shadow_rays_bench(args, scratch.path());
   std::cout << "\nShadow rays: " << rays.rays << " rays on " << rays.triangles << " triangles; " << rays.device << "; "
             << rays.embree << "\n\n" << shadow_rays_table(rays);

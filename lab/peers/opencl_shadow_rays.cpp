@@ -65,7 +65,7 @@ void OpenClShadowRays::set_frame(const PackedFrame& frame, int width, int height
     const bool directional = light.type == LightType::directional;
     const glm::dvec3 where = directional ? -glm::normalize(light.direction) : light.position - eye;
     lights.push_back({{static_cast<float>(where.x), static_cast<float>(where.y), static_cast<float>(where.z)},
-                      directional ? 1u : 0u});
+                      directional ? 1u : 0u, {0.0f, 0.0f, 0.0f}, 0.0f});
   }
   lights_ = table_buffer(compute_.context, lights);
   light_count_ = lights.size();

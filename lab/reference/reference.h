@@ -31,6 +31,13 @@ struct ShadingTerms {
 // Whether a light that casts shadows reaches a point (lab/reference/reference_shadows.h decides it
 // by brute force, reference_screen_shadows.h by the march); empty: every light reaches everything.
 using LightReach = std::function<bool(const SurfacePoint& point, const Light& light)>;
+// Soft shadows: the visible fraction of a light's emitter from a point, which its light is multiplied
+// by (reference_soft_shadows.h). Where set, they decide the lights that cast shadows, not LightReach:
+// `area` every area light, `sized` point, spot and directional lights with a size.
+struct SoftVisibility {
+  std::function<double(const SurfacePoint& point, const AreaLight& light)> area;
+  std::function<double(const SurfacePoint& point, const Light& light)> sized;
+};
 
 // What the specular term takes from a light of unit colour and F = 1 per unit ks, for unit n, v and
 // l with n.l > 0 (docs/shading.md "Specular models"): max(0, v.r)^q or max(0, n.h)^q, the
@@ -38,13 +45,15 @@ using LightReach = std::function<bool(const SurfacePoint& point, const Light& li
 double reference_specular_lobe(SpecularModel model, const glm::dvec3& n, const glm::dvec3& v, const glm::dvec3& l,
                                double shininess);
 
-ShadingTerms reference_shade_point(const Scene& scene, const SurfacePoint& point, const LightReach& reaches = {});
+ShadingTerms reference_shade_point(const Scene& scene, const SurfacePoint& point, const LightReach& reaches = {},
+                                   const SoftVisibility& soft = {});
 
 // The material of a shaded pixel: per-pixel channels where present, else the scene's table.
 SurfacePoint reference_surface(const Scene& scene, const GBuffer& gbuffer, std::size_t index);
 
 // The whole image: shaded pixels get total() (alpha 1), the rest the scene background (alpha 0).
-Image reference_image(const Scene& scene, const GBuffer& gbuffer, const LightReach& reaches = {});
+Image reference_image(const Scene& scene, const GBuffer& gbuffer, const LightReach& reaches = {},
+                      const SoftVisibility& soft = {});
 
 // The scene lit by one light group alone (`group` empty: the ungrouped lights), point, spot,
 // directional and area lights alike, with no ambient: its reference_image() is that group's layer

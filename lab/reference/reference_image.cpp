@@ -4,12 +4,13 @@
 
 namespace phongcl {
 
-Image reference_image(const Scene& scene, const GBuffer& gbuffer, const LightReach& reaches) {
+Image reference_image(const Scene& scene, const GBuffer& gbuffer, const LightReach& reaches,
+                      const SoftVisibility& soft) {
   Image image = image_like(gbuffer);
   for (std::size_t i = 0; i < gbuffer.pixel_count(); ++i) {
     float* out = image.pixel(i);
     if (classify_pixel(gbuffer, i) == PixelClass::shaded) {
-      const glm::dvec3 color = reference_shade_point(scene, reference_surface(scene, gbuffer, i), reaches).total();
+      const glm::dvec3 color = reference_shade_point(scene, reference_surface(scene, gbuffer, i), reaches, soft).total();
       // IEEE round-to-nearest: +Inf exactly when the double colour overflows float, never earlier.
       // Edge policy: colour premultiplied by the pixel's coverage, which is its alpha.
       const double coverage = gbuffer.has_coverage() ? gbuffer.coverage[i] : 1.0;

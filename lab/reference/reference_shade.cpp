@@ -80,7 +80,8 @@ double reference_specular_lobe(SpecularModel model, const glm::dvec3& n, const g
   return 0.0;
 }
 
-ShadingTerms reference_shade_point(const Scene& scene, const SurfacePoint& point, const LightReach& reaches) {
+ShadingTerms reference_shade_point(const Scene& scene, const SurfacePoint& point, const LightReach& reaches,
+                                   const SoftVisibility& soft) {
   ShadingTerms terms;
   terms.ambient = point.ka * scene.ambient;
 
@@ -91,14 +92,15 @@ ShadingTerms reference_shade_point(const Scene& scene, const SurfacePoint& point
   glm::dvec3 diffuse(0.0), specular(0.0);  // sums of Li * F * (n.l) and Li * F * lobe
   for (const Light& light : scene.lights) {
     if (!light.reaches(point.material)) continue;
-    if (reaches && light.shadows && !reaches(point, light)) continue;
+    const bool sized = soft.sized && light.shadows && light.has_size();
+    if (!sized && reaches && light.shadows && !reaches(point, light)) continue;
     // l points from the surface towards the light; a directional light's direction is the way it
     // travels, hence the minus sign.
     const bool positional = light.type != LightType::directional;
     const glm::dvec3 l = positional ? robust_normalize(light.position - point.position) : -robust_normalize(light.direction);
     const double ndl = glm::dot(n, l);
     if (!(ndl > 0.0)) continue;  // back-facing, zero normal, or light at the point
-    const double factor = positional ? light_factor(light, point.position, l) : 1.0;
+    const double factor = (positional ? light_factor(light, point.position, l) : 1.0) * (sized ? soft.sized(point, light) : 1.0);
     if (factor == 0.0) continue;
 
     diffuse += product(light.color, glm::dvec3(ndl * factor));
@@ -109,9 +111,10 @@ ShadingTerms reference_shade_point(const Scene& scene, const SurfacePoint& point
   const glm::dvec3 r = 2.0 * glm::dot(n, v) * n - v;
   for (const AreaLight& light : scene.area_lights) {
     if (n == glm::dvec3(0.0)) break;
-    if (reaches && light.shadows && !reaches(point, area_shadow_light(light))) continue;
+    const bool traced = soft.area && light.shadows;
+    if (!traced && reaches && light.shadows && !reaches(point, area_shadow_light(light))) continue;
     const AreaIntegrals integrals = reference_area_integrals(light, point.position, n, r, point.shininess);
-    const double window = area_range_window(light, point.position);
+    const double window = area_range_window(light, point.position) * (traced ? soft.area(point, light) : 1.0);
     diffuse += product(light.color, glm::dvec3(integrals.irradiance * window));
     specular += product(light.color, glm::dvec3(integrals.highlight * window));
   }

@@ -236,6 +236,8 @@ def test_shadows_are_a_relighter_option(scene, gbuffer):
         phongcl.Relighter(casting, gbuffer, shadows="sideways")
     with pytest.raises(ValueError, match="thickness"):
         phongcl.Relighter(casting, gbuffer, shadows="screen", shadow_thickness="-3")
+    with pytest.raises(ValueError, match="shadow rays"):
+        phongcl.Relighter(casting, gbuffer, shadow_rays=0)
 
 
 @needs_device

@@ -76,8 +76,9 @@ AREA_RADIANCE_PER_WATT = 1.0 / math.pi if at_least(4) else 0.25
 # (intern/cycles/kernel/light/spot.h, spot_light_attenuation(): the smoothstep only, read in 4.3.2's source).
 SPOT_COSINE_POWER = None if at_least(4) else 1
 
-# Point and spot radius. 4.0 made them spheres with "soft falloff" (Light.use_soft_falloff, on by default;
-# intern/cycles/kernel/light/point.h): with a radius of 0, the exporter's only case, both are a point.
+# Point and spot radius (shadow_soft_size): 3.x lights from a disk of that radius facing the shaded point,
+# 4.0 made them spheres with "soft falloff" (Light.use_soft_falloff, on by default;
+# intern/cycles/kernel/light/point.h); with a radius of 0 both are a point. phongcl takes it as "radius".
 def point_radius(light_data):
     return light_data.shadow_soft_size
 

@@ -19,8 +19,12 @@ name those cases.
   cos(spot_size/2) and smoothsteps over the spot_blend fraction of 1 - cos(spot_size/2) above it,
   in cosines, as phongcl's penumbra does, so cone_angle_deg is the angle whose cosine ends that
   blend and penumbra_angle_deg the rest of spot_size/2; inside the cone Cycles 3.x also multiplies by
-  that cosine, so Blender 3.x spots get "cosine_power": 1 (4.0 dropped the factor). A point or spot of
-  a non-zero radius is exported as a point, with a note.
+  that cosine, so Blender 3.x spots get "cosine_power": 1 (4.0 dropped the factor). A point or spot's
+  radius (shadow_soft_size) becomes its "radius" and a sun's angle its "angle" (degrees): phongcl casts
+  their soft shadows (docs/shadows.md "Soft shadows"), while its unshadowed light stays a point's or a
+  parallel light's; Cycles 3.x lights from a disk of that radius facing the point (dimmer by about
+  d^2 / (d^2 + r^2) close to it), 4.0+ from a sphere (a point's light wherever all of it is above the
+  horizon), so a note says so where the radius is more than a tenth of the distance to the meshes' centre.
 - Area lights (square, rectangle, disk; ellipses are skipped with a note): Cycles 3.x gives an area
   light of P watts and area A the radiance P / (4 A) (kernel/light/light.h: eval_fac = 0.25 *
   invarea, strength = colour * energy; measured with Blender 3.4.1 under a square, a rectangle and
@@ -29,8 +33,8 @@ name those cases.
   1/pi in, so it is colour * P / (4 pi A) for 3.x and colour * P / (pi^2 A) for 4.0+.
   The emitting side is the light's -Z, the rect's height runs along its +Y, and the sizes are
   scaled by the object's scale as Cycles does. An area light that casts shadows in Cycles gets
-  "shadows": true, but phongcl's is a hard shadow, decided by one ray to the emitter's centre (Cycles'
-  is soft): a note says so.
+  "shadows": true: a soft shadow with phongcl's --shadows geometry, a hard one from its centre in
+  screen space.
 - Materials by pass index (Material.pass_index): a Principled BSDF becomes "blinn-phong-normalized"
   (phongcl's ks (q+8)/8 (n.h)^q n.l, a BRDF) with kd = base colour * (1 - metallic),
   ks = mix(F0, base colour, metallic) (the BSDF's normal-incidence reflectance; F0 = 0.08 * Specular
@@ -178,8 +182,6 @@ def area_light_json(light):
         note("area light '%s' has no area (size %g x %g): skipped, no light exported for it" % (light.name, width, height))
         return None
     entry["color"] = rounded(Vector(data.color) * data.energy * versions.AREA_RADIANCE_PER_WATT / (math.pi * area))
-    if versions.casts_shadow(data):
-        note("area light '%s' casts soft shadows in Cycles; phongcl's are hard, from its centre" % light.name)
     return with_shadow_and_group(light, entry)
 
 
@@ -193,6 +195,8 @@ def lights_json(scene, falloff):
             direction = light.matrix_world.to_3x3() @ Vector((0.0, 0.0, -1.0))
             entry = {"type": "directional", "direction": rounded(direction.normalized()),
                      "color": rounded(colour * data.energy / math.pi)}
+            if data.angle > 0.0:
+                entry["angle"] = round(math.degrees(data.angle), 6)
             lights.append(with_shadow_and_group(light, entry))
             continue
         if data.type == "AREA":
@@ -205,9 +209,12 @@ def lights_json(scene, falloff):
             continue
         position = light.matrix_world.translation
         entry = {"type": "point", "position": rounded(position)}
-        if versions.point_radius(data) > 0.0:
-            note("%s light '%s' has a radius of %.3g m: exported as a point (the same light beyond a few radii, "
-                 "hard shadows)" % (data.type.lower(), light.name, versions.point_radius(data)))
+        radius = versions.point_radius(data)
+        if radius > 0.0:
+            entry["radius"] = round(radius, 9)
+            if radius > 0.1 * (position - centre).length:
+                note("%s light '%s' has a radius of %.3g m, near the meshes: phongcl's light is a point's, its shadow "
+                     "a sphere's" % (data.type.lower(), light.name, radius))
         if data.type == "SPOT":
             entry.update(spot_cone(light))
         intensity = colour * data.energy / (4.0 * math.pi ** 2)

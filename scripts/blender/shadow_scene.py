@@ -2,17 +2,23 @@
 point lights that cast hard shadows, pure diffuse (Lambert), no bounces, and Cycles' direct diffuse
 light of each light alone, rendered from pixel centres (box filter of 0.01 px, one sample: with one
 point light of radius 0 and no bounces, the direct light at a pixel centre is exact, noiseless).
+With --soft the lights have a size and cast soft shadows: a 2 m square area light, a point and a spot
+light of radius 0.25 m and a sun of 10 degrees, each rendered with --samples samples per pixel (the
+penumbra's light is then an estimate whose noise the comparison's tolerance must hold).
 
-    blender -b --factory-startup --python scripts/blender/shadow_scene.py -- --out DIR [--width 320 --height 240]
+    blender -b --factory-startup --python scripts/blender/shadow_scene.py -- --out DIR [--width 320 --height 240] [--soft --samples 512]
 
 writes DIR/shadows.blend, and with export_scene.py (--geometry) DIR/scene.json, DIR/gbuffer.exr and
 DIR/meshes/*.ply, then DIR/light0.exr, DIR/light1.exr: each light alone, its DiffDir (direct diffuse
 light), DiffCol (albedo) and IndexOB (object index, for finding silhouettes) passes.
 """
+import argparse
+import math
 import os
 import sys
 
 import bpy
+from mathutils import Vector
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import blender_versions as versions  # noqa: E402
@@ -20,6 +26,10 @@ import export_scene  # noqa: E402
 import make_fixtures  # noqa: E402
 
 LIGHTS = (("key", (3.0, -2.0, 5.0), 1000.0), ("fill", (-3.5, -1.0, 3.0), 600.0))
+# --soft: name, type, location, watts (W/m^2 for the sun), size (area: metres; point, spot: radius;
+# sun: angle in degrees)
+SOFT_LIGHTS = (("panel", "AREA", (0.5, -0.5, 4.0), 600.0, 2.0), ("bulb", "POINT", (3.0, -2.0, 5.0), 1000.0, 0.25),
+               ("cone", "SPOT", (-3.5, -1.0, 3.0), 800.0, 0.25), ("sun", "SUN", (0.0, 0.0, 6.0), 3.0, 10.0))
 
 
 def diffuse_material(name, colour, pass_index):
@@ -37,7 +47,34 @@ def diffuse_material(name, colour, pass_index):
     return m
 
 
-def build_shadow_scene(width, height):
+def add_point_lights():
+    for name, location, energy in LIGHTS:
+        bpy.ops.object.light_add(type="POINT", location=location)
+        light = bpy.context.object
+        light.name = name
+        light.data.energy = energy
+        light.data.shadow_soft_size = 0.0  # a point: hard shadows
+
+
+def add_soft_lights():
+    for name, kind, location, energy, size in SOFT_LIGHTS:
+        bpy.ops.object.light_add(type=kind, location=location)
+        light = bpy.context.object
+        light.name = name
+        light.data.energy = energy
+        # Aimed at the scene's middle: the lights' -Z towards (0, 0, 0.5).
+        light.rotation_euler = (Vector((0.0, 0.0, 0.5)) - Vector(location)).to_track_quat("-Z", "Y").to_euler()
+        if kind == "AREA":
+            light.data.size = size
+        elif kind == "SUN":
+            light.data.angle = math.radians(size)
+        else:
+            light.data.shadow_soft_size = size
+        if kind == "SPOT":
+            light.data.spot_size, light.data.spot_blend = math.radians(90.0), 0.2
+
+
+def build_shadow_scene(width, height, add_lights=add_point_lights, samples=1):
     scene = make_fixtures.empty_scene(width, height, strength=0.0)  # no ambient light
 
     objects = []
@@ -56,17 +93,12 @@ def build_shadow_scene(width, height):
         obj.data.materials.append(material)
         obj.pass_index = index
 
-    for name, location, energy in LIGHTS:
-        bpy.ops.object.light_add(type="POINT", location=location)
-        light = bpy.context.object
-        light.name = name
-        light.data.energy = energy
-        light.data.shadow_soft_size = 0.0  # a point: hard shadows
+    add_lights()
 
     make_fixtures.add_camera(scene, location=(6.5, -6.0, 3.6), target=(0.0, 0.0, 0.5), lens=40.0)
     bpy.context.view_layer.update()
 
-    make_fixtures.cycles(scene, 1)
+    make_fixtures.cycles(scene, samples)
     scene.cycles.max_bounces = 0
     scene.cycles.pixel_filter_type, scene.cycles.filter_width = "BOX", 0.01
     layer = bpy.context.view_layer
@@ -90,9 +122,19 @@ def render_each_light(scene, directory):
 
 
 def main():
-    args = make_fixtures.output_arguments("shadow_scene.py", 320, 240)
-    out = args.out
-    scene = build_shadow_scene(args.width, args.height)
+    parser = argparse.ArgumentParser(prog="shadow_scene.py")
+    parser.add_argument("--out", required=True)
+    parser.add_argument("--width", type=int, default=320)
+    parser.add_argument("--height", type=int, default=240)
+    parser.add_argument("--soft", action="store_true", help="lights with a size, casting soft shadows")
+    parser.add_argument("--samples", type=int, default=512, help="--soft: samples per pixel")
+    args = parser.parse_args(sys.argv[sys.argv.index("--") + 1:])
+    out = os.path.abspath(args.out)
+    os.makedirs(out, exist_ok=True)
+    if args.soft:
+        scene = build_shadow_scene(args.width, args.height, add_soft_lights, args.samples)
+    else:
+        scene = build_shadow_scene(args.width, args.height)
     bpy.ops.wm.save_as_mainfile(filepath=os.path.join(out, "shadows.blend"))
     export_scene.render_gbuffer(scene, os.path.join(out, "gbuffer.exr"))
     objects = export_scene.export_geometry(scene, os.path.join(out, "meshes"), out)

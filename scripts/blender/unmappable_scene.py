@@ -1,6 +1,6 @@
 """A scene holding what export_scene.py cannot map, for scripts/checks/61-blender-notes.sh: a world lit by
 an Environment Texture (an HDRI), an ellipse area light, a Principled BSDF that emits and whose Base Color
-is fed by a texture, a Glass BSDF, and point and spot lights of a non-zero radius. Writes the scene JSON;
+is fed by a texture, a Glass BSDF, and a spot light of a non-zero radius (exported as its "radius"). Writes the scene JSON;
 the exporter's notes go to standard output. No render.
 
     blender -b --factory-startup --python scripts/blender/unmappable_scene.py -- --out scene.json
