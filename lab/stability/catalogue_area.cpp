@@ -27,8 +27,8 @@ StabilityCase area_case(std::string name, std::string what, AreaLight light, dou
   for (std::size_t i = 0; i < positions.size(); ++i) {
     set_surface(c.gbuffer, i, positions[i], normals[i]);
     const glm::dvec3 p(positions[i]), n = glm::normalize(glm::dvec3(normals[i]));
-    const glm::dvec3 v = glm::normalize(c.scene.camera.eye - p), r = 2.0 * glm::dot(n, v) * n - v;
-    const AreaIntegrals exact = reference_area_integrals(light, p, n, r, shininess, kOracleOrder);
+    const glm::dvec3 v = glm::normalize(c.scene.camera.eye - p);
+    const AreaIntegrals exact = reference_area_integrals(light, p, n, v, SpecularModel::phong, shininess, kOracleOrder);
     const long double value = kd * exact.irradiance + ks * exact.highlight;
     c.exact.push_back({value, value, value});
   }
