@@ -36,6 +36,9 @@
 #endif
 /* Vertices of the area-matched polygon that stands in for a disk cut by the horizon. */
 #define AREA_DISK_SIDES 64
+/* Sides of the inscribed polygon whose Phong moments, plus its rim's, make a disk's S: each edge
+ * costs q/2 recurrence steps (phong_polygon.h). */
+#define PHONG_DISK_SIDES 64
 
 vec3 area_vector(UNIFORM_SPACE const float* x) { return make_vec3((realv)x[0], (realv)x[1], (realv)x[2]); }
 
@@ -75,14 +78,14 @@ ClippedSum no_clipped_sum(void) {
 }
 
 /* Vertex k of the emitter's polygon, counter-clockwise about its normal: a rect's corners
- * c +- u +- v (scaled); for a disk, the regular AREA_DISK_SIDES-gon of circumradius `stretch` times
- * the disk's. */
-vec3 emitter_vertex(int shape, vec3 c, vec3 u, vec3 v, int k, real stretch) {
+ * c +- u +- v (scaled); for a disk, the regular `sides`-gon of circumradius `stretch` times the
+ * disk's. */
+vec3 emitter_vertex(int shape, vec3 c, vec3 u, vec3 v, int k, int sides, real stretch) {
   if (shape == AREA_RECT) {
     const real su = (k == 0 || k == 3) ? 1 : -1, sv = k < 2 ? 1 : -1;
     return add3(c, add3(scale3(u, su), scale3(v, sv)));
   }
-  const real angle = k * ((real)2 / AREA_DISK_SIDES); /* in units of pi */
+  const real angle = k * ((real)2 / sides); /* in units of pi */
   return add3(c, add3(scale3(u, stretch * cospi(angle)), scale3(v, stretch * sinpi(angle))));
 }
 
@@ -94,9 +97,9 @@ vec3 emitter_vertex(int shape, vec3 c, vec3 u, vec3 v, int k, real stretch) {
 realv polygon_irradiance(int shape, vec3 c, vec3 u, vec3 v, vec3 n) {
   const int sides = shape == AREA_RECT ? 4 : AREA_DISK_SIDES;
   ClippedSum clipped = no_clipped_sum();
-  vec3 previous = emitter_vertex(shape, c, u, v, 0, AREA_MATCHED_STRETCH);
+  vec3 previous = emitter_vertex(shape, c, u, v, 0, sides, AREA_MATCHED_STRETCH);
   for (int k = 1; k <= sides; ++k) {
-    const vec3 next = emitter_vertex(shape, c, u, v, k % sides, AREA_MATCHED_STRETCH);
+    const vec3 next = emitter_vertex(shape, c, u, v, k % sides, sides, AREA_MATCHED_STRETCH);
     add_clipped_edge(&clipped, previous, next, n);
     previous = next;
   }
@@ -184,31 +187,48 @@ realv numerical_specular(int shape, vec3 c, vec3 u, vec3 v, vec3 n, const AreaLo
 }
 
 /* Phong's I_q or D_q (phong_polygon.h) over the emitter's polygon (a disk's inscribed
- * AREA_DISK_SIDES-gon) at an integer exponent per lane. */
+ * PHONG_DISK_SIDES-gon) at an integer exponent per lane. */
 realv polygon_moment(int shape, vec3 c, vec3 u, vec3 v, vec3 n, vec3 r, realv exponent, realv normalized, realv lobe_side) {
   PhongPolygon polygon = start_phong_polygon(n, r, exponent, normalized, lobe_side);
-  const int sides = shape == AREA_RECT ? 4 : AREA_DISK_SIDES;
-  vec3 previous = emitter_vertex(shape, c, u, v, 0, 1);
+  const int sides = shape == AREA_RECT ? 4 : PHONG_DISK_SIDES;
+  vec3 previous = emitter_vertex(shape, c, u, v, 0, sides, 1);
   for (int k = 1; k <= sides; ++k) {
-    const vec3 next = emitter_vertex(shape, c, u, v, k % sides, 1);
+    const vec3 next = emitter_vertex(shape, c, u, v, k % sides, sides, 1);
     add_polygon_edge(&polygon, previous, next);
     previous = next;
   }
   return phong_polygon_moment(&polygon, exponent);
 }
 
-/* S over the part of a disk outside its inscribed AREA_DISK_SIDES-gon: thin circular segments
- * (height 1.2e-3 of the radius), each by 4 Gauss points along its chord at half its height there,
- * weighted by that height. The lobe varies across the height by its slope times 6e-4 of the radius. */
-realv disk_rim_specular(vec3 c, vec3 u, vec3 v, vec3 n, const AreaLobe* lobe, realv shininess, realv h, realv area) {
-  const real half_chord = sinpi((real)1 / AREA_DISK_SIDES), inner = cospi((real)1 / AREA_DISK_SIDES);
+/* S over the part of a disk outside its inscribed PHONG_DISK_SIDES-gon: thin circular segments
+ * (height 1 - cos(pi / sides) = 1.2e-3 of the radius), each by 4 Gauss points along its chord, each
+ * weighted by the segment's height there above the horizon and taken at that part's middle: the
+ * horizon, where the classic lobes jump to 0, is followed across the height exactly. */
+realv disk_rim_specular(vec3 c, vec3 u, vec3 v, vec3 n, vec3 r, const AreaLobe* lobe, realv shininess, realv h,
+                        realv area) {
+  const real half_chord = sinpi((real)1 / PHONG_DISK_SIDES), inner = cospi((real)1 / PHONG_DISK_SIDES);
+  const realv n_c = dot3(n, c), n_u = dot3(n, u), n_v = dot3(n, v);
+  const realv r_c = dot3(r, c), r_u = dot3(r, u), r_v = dot3(r, v);
   realv sum = 0;
-  for (int k = 0; k < AREA_DISK_SIDES; ++k) {
-    const real middle = (real)(2 * k + 1) / AREA_DISK_SIDES; /* the chord's middle, in units of pi */
+  for (int k = 0; k < PHONG_DISK_SIDES; ++k) {
+    const real middle = (real)(2 * k + 1) / PHONG_DISK_SIDES; /* the chord's middle, in units of pi */
     const real cosine = cospi(middle), sine = sinpi(middle);
+    const realv n_out = n_u * cosine + n_v * sine; /* n's dot with the outward radial direction */
+    /* The segment lies in the triangle of its chord's ends and their tangents' meeting point: where
+     * that is below the horizon, or (q > 0) below r.w = 0, in every lane, it adds nothing. */
+    const realv n_across = half_chord * (n_v * cosine - n_u * sine), r_across = half_chord * (r_v * cosine - r_u * sine);
+    const realv r_out = r_u * cosine + r_v * sine;
+    const realv n_high = n_c + fmax(inner * n_out + fabs(n_across), n_out / inner);
+    const realv r_high = r_c + fmax(inner * r_out + fabs(r_across), r_out / inner);
+    if (!ANY_LANE(n_high > 0 && (r_high > 0 || shininess == 0))) continue;
     for (int i = 0; i < AREA_GAUSS_POINTS; ++i) {
       const real along = half_chord * area_gauss_node(i), rim = sqrt(1 - along * along);
-      const real radial = (inner + rim) / 2, height = rim - inner;
+      /* n.x = n_base + radial * n_out along the height; the part where it is > 0 */
+      const realv n_base = n_c + along * (n_v * cosine - n_u * sine);
+      const realv root = -n_base / n_out;
+      const realv low = SELECT(n_out > 0, fmax(inner, root), inner), high = SELECT(n_out < 0, fmin(rim, root), rim);
+      const realv height = SELECT(n_out == 0, SELECT(n_base > 0, rim - inner, 0), fmax(high - low, 0));
+      const realv radial = SELECT(n_out == 0, (real)0.5 * (inner + rim), (real)0.5 * (low + high));
       const vec3 x = add3(c, add3(scale3(u, radial * cosine - along * sine), scale3(v, radial * sine + along * cosine)));
       /* dA = a^2 d(along) d(radial), a^2 = area / pi */
       sum += specular_sample(x, n, lobe, shininess, h, area_gauss_weight(i) * half_chord * height * (area / AREA_PI));
@@ -237,9 +257,14 @@ realv area_specular(int shape, vec3 c, vec3 u, vec3 v, vec3 n, vec3 r, const Are
                     realv area) {
   const realv numerical = SELECT(lobe->half_vector != 0 || shininess > PHONG_POLYGON_MAX_Q, 1, 0);
   realv s = 0;
-  if (ANY_LANE(numerical == 0)) {
+  /* Phong's lobe (q > 0) is 0 over an emitter wholly behind the plane r.w = 0: its highest point
+   * there is r.c + |r.u| + |r.v| (rect) or r.c + a |r projected on the disk's plane| (disk). */
+  const realv r_c = dot3(r, c), r_u = dot3(r, u), r_v = dot3(r, v);
+  const realv r_high = r_c + (shape == AREA_RECT ? fabs(r_u) + fabs(r_v) : sqrt(r_u * r_u + r_v * r_v));
+  const realv lit = SELECT(shininess == 0 || r_high > 0, 1, 0);
+  if (ANY_LANE(numerical == 0 && lit != 0)) {
     s = phong_polygon_specular(shape, c, u, v, n, r, shininess, lobe->normalized);
-    if (shape == AREA_DISK) s += disk_rim_specular(c, u, v, n, lobe, shininess, h, area);
+    if (shape == AREA_DISK) s += disk_rim_specular(c, u, v, n, r, lobe, shininess, h, area);
   }
   if (ANY_LANE(numerical != 0)) s = SELECT(numerical != 0, numerical_specular(shape, c, u, v, n, lobe, shininess, h, area), s);
   return s;
