@@ -189,7 +189,7 @@ realv numerical_specular(int shape, vec3 c, vec3 u, vec3 v, vec3 n, const AreaLo
 /* Phong's I_q or D_q (phong_polygon.h) over the emitter's polygon (a disk's inscribed
  * PHONG_DISK_SIDES-gon) at an integer exponent per lane. */
 realv polygon_moment(int shape, vec3 c, vec3 u, vec3 v, vec3 n, vec3 r, realv exponent, realv normalized, realv lobe_side) {
-  PhongPolygon polygon = start_phong_polygon(n, r, exponent, normalized, lobe_side);
+  PhongPolygon polygon = start_phong_polygon(n, r, scale3(c, rsqrt(dot3(c, c))), exponent, normalized, lobe_side);
   const int sides = shape == AREA_RECT ? 4 : PHONG_DISK_SIDES;
   vec3 previous = emitter_vertex(shape, c, u, v, 0, sides, 1);
   for (int k = 1; k <= sides; ++k) {

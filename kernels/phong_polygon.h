@@ -27,11 +27,14 @@
  * for I, q for D; -1: none), `normalized` 1 where D is wanted. */
 typedef struct {
   vec3 n, r;
+  vec3 apex;       /* a unit vector near the polygon, from which the solid angle is summed */
   realv lobe_side; /* 1 where the polygon is clipped to r.w >= 0 too */
   realv top, normalized;
-  realv solid_angle; /* -Omega: Van Oosterom and Strackee's triangles from apex n */
+  realv solid_angle; /* -Omega: Van Oosterom and Strackee's triangles from the apex */
   realv lobe_sum;    /* sum (r.g) (the J^k the formula sums) */
   realv cosine_sum;  /* sum (n.g) J^top, for D */
+  realv highest;     /* the largest r.w on the polygon's boundary */
+  realv r_inside;    /* 1 while r.g <= 0 on every edge: r within the (convex) polygon */
   PlaneCrossings horizon, lobe_side_crossings;
 } PhongPolygon;
 
@@ -63,15 +66,22 @@ void edge_powers(vec3 a, vec3 b, vec3 g, realv theta, vec3 r, realv top, realv* 
 void add_clipped_arc(PhongPolygon* p, vec3 a_scaled, vec3 b_scaled, realv kept) {
   if (!ANY_LANE(kept != 0)) return;
   const vec3 a = scale3(a_scaled, rsqrt(dot3(a_scaled, a_scaled))), b = scale3(b_scaled, rsqrt(dot3(b_scaled, b_scaled)));
-  const vec3 normal = cross3(a, b), n = p->n;
+  const vec3 normal = cross3(a, b), n = p->n, apex = p->apex;
   const realv sine = sqrt(dot3(normal, normal)), cosine = dot3(a, b);
   const vec3 g = scale3(normal, SELECT(sine > 0, 1 / sine, 0));
   realv sum, last;
   edge_powers(a, b, g, atan2(sine, cosine), p->r, p->top, &sum, &last);
-  const realv triangle = 2 * atan2(dot3(n, normal), 1 + dot3(n, a) + dot3(n, b) + cosine);
+  const realv triangle = 2 * atan2(dot3(apex, normal), 1 + dot3(apex, a) + dot3(apex, b) + cosine);
   p->solid_angle += SELECT(kept != 0, triangle, 0);
   p->lobe_sum += SELECT(kept != 0, dot3(p->r, g) * SELECT(p->normalized != 0, sum - last, sum), 0);
   p->cosine_sum += SELECT(kept != 0, dot3(n, g) * last, 0);
+  /* r.w peaks on the arc where r's projection onto its plane falls between a and b, else at an end */
+  const realv r_g = dot3(p->r, g);
+  const vec3 closest = sub3(p->r, scale3(g, r_g));
+  const realv between = SELECT(dot3(cross3(a, closest), g) >= 0 && dot3(cross3(closest, b), g) >= 0, 1, 0);
+  const realv highest = SELECT(between != 0, sqrt(fmax(1 - r_g * r_g, 0)), fmax(dot3(p->r, a), dot3(p->r, b)));
+  p->highest = SELECT(kept != 0, fmax(p->highest, highest), p->highest);
+  p->r_inside = SELECT(kept != 0 && r_g > 0, 0, p->r_inside);
 }
 
 /* Arc a -> b clipped to the lobe's side where the lanes ask for it (where not, as it is). */
@@ -91,14 +101,15 @@ void add_polygon_edge(PhongPolygon* p, vec3 a, vec3 b) {
 }
 
 /* A polygon for lanes with integer exponent q, normal n and lobe axis r, clipped to the lobe's
- * side where `lobe_side`. Where q = 0 the lobe is 1 everywhere; where r is within 2^-17 of n the
+ * side where `lobe_side`. `apex`, a unit vector towards the polygon, keeps the solid angle's
+ * triangles as small as the polygon (from a far apex they would be large and cancel). Where q = 0 the lobe is 1 everywhere; where r is within 2^-17 of n the
  * horizon's side is the lobe's, up to a lune of width |r - n| < 0.004 in which |r.w|^q < 0.004^q,
  * and clipping to two planes that near each other would be ill-conditioned. */
-PhongPolygon start_phong_polygon(vec3 n, vec3 r, realv q, realv normalized, realv lobe_side) {
+PhongPolygon start_phong_polygon(vec3 n, vec3 r, vec3 apex, realv q, realv normalized, realv lobe_side) {
   const realv zero = 0;
   const realv distinct = SELECT(lobe_side != 0 && dot3(n, r) < 1 - (real)0x1p-17, 1, 0);
-  PhongPolygon p = {n, r, distinct, SELECT(normalized != 0, q, q - 1), normalized,
-                    zero, zero, zero, no_crossings(), no_crossings()};
+  PhongPolygon p = {n, r, apex, distinct, SELECT(normalized != 0, q, q - 1), normalized,
+                    zero, zero, zero, zero, (realv)1, no_crossings(), no_crossings()};
   return p;
 }
 
@@ -113,7 +124,13 @@ realv phong_polygon_moment(PhongPolygon* p, realv q) {
   const realv omega = -p->solid_angle;
   const realv power_sum = SELECT(is_odd(needed) != 0, 0, omega) - p->lobe_sum; /* (q+1) I_q, or q I_{q-1} */
   const realv moment = SELECT(p->normalized != 0, (dot3(p->r, p->n) * power_sum - p->cosine_sum) / (q + 2), power_sum / (q + 1));
-  return fmax(moment, 0);
+  /* The formula cancels O(Omega) terms down to the moment, which leaves float an absolute error of
+   * a few ulp of Omega. Where r lies outside the polygon the moment is at most Omega times the
+   * largest r.w there to the power q, which bounds that error where the lobe barely reaches
+   * (raised by 2^-10 so that its own rounding, q ulp at most, never cuts a moment). */
+  const realv power = exp2_nonpositive(q * log2(fmax(p->highest, 0)));
+  const realv bound = omega * SELECT(p->r_inside != 0 || q == 0, 1, power) * (1 + (real)0x1p-10);
+  return clamp(moment, (realv)0, fmax(bound, 0));
 }
 
 #endif
