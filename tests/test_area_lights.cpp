@@ -313,8 +313,9 @@ TEST(AreaLights, LightsAtTheSizeBoundShadeFinite) {
 // S in every specular model against the reference, on the pixels of area_scene. Phong's lobes are
 // in closed form at integer q (phong_polygon.h), so the bound is the float rounding of the
 // recurrences and of the light's geometry, as E's; at q = 37.5 the log-linear interpolation between
-// q = 37 and 38 adds at most 1/(8 q^2) = 9e-5. A disk's S is its area-matched 64-gon's. Blinn's
-// lobes are the 4x4 rule's: their bound is what it measures, no better (docs/shading.md).
+// q = 37 and 38 adds at most 1/(8 q^2) = 9e-5. A disk's S is its inscribed 64-gon's in closed form
+// plus its rim's by a rule. Blinn's lobes are the 4x4 rule's: only printed, their error is what it
+// measures (docs/shading.md).
 TEST(AreaLights, SpecularMatchesTheReference) {
   PHONGCL_REQUIRE_DEVICE(shader);
   for (bool rect : {true, false})
