@@ -225,7 +225,7 @@ realv disk_rim_specular(vec3 c, vec3 u, vec3 v, vec3 n, vec3 r, const AreaLobe* 
       const real along = half_chord * area_gauss_node(i), rim = sqrt(1 - along * along);
       /* n.x = n_base + radial * n_out along the height; the part where it is > 0 */
       const realv n_base = n_c + along * (n_v * cosine - n_u * sine);
-      const realv root = -n_base / n_out;
+      const realv root = -n_base / SELECT(n_out == 0, 1, n_out);
       const realv low = SELECT(n_out > 0, fmax(inner, root), inner), high = SELECT(n_out < 0, fmin(rim, root), rim);
       const realv height = SELECT(n_out == 0, SELECT(n_base > 0, rim - inner, 0), fmax(high - low, 0));
       const realv radial = SELECT(n_out == 0, (real)0.5 * (inner + rim), (real)0.5 * (low + high));
@@ -247,7 +247,7 @@ realv phong_polygon_specular(int shape, vec3 c, vec3 u, vec3 v, vec3 n, vec3 r, 
   const realv at_low = polygon_moment(shape, c, u, v, n, r, low, normalized, lobe_side);
   if (!ANY_LANE(fraction > 0)) return at_low;
   const realv at_high = polygon_moment(shape, c, u, v, n, r, low + 1, normalized, lobe_side);
-  const realv between = at_low * exp2(fraction * log2(at_high / at_low));
+  const realv between = at_low * exp2(fraction * log2(fmax(at_high / fmax(at_low, PHONG_POLYGON_TINY), PHONG_POLYGON_TINY)));
   return SELECT(fraction > 0 && at_low > 0, between, at_low);
 }
 

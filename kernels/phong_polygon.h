@@ -22,6 +22,8 @@
 
 /* The integer exponents the recurrence runs to; above, area_light.h integrates numerically. */
 #define PHONG_POLYGON_MAX_Q 1024
+/* Where a length or a logarithm's argument would be 0: a normal float far below any value kept. */
+#define PHONG_POLYGON_TINY ((real)0x1p-120)
 
 /* The polygon's sums so far, per lane: `top` is the highest power of the edge recurrence (q - 1
  * for I, q for D; -1: none), `normalized` 1 where D is wanted. */
@@ -65,10 +67,13 @@ void edge_powers(vec3 a, vec3 b, vec3 g, realv theta, vec3 r, realv top, realv* 
  * to a point: its terms are then 0). */
 void add_clipped_arc(PhongPolygon* p, vec3 a_scaled, vec3 b_scaled, realv kept) {
   if (!ANY_LANE(kept != 0)) return;
-  const vec3 a = scale3(a_scaled, rsqrt(dot3(a_scaled, a_scaled))), b = scale3(b_scaled, rsqrt(dot3(b_scaled, b_scaled)));
+  /* Lanes that do not keep the arc may hold a zero vector here: every value stays finite (under
+   * -cl-fast-relaxed-math an Inf or NaN, even one a select drops, may spread). */
+  const vec3 a = scale3(a_scaled, rsqrt(fmax(dot3(a_scaled, a_scaled), PHONG_POLYGON_TINY)));
+  const vec3 b = scale3(b_scaled, rsqrt(fmax(dot3(b_scaled, b_scaled), PHONG_POLYGON_TINY)));
   const vec3 normal = cross3(a, b), n = p->n, apex = p->apex;
   const realv sine = sqrt(dot3(normal, normal)), cosine = dot3(a, b);
-  const vec3 g = scale3(normal, SELECT(sine > 0, 1 / sine, 0));
+  const vec3 g = scale3(normal, SELECT(sine > 0, 1 / fmax(sine, PHONG_POLYGON_TINY), 0));
   realv sum, last;
   edge_powers(a, b, g, atan2(sine, cosine), p->r, p->top, &sum, &last);
   const realv triangle = 2 * atan2(dot3(apex, normal), 1 + dot3(apex, a) + dot3(apex, b) + cosine);
@@ -128,7 +133,7 @@ realv phong_polygon_moment(PhongPolygon* p, realv q) {
    * a few ulp of Omega. Where r lies outside the polygon the moment is at most Omega times the
    * largest r.w there to the power q, which bounds that error where the lobe barely reaches
    * (raised by 2^-10 so that its own rounding, q ulp at most, never cuts a moment). */
-  const realv power = exp2_nonpositive(q * log2(fmax(p->highest, 0)));
+  const realv power = exp2_nonpositive(q * log2(fmax(p->highest, PHONG_POLYGON_TINY)));
   const realv bound = omega * SELECT(p->r_inside != 0 || q == 0, 1, power) * (1 + (real)0x1p-10);
   return clamp(moment, (realv)0, fmax(bound, 0));
 }
