@@ -255,7 +255,11 @@ realv phong_polygon_specular(int shape, vec3 c, vec3 u, vec3 v, vec3 n, vec3 r, 
  * the rim's), Blinn's (and Phong's beyond PHONG_POLYGON_MAX_Q) by the numerical rule. */
 realv area_specular(int shape, vec3 c, vec3 u, vec3 v, vec3 n, vec3 r, const AreaLobe* lobe, realv shininess, realv h,
                     realv area) {
-  const realv numerical = SELECT(lobe->half_vector != 0 || shininess > PHONG_POLYGON_MAX_Q, 1, 0);
+  /* A far emitter, as E's far field: the closed form's edge terms are O(size / d) and cancel to
+   * S = O((size / d)^2), while the rule's error is O((size / d)^4) where the lobe is broader than
+   * the emitter (q (size / d)^2 < 1). */
+  const realv far = SELECT(4 * (dot3(u, u) + dot3(v, v)) < (real)(AREA_FAR_FIELD * AREA_FAR_FIELD) * dot3(c, c), 1, 0);
+  const realv numerical = SELECT(lobe->half_vector != 0 || shininess > PHONG_POLYGON_MAX_Q || far != 0, 1, 0);
   realv s = 0;
   /* Phong's lobe (q > 0) is 0 over an emitter wholly behind the plane r.w = 0: its highest point
    * there is r.c + |r.u| + |r.v| (rect) or r.c + a |r projected on the disk's plane| (disk). */
