@@ -298,7 +298,8 @@ static inline void add_area_light(LightSums* sums, const Surface* surface, const
   const realv two_n_dot_v = 2 * dot3(n, v);
   const vec3 r = make_vec3(fma(two_n_dot_v, n.x, -v.x), fma(two_n_dot_v, n.y, -v.y), fma(two_n_dot_v, n.z, -v.z));
   realv irradiance, highlight;
-  area_light_terms(light, surface->p, n, r, surface->shininess, SPECULAR, &irradiance, &highlight);
+  area_light_terms(light, surface->p, n, v, r, surface->shininess, surface->specular_model, SPECULAR, &irradiance,
+                   &highlight);
   if (SHADOWS && lights->area_casters[k])
     shadow_area_light(&irradiance, &highlight, surface, lights, k, lights->area_casters[k]);
   sums->diffuse.x += light->color[0] * irradiance;

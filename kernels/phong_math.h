@@ -96,6 +96,8 @@ typedef PHONGCL_XCAT(int, PHONGCL_LANES) intv;
 #define PHONGCL_REDUCE_AND(mask) REDUCE_LANES(mask, BITWISE_AND)
 #endif
 int all_lanes(intv mask) { return PHONGCL_REDUCE_AND(mask) != 0; }
+/* Some lane of a realv comparison holds. */
+#define ANY_LANE(comparison) (!all_lanes(LANE_MASK(!(comparison))))
 
 /* Per-lane choice without branches: `condition` is a comparison of realv values. */
 #define SELECT(condition, if_true, if_false) ((condition) ? (realv)(if_true) : (realv)(if_false))
@@ -112,6 +114,15 @@ vec3 make_vec3(realv x, realv y, realv z) {
 vec3 sub3(vec3 a, vec3 b) { return make_vec3(a.x - b.x, a.y - b.y, a.z - b.z); }
 vec3 scale3(vec3 a, realv s) { return make_vec3(a.x * s, a.y * s, a.z * s); }
 realv dot3(vec3 a, vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+vec3 add3(vec3 a, vec3 b) { return make_vec3(a.x + b.x, a.y + b.y, a.z + b.z); }
+vec3 cross3(vec3 a, vec3 b) {
+  return make_vec3(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x);
+}
+/* if_true in the lanes where condition != 0, else if_false. */
+vec3 select3(vec3 if_true, vec3 if_false, realv condition) {
+  return make_vec3(SELECT(condition != 0, if_true.x, if_false.x), SELECT(condition != 0, if_true.y, if_false.y),
+                   SELECT(condition != 0, if_true.z, if_false.z));
+}
 
 realv largest_magnitude(vec3 v) { return fmax(fabs(v.x), fmax(fabs(v.y), fabs(v.z))); }
 

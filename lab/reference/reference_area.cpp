@@ -1,5 +1,7 @@
 #include "reference/reference_area.h"
 
+#include "reference/reference.h"
+
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -114,7 +116,7 @@ double area_range_window(const AreaLight& light, const glm::dvec3& position) {
 }
 
 AreaIntegrals reference_area_integrals(const AreaLight& light, const glm::dvec3& position, const glm::dvec3& n,
-                                       const glm::dvec3& r, double shininess, int order) {
+                                       const glm::dvec3& eye, SpecularModel model, double shininess, int order) {
   const glm::dvec3 normal = glm::normalize(light.direction);
   const glm::dvec3 c = light.position - position;
   const double h = -glm::dot(c, normal);  // height above the emitting side
@@ -130,11 +132,24 @@ AreaIntegrals reference_area_integrals(const AreaLight& light, const glm::dvec3&
     const glm::dvec3 w = x / length;
     const double solid = area_weight * h / (length * length * length);
     sums.irradiance += solid * std::max(0.0, glm::dot(n, w));
-    const double cosine = glm::dot(r, w);
-    sums.highlight += solid * (shininess == 0.0 ? 1.0 : cosine > 0.0 ? std::pow(cosine, shininess) : 0.0);
+    if (glm::dot(n, w) > 0.0) sums.highlight += solid * reference_specular_lobe(model, n, eye, w, shininess);
   };
   std::vector<HalfPlane> sides = {{glm::dot(n, c), glm::dot(n, u), glm::dot(n, v)}};
-  if (shininess > 0.0) sides.push_back({glm::dot(r, c), glm::dot(r, u), glm::dot(r, v)});
+  // Phong's lobes have a kink where r.w = 0; Blinn's are smooth above the horizon of a pixel that
+  // faces the eye (n.h > 0 there).
+  const glm::dvec3 r = 2.0 * glm::dot(n, eye) * n - eye;
+  const bool reflection = model == SpecularModel::phong || model == SpecularModel::phong_normalized;
+  if (shininess > 0.0 && reflection) sides.push_back({glm::dot(r, c), glm::dot(r, u), glm::dot(r, v)});
+  // The lobe peaks where r meets the emitter's plane (Blinn's too: n.h = 1 where w = r), with a
+  // width of about its distance / sqrt(q + 1): cuts there, growing geometrically from a quarter of it.
+  std::vector<double> peak_steps;
+  glm::dvec3 peak(0.0);
+  if (shininess > 0.0 && glm::dot(r, normal) < 0.0) {
+    const double distance = -h / glm::dot(r, normal);
+    peak = distance * r - c;
+    for (double step = distance / std::sqrt(shininess + 1.0) / 4.0; step < 2.0 * (light.size.x + light.size.y); step *= 4.0)
+      peak_steps.push_back(step);
+  }
   auto value = [&](const glm::dvec3& x, bool highlight) {
     AreaIntegrals one;
     add_point(x, 1.0, one);
@@ -150,6 +165,16 @@ AreaIntegrals reference_area_integrals(const AreaLight& light, const glm::dvec3&
         s_cuts.push_back(foot_s + sign * step);
         t_cuts.push_back(foot_t + sign * step);
       }
+    if (!peak_steps.empty()) {
+      const double peak_s = glm::dot(peak, u), peak_t = glm::dot(peak, v);
+      s_cuts.push_back(peak_s);
+      t_cuts.push_back(peak_t);
+      for (double step : peak_steps)
+        for (double sign : {-1.0, 1.0}) {
+          s_cuts.push_back(peak_s + sign * step);
+          t_cuts.push_back(peak_t + sign * step);
+        }
+    }
     for (const HalfPlane& side : sides)
       if (side.gu != 0.0)
         for (double t_edge : {-half_h, half_h}) s_cuts.push_back(-(side.base + side.gv * t_edge) / side.gu);
@@ -185,6 +210,17 @@ AreaIntegrals reference_area_integrals(const AreaLight& light, const glm::dvec3&
     add_angle(std::atan2(t_meet, s_meet));
   std::vector<double> rho_cuts;  // a point near the centre sees a peak of width h there
   for (double step = h; step < a; step *= 8.0) rho_cuts.push_back(step);
+  if (!peak_steps.empty()) {
+    const double peak_rho = std::hypot(glm::dot(peak, u), glm::dot(peak, v));
+    const double peak_phi = std::atan2(glm::dot(peak, v), glm::dot(peak, u));
+    rho_cuts.push_back(peak_rho);
+    add_angle(peak_phi);
+    for (double step : peak_steps) {
+      for (double sign : {-1.0, 1.0}) rho_cuts.push_back(peak_rho + sign * step);
+      if (step < peak_rho)
+        for (double sign : {-1.0, 1.0}) add_angle(peak_phi + sign * std::asin(step / peak_rho));
+    }
+  }
   for (bool highlight : {false, true}) {
     const double total = integrate_pieces(0.0, 2.0 * pi, phi_cuts, -1.0, order, [&](double phi) {
       const double cosine = std::cos(phi), sine = std::sin(phi);

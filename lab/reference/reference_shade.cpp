@@ -107,13 +107,12 @@ ShadingTerms reference_shade_point(const Scene& scene, const SurfacePoint& point
     const double highlight = reference_specular_lobe(point.specular_model, n, v, l, point.shininess);
     if (highlight > 0.0) specular += product(light.color, glm::dvec3(highlight * factor));
   }
-  // Area lights: E and S by quadrature over the emitter (reference_area.h), r the eye's mirror direction.
-  const glm::dvec3 r = 2.0 * glm::dot(n, v) * n - v;
+  // Area lights: E and S by quadrature over the emitter (reference_area.h).
   for (const AreaLight& light : scene.area_lights) {
     if (n == glm::dvec3(0.0)) break;
     const bool traced = soft.area && light.shadows;
     if (!traced && reaches && light.shadows && !reaches(point, area_shadow_light(light))) continue;
-    const AreaIntegrals integrals = reference_area_integrals(light, point.position, n, r, point.shininess);
+    const AreaIntegrals integrals = reference_area_integrals(light, point.position, n, v, point.specular_model, point.shininess);
     const double window = area_range_window(light, point.position) * (traced ? soft.area(point, light) : 1.0);
     diffuse += product(light.color, glm::dvec3(integrals.irradiance * window));
     specular += product(light.color, glm::dvec3(integrals.highlight * window));
