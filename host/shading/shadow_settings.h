@@ -3,7 +3,7 @@
 // settings. A light casts shadows only when its "shadows" is true and the mode is not off.
 #include <string>
 
-#include "scene/scene.h"
+#include "../scene/scene.h"  // relative: installed with the public API
 
 namespace phongcl {
 
