@@ -194,6 +194,9 @@ TEST(MeshFile, MalformedHeadersSayWhatIsWrong) {
   // A vertex of z, y, z and no x (the fuzzer's): Assimp read a float as a face's corner count, 8.5 GB.
   EXPECT_NE(error_with("float x", "float z").find("property 'z' of element 'vertex' is declared twice"),
             std::string::npos);
+  // A second vertex element (the fuzzer's): Assimp freed memory it had not allocated.
+  EXPECT_NE(error_with("element face", "element vertex").find("element 'vertex' is declared twice"),
+            std::string::npos);
   EXPECT_NE(error_with("ascii", "utf8").find("header line 2: must be 'format ascii 1.0'"), std::string::npos);
   EXPECT_NE(error_with("3 0 1 2", "3 0 one 2").find("'one' is not an integer"), std::string::npos);
   // Assimp reads an ASCII record from a line of its own (it aborted on a face on a vertex's line).

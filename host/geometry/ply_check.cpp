@@ -161,6 +161,10 @@ class HeaderReader {
     if (words.size() != 3) fail("an element is 'element NAME COUNT'");
     const auto count = parse_whole<std::uint64_t>(words[2]);
     if (!count) fail("element " + shown(words[1]) + " has count " + shown(words[2]) + ", not a whole number >= 0");
+    // Readers find an element by its name too: Assimp 5.2 frees memory it did not allocate on a
+    // second "vertex" element.
+    for (const Element& declared : header_.elements)
+      if (declared.name == words[1]) fail("element " + shown(words[1]) + " is declared twice");
     header_.elements.push_back({std::string(words[1]), *count, {}});
   }
 
