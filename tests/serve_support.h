@@ -5,13 +5,20 @@
 
 #include <chrono>
 #include <filesystem>
+#include <fstream>
 #include <optional>
+#include <string>
 #include <thread>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "cli_runner.h"
 #include "color/color_config.h"
 #include "gbuffer/gbuffer.h"
+#include "image/image.h"
 #include "serve/relight_server.h"
+#include "temp_dir.h"
 
 namespace phongcl::testing {
 
@@ -50,5 +57,24 @@ class RunningServer {
   int port_ = 0;
   std::thread thread_;
 };
+
+// PUT `body` to `path`, which must answer 200.
+inline void put_json(httplib::Client& client, const char* path, const nlohmann::json& body) {
+  const auto result = client.Put(path, body.dump(), "application/json");
+  ASSERT_TRUE(result);
+  ASSERT_EQ(result->status, 200) << path << ": " << result->body;
+}
+
+// The frame of the state as held now, as the EXR the server sends (empty, with a failure, if none).
+inline Image served_exr(httplib::Client& client) {
+  const auto result = client.Get("/api/image?format=exr");
+  if (!result || result->status != 200) {
+    ADD_FAILURE() << "no image: " << (result ? result->body : "no response");
+    return {};
+  }
+  TempDir dir("served_image");
+  std::ofstream(dir / "image.exr", std::ios::binary) << result->body;
+  return read_exr(dir / "image.exr");
+}
 
 }  // namespace phongcl::testing

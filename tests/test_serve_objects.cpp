@@ -32,23 +32,8 @@ json shadowed_scene() {
   return scene;
 }
 
-void put(httplib::Client& client, const char* path, const json& body) {
-  const auto result = client.Put(path, body.dump(), "application/json");
-  ASSERT_TRUE(result);
-  ASSERT_EQ(result->status, 200) << path << ": " << result->body;
-}
-
-// The frame of the state as held now, as the EXR the server sends.
-Image served_exr(httplib::Client& client) {
-  const auto result = client.Get("/api/image?format=exr");
-  if (!result || result->status != 200) {
-    ADD_FAILURE() << "no image: " << (result ? result->body : "no response");
-    return {};
-  }
-  TempDir dir("serve_objects_image");
-  std::ofstream(dir / "image.exr", std::ios::binary) << result->body;
-  return read_exr(dir / "image.exr");
-}
+using testing::put_json;
+using testing::served_exr;
 
 double luminance(const Image& image, std::size_t pixel) {
   const float* rgba = image.pixel(pixel);
@@ -70,17 +55,17 @@ TEST(ServeObjects, RemovingTheShadowingObjectsLightsWhatTheyShadowed) {
   RunningServer server;
   auto client = server.client();
   const json scene = shadowed_scene();
-  put(client, "/api/scene", scene);
-  put(client, "/api/settings", {{"shadows", "off"}});
+  put_json(client, "/api/scene", scene);
+  put_json(client, "/api/settings", {{"shadows", "off"}});
   const Image lit = served_exr(client);
-  put(client, "/api/settings", {{"shadows", "auto"}});
+  put_json(client, "/api/settings", {{"shadows", "auto"}});
   const Image shadowed = served_exr(client);
   const std::vector<std::size_t> in_shadow = darkened(lit, shadowed);
   ASSERT_GT(in_shadow.size(), 1000u) << "the spheres should shadow the floor";
 
   json floor_only = scene;
   floor_only["objects"] = json::array({scene["objects"][0]});
-  put(client, "/api/scene", floor_only);
+  put_json(client, "/api/scene", floor_only);
   const Image after = served_exr(client);
   std::size_t still_dark = 0;
   for (std::size_t i : in_shadow) still_dark += luminance(after, i) < 0.99 * luminance(lit, i);
@@ -96,20 +81,20 @@ TEST(ServeObjects, AMeshAddedByAPutIsReadForTheNextFrame) {
   RunningServer server;
   auto client = server.client();
   json scene = shadowed_scene();
-  put(client, "/api/scene", scene);
+  put_json(client, "/api/scene", scene);
   const Image before = served_exr(client);
 
   scene["objects"].push_back({{"type", "transform"},
                               {"translate", {0, 3, 0}},
                               {"children", {{{"type", "mesh"}, {"file", (dir / "knot.ply").string()}, {"material", 1}}}}});
-  put(client, "/api/scene", scene);
+  put_json(client, "/api/scene", scene);
   EXPECT_GT(darkened(before, served_exr(client)).size(), 1000u) << "the knot above the scene should shadow it";
 
   TriangleMesh far_away;  // one small triangle beyond every light
   far_away.vertices = {{1000, 0, 0}, {1001, 0, 0}, {1000, 1, 0}};
   far_away.triangles = {{0, 1, 2}};
   write_ply(dir / "knot.ply", far_away);
-  put(client, "/api/scene", scene);
+  put_json(client, "/api/scene", scene);
   EXPECT_EQ(darkened(before, served_exr(client)).size(), 0u) << "the knot's file was rewritten: it shadows nothing";
 }
 
@@ -121,7 +106,7 @@ TEST(ServeObjects, MeshesThatCannotBeReadFailThePutOrTheNextFrame) {
   RunningServer server;
   auto client = server.client();
   json scene = shadowed_scene();
-  put(client, "/api/scene", scene);
+  put_json(client, "/api/scene", scene);
 
   json missing = scene;
   missing["objects"].push_back({{"type", "mesh"}, {"file", (dir / "missing.ply").string()}, {"material", 1}});
@@ -134,7 +119,7 @@ TEST(ServeObjects, MeshesThatCannotBeReadFailThePutOrTheNextFrame) {
   std::ofstream(dir / "garbage.ply") << "ply\nformat binary_little_endian 1.0\nelement vertex 99999999\nproperty float x\nend_header\nxx";
   json garbage = scene;
   garbage["objects"].push_back({{"type", "mesh"}, {"file", (dir / "garbage.ply").string()}, {"material", 1}});
-  put(client, "/api/scene", garbage);
+  put_json(client, "/api/scene", garbage);
   const auto frame = client.Get("/api/image?format=jpeg");
   ASSERT_TRUE(frame);
   EXPECT_EQ(frame->status, 422) << frame->body;
@@ -151,7 +136,7 @@ TEST(ServeObjects, SaveOverAMeshOfTheHeldSceneIsRefused) {
   auto client = server.client();
   json scene = default_scene();
   scene["objects"].push_back({{"type", "mesh"}, {"file", (dir / "rock.ply").string()}, {"material", 1}});
-  put(client, "/api/scene", scene);
+  put_json(client, "/api/scene", scene);
   const auto result = client.Post("/api/save", "", "application/json");
   ASSERT_TRUE(result);
   EXPECT_EQ(result->status, 409) << result->body;

@@ -58,22 +58,8 @@ Render write_render(const fs::path& scene_file, const fs::path& file) {
   return render;
 }
 
-void put(httplib::Client& client, const char* path, const json& body) {
-  const auto result = client.Put(path, body.dump(), "application/json");
-  ASSERT_TRUE(result);
-  ASSERT_EQ(result->status, 200) << path << ": " << result->body;
-}
-
-Image served_exr(httplib::Client& client) {
-  const auto result = client.Get("/api/image?format=exr");
-  if (!result || result->status != 200) {
-    ADD_FAILURE() << "no image: " << (result ? result->body : "no response");
-    return {};
-  }
-  testing::TempDir dir("serve_over_image");
-  std::ofstream(dir / "image.exr", std::ios::binary) << result->body;
-  return read_exr(dir / "image.exr");
-}
+using testing::put_json;
+using testing::served_exr;
 
 // The largest difference over the pixels the render covers (the EXR the server sends has RGB 0 where
 // alpha is 0), relative to max(1, |expected|).
@@ -112,7 +98,7 @@ TEST(ServeOver, FramesAreTheRenderWithTheChangedGroupsComposited) {
   // The key moved: the frame is the composite that `shade --over` makes of the same scene.
   json moved = scene;
   moved["lights"][0]["position"][0] = moved["lights"][0]["position"][0].get<double>() + 0.5;
-  put(client, "/api/scene", moved);
+  put_json(client, "/api/scene", moved);
   std::ofstream(dir / "moved.json") << moved.dump(1);
   RelighterOptions options;
   options.terms = true;
@@ -127,8 +113,8 @@ TEST(ServeOver, FramesAreTheRenderWithTheChangedGroupsComposited) {
   EXPECT_EQ(over["groups"][1]["change"], "unchanged");
 
   // Muting a group takes its rendered pass out, exactly as the renderer's light mix does.
-  put(client, "/api/scene", scene);
-  put(client, "/api/settings", {{"mute", {"fill"}}});
+  put_json(client, "/api/scene", scene);
+  put_json(client, "/api/settings", {{"mute", {"fill"}}});
   Image without_fill = render.combined;
   for (std::size_t i = 0; i < without_fill.pixel_count(); ++i)
     for (int c = 0; c < 3; ++c) without_fill.pixel(i)[c] -= render.passes.at("fill").pixel(i)[c];
