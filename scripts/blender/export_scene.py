@@ -43,11 +43,13 @@ name those cases.
   Karis 2013, "Specular BRDF Reference"; 2 / alpha^2 - 2 is the Blinn-Phong exponent matching a
   Beckmann lobe of roughness alpha, Walter et al. 2007, eq. 30), capped at 1e6. A Diffuse BSDF
   gives kd = its colour and a material without nodes its viewport colour, both with ks = 0: no
-  specular lobe. ka = kd; the ambient is the world colour times its strength (a uniform environment
-  lights an unoccluded Lambertian surface with rho * L). Indices no material uses get a grey
-  material. The shader is the one linked to the active Material Output's Surface; any other shader,
-  a socket fed by a node (a texture; an Environment Texture in the world), and emission are not
-  mapped: a note names the material or world, the node and the value exported instead.
+  specular lobe. ka = kd. Indices no material uses get a grey material. The shader is the one
+  linked to the active Material Output's Surface; any other shader, a socket fed by a node (a
+  texture), and emission are not mapped: a note names the material, the node and the value exported
+  instead.
+- The world: its Background's colour and strength, or an equirectangular Environment Texture feeding
+  it (the image, the Mapping node's Z rotation), become an {"type": "environment"} light, occluded by
+  the scene as Cycles' world is, and "ambient" is 0 (world_light.py says how, and what gets a note).
 - Shadows: a light that casts shadows in Cycles (light.cycles.cast_shadow in 3.x, Light.use_shadow in
   4.0+) gets "shadows": true.
 - Light groups: a light's Object.lightgroup (Blender 3.2+) becomes its "group", area lights' too; --render
@@ -74,16 +76,10 @@ from mathutils import Vector
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import blender_versions as versions  # noqa: E402  every convention that differs between Blender versions
+import world_light  # noqa: E402
+from export_notes import note, rounded, unlinked_value  # noqa: E402
 
 FALLBACK_MATERIAL = {"name": "unused pass index", "ka": [0.5] * 3, "kd": [0.5] * 3, "ks": [0.0] * 3, "shininess": 10.0}
-
-
-def note(text):
-    print("export_scene: " + text)
-
-
-def rounded(values, digits=7):
-    return [round(float(v), digits) for v in values]
 
 
 def image_size(scene):
@@ -244,18 +240,6 @@ def surface_shader(material):
     return output.inputs["Surface"].links[0].from_node
 
 
-def unlinked_value(owner, node, socket_name, what):
-    """A socket's own value, with a note naming the node that feeds it where one does (phongcl reads values,
-    not node graphs)."""
-    socket = node.inputs[socket_name]
-    if socket.is_linked:
-        source = socket.links[0].from_node
-        note("%s: %s's %s is fed by '%s' (%s), which phongcl cannot evaluate: exported the socket's own value %s"
-             % (owner, node.name, socket_name, source.name, source.bl_idname,
-                rounded(socket.default_value[:3] if what == "colour" else [socket.default_value], 4)))
-    return socket.default_value
-
-
 def material_json(material):
     owner = "material '%s'" % material.name
     node = surface_shader(material)
@@ -295,26 +279,6 @@ def materials_json(scene):
     if not by_index:
         return [dict(FALLBACK_MATERIAL)]
     return [material_json(by_index[i]) if i in by_index else dict(FALLBACK_MATERIAL) for i in range(max(by_index) + 1)]
-
-
-def ambient_json(scene):
-    """The world's uniform colour times its strength. A Background colour fed by a node (an Environment
-    Texture, an HDRI, most often) is not uniform: phongcl has no environment light, so the socket's own
-    colour is exported, with a note."""
-    world = scene.world
-    if world is None:
-        return [0.0, 0.0, 0.0]
-    tree = versions.node_tree(world)
-    if tree is None:
-        return rounded(world.color)
-    backgrounds = [n for n in tree.nodes if n.type == "BACKGROUND"]
-    if not backgrounds:
-        note("world '%s' has no Background node: exported no ambient light" % world.name)
-        return [0.0, 0.0, 0.0]
-    owner = "world '%s'" % world.name
-    background = backgrounds[0]
-    colour = Vector(unlinked_value(owner, background, "Color", "colour")[:3])
-    return rounded(colour * unlinked_value(owner, background, "Strength", "value"))
 
 
 def write_ply(path, vertices, triangles):
@@ -378,9 +342,15 @@ def export_geometry(scene, directory, json_directory):
     return objects
 
 
-def scene_json(scene, falloff="none", gbuffer=None, objects=None):
+def scene_json(scene, falloff="none", gbuffer=None, objects=None, directory=None):
+    """The scene's JSON document; `directory` is where it will be written (files it names are relative to
+    it; default: the current directory)."""
     lights = lights_json(scene, falloff)
-    document = {"camera": camera_json(scene), "background": [0.0, 0.0, 0.0], "ambient": ambient_json(scene),
+    # The world is the environment light, occluded as Cycles' is: no ambient term beside it.
+    environment = world_light.environment_json(scene, os.path.abspath(directory or "."))
+    if environment is not None:
+        lights.append(environment)
+    document = {"camera": camera_json(scene), "background": [0.0, 0.0, 0.0], "ambient": [0.0, 0.0, 0.0],
                 "lights": lights, "materials": materials_json(scene)}
     if objects:
         document["objects"] = objects
@@ -427,12 +397,14 @@ def add_light_group_passes(scene, view_layer):
     light's group that the layer lacks is added, so every exported "group" has its pass."""
     if not hasattr(view_layer, "lightgroups"):
         return
-    for light in scene.objects:
-        group = getattr(light, "lightgroup", "") if light.type == "LIGHT" and not light.hide_render else ""
+    owners = [("light '%s'" % o.name, o.lightgroup) for o in scene.objects if o.type == "LIGHT" and not o.hide_render]
+    if scene.world is not None:
+        owners.append(("world '%s'" % scene.world.name, scene.world.lightgroup))
+    for owner, group in owners:
         if group and group not in view_layer.lightgroups:
             view_layer.lightgroups.add(name=group)
-            note("light group '%s' of light '%s' added to view layer '%s', so that its pass is rendered"
-                 % (group, light.name, view_layer.name))
+            note("light group '%s' of %s added to view layer '%s', so that its pass is rendered"
+                 % (group, owner, view_layer.name))
 
 
 def multilayer_exr(settings):
@@ -476,7 +448,7 @@ def main():
     objects = None
     if args.geometry:
         objects = export_geometry(scene, args.geometry, os.path.dirname(os.path.abspath(args.out)))
-    write_json(scene_json(scene, args.falloff, gbuffer, objects), args.out)
+    write_json(scene_json(scene, args.falloff, gbuffer, objects, os.path.dirname(os.path.abspath(args.out))), args.out)
     note("wrote " + args.out + (" and " + args.render if args.render else ""))
 
 

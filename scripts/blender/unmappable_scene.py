@@ -1,5 +1,5 @@
 """A scene holding what export_scene.py cannot map, for scripts/checks/61-blender-notes.sh: a world lit by
-an Environment Texture (an HDRI), an ellipse area light, a Principled BSDF that emits and whose Base Color
+a Sky Texture, an ellipse area light, a Principled BSDF that emits and whose Base Color
 is fed by a texture, a Glass BSDF, and a spot light of a non-zero radius (exported as its "radius"). Writes the scene JSON;
 the exporter's notes go to standard output. No render.
 
@@ -19,8 +19,8 @@ import make_fixtures  # noqa: E402
 def build_unmappable_scene():
     scene = make_fixtures.build_scene(32, 24)
     world = versions.node_tree(scene.world)
-    hdri = world.nodes.new("ShaderNodeTexEnvironment")
-    world.links.new(hdri.outputs["Color"], world.nodes["Background"].inputs["Color"])
+    sky = world.nodes.new("ShaderNodeTexSky")
+    world.links.new(sky.outputs["Color"], world.nodes["Background"].inputs["Color"])
 
     for name, kind, shape in (("oval", "AREA", "ELLIPSE"), ("panel", "AREA", "RECTANGLE"), ("cone", "SPOT", None)):
         bpy.ops.object.light_add(type=kind, location=(0.0, 1.0, 3.0))

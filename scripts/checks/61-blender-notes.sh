@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Nothing the exporter cannot map is dropped silently: scripts/blender/unmappable_scene.py exports a scene
-# with an HDRI world, an ellipse area light, an emitting, texture-fed Principled BSDF and a Glass BSDF,
+# with a Sky Texture world, an ellipse area light, an emitting, texture-fed Principled BSDF and a Glass BSDF,
 # and each must have its note, naming the object, the node and what was exported instead; the exported
 # values must be what the notes say, and a spot's radius its "radius". No render (seconds).
 # BLENDER=PATH checks another Blender (scripts/setup.sh blender4, blender5).
@@ -16,7 +16,7 @@ expect() {
   grep -qF "export_scene: $1" "$work/blender.log" ||
     { grep "export_scene:" "$work/blender.log"; echo "$check: no note \"$1\"" >&2; exit 1; }
 }
-expect "world 'World': Background's Color is fed by 'Environment Texture' (ShaderNodeTexEnvironment), which phongcl cannot evaluate: exported the socket's own value [0.05, 0.05, 0.06]"
+expect "world 'World': Background's Color is fed by 'Sky Texture' (ShaderNodeTexSky), which phongcl cannot evaluate: exported the socket's own value [0.05, 0.05, 0.06]"
 expect "area light 'oval' is an ellipse, which phongcl has not: skipped, no light exported for it"
 expect "material 'red': Principled BSDF's Base Color is fed by 'Noise Texture' (ShaderNodeTexNoise), which phongcl cannot evaluate: exported the socket's own value [0.8, 0.1, 0.1]"
 expect "material 'red': the Principled BSDF emits light, which phongcl's materials do not: emission left out"
@@ -25,7 +25,9 @@ expect "material 'blue': its surface shader 'Glass BSDF' (ShaderNodeBsdfGlass) i
 python3 - "$work/scene.json" <<'PY'
 import json, sys
 scene = json.load(open(sys.argv[1]))
-assert scene["ambient"] == [0.05, 0.05, 0.06], scene["ambient"]
+assert scene["ambient"] == [0, 0, 0], "the world is the environment light, not an ambient term: %s" % scene["ambient"]
+world = [light for light in scene["lights"] if light["type"] == "environment"]
+assert world == [{"type": "environment", "color": [0.05, 0.05, 0.06], "strength": 1, "shadows": True}], world
 kinds = [light["type"] for light in scene["lights"]]
 assert kinds.count("area") == 1, "the ellipse was exported: %s" % kinds
 spot = next(light for light in scene["lights"] if light["type"] == "spot")
