@@ -29,6 +29,10 @@ import exr_file  # noqa: E402
 GROUND_HALF_SIZE = 7.0  # environment_scene.py's (shadow_scene.py's) 14 m ground
 GROUND_INDEX, SPHERE_INDEX, ABOVE_THE_REST_Z = 1, 2, 1.25
 SPHERE_POINTS = 12
+UNIFORM_GRID = (128, 64)
+# Cycles' passes by their 3.x/4.x names, and the full names Blender 5 writes instead.
+PASSES = {"DiffDir": ("DiffDir", "Diffuse Direct"), "IndexOB": ("IndexOB", "Object Index"), "Position": ("Position",),
+          "Normal": ("Normal",)}
 
 
 def map_direction(u, v, rotation_deg):
@@ -41,7 +45,7 @@ def map_direction(u, v, rotation_deg):
 
 
 def environment_samples(scene_path):
-    """(direction, radiance * solid angle) per texel, or one uniform radiance for a colour."""
+    """(direction, radiance * solid angle) per texel of the map (a uniform colour: of a 128x64 grid)."""
     scene = json.load(open(scene_path))
     lights = [light for light in scene["lights"] if light["type"] == "environment"]
     if len(lights) != 1:
@@ -49,9 +53,11 @@ def environment_samples(scene_path):
     light = lights[0]
     strength = light.get("strength", 1.0)
     if "color" in light:
-        return None, [c * strength for c in light["color"]]
-    path = os.path.join(os.path.dirname(os.path.abspath(scene_path)), light["file"])
-    images, (width, height) = exr_file.read(path, ["R", "G", "B"])
+        width, height = UNIFORM_GRID
+        images = {c: [[light["color"][i]] * width for _ in range(height)] for i, c in enumerate("RGB")}
+    else:
+        path = os.path.join(os.path.dirname(os.path.abspath(scene_path)), light["file"])
+        images, (width, height) = exr_file.read(path, ["R", "G", "B"])
     samples = []
     texel = (2.0 * math.pi / width) * (math.pi / height)
     for y in range(height):
@@ -60,7 +66,7 @@ def environment_samples(scene_path):
         for x in range(width):
             direction = map_direction((x + 0.5) / width, v, light.get("rotation", 0.0))
             samples.append((direction, [images[c][y][x] * weight for c in "RGB"]))
-    return samples, None
+    return samples
 
 
 def ground_blocks(point, w):
@@ -70,9 +76,7 @@ def ground_blocks(point, w):
     return abs(point[0] + t * w[0]) <= GROUND_HALF_SIZE and abs(point[1] + t * w[1]) <= GROUND_HALF_SIZE
 
 
-def expected_diffdir(samples, uniform, point, normal):
-    if uniform is not None:  # an unoccluded upward point: the cosine-weighted hemisphere integrates to pi
-        return uniform
+def expected_diffdir(samples, point, normal):
     total = [0.0, 0.0, 0.0]
     for w, radiance in samples:
         cosine = normal[0] * w[0] + normal[1] * w[1] + normal[2] * w[2]
@@ -82,9 +86,8 @@ def expected_diffdir(samples, uniform, point, normal):
     return [t / math.pi for t in total]
 
 
-def chosen_pixels(passes, width, height, uniform):
-    layer = "ViewLayer."
-    index = passes[layer + "IndexOB.X"]
+def chosen_pixels(passes, width, height):
+    index = passes["IndexOB.X"]
 
     def inside(x, y):
         return all(index[y + j][x + i] == index[y][x] for j in (-1, 0, 1) for i in (-1, 0, 1))
@@ -92,11 +95,10 @@ def chosen_pixels(passes, width, height, uniform):
     ground = next(((x, y) for y in range(1, height - 1) for x in range(1, width - 1)
                    if index[y][x] == GROUND_INDEX and inside(x, y)), None)
     chosen = [("ground, farthest", ground)] if ground else []
-    if uniform is None:  # a uniform world is held at the ground only: the spheres see the ground's horizon
-        sphere = [(x, y) for y in range(1, height - 1) for x in range(1, width - 1)
-                  if index[y][x] == SPHERE_INDEX and inside(x, y) and passes[layer + "Position.Z"][y][x] > ABOVE_THE_REST_Z]
-        step = max(1, len(sphere) // SPHERE_POINTS)
-        chosen += [("sphere", p) for p in sphere[::step][:SPHERE_POINTS]]
+    sphere = [(x, y) for y in range(1, height - 1) for x in range(1, width - 1)
+              if index[y][x] == SPHERE_INDEX and inside(x, y) and passes["Position.Z"][y][x] > ABOVE_THE_REST_Z]
+    step = max(1, len(sphere) // SPHERE_POINTS)
+    chosen += [("sphere", p) for p in sphere[::step][:SPHERE_POINTS]]
     return chosen
 
 
@@ -106,16 +108,20 @@ def main():
     parser.add_argument("--render", required=True)
     parser.add_argument("--tolerance", type=float, default=0.03)
     args = parser.parse_args()
-    samples, uniform = environment_samples(args.scene)
-    names = ["ViewLayer.%s.%s" % (p, c) for p, cs in (("DiffDir", "RGB"), ("Position", "XYZ"), ("Normal", "XYZ"))
-             for c in cs] + ["ViewLayer.IndexOB.X"]
-    passes, (width, height) = exr_file.read(args.render, names)
+    samples = environment_samples(args.scene)
+    present = exr_file.channel_names(args.render)
+    wanted = {}
+    for short, channels in (("DiffDir", "RGB"), ("Position", "XYZ"), ("Normal", "XYZ"), ("IndexOB", "X")):
+        name = next((n for n in PASSES[short] if "ViewLayer.%s.%s" % (n, channels[0]) in present), PASSES[short][0])
+        wanted.update({"ViewLayer.%s.%s" % (name, c): "%s.%s" % (short, c) for c in channels})
+    read, (width, height) = exr_file.read(args.render, list(wanted))
+    passes = {wanted[name]: rows for name, rows in read.items()}
     errors = []
-    for what, (x, y) in chosen_pixels(passes, width, height, uniform):
-        point = [passes["ViewLayer.Position." + c][y][x] for c in "XYZ"]
-        normal = [passes["ViewLayer.Normal." + c][y][x] for c in "XYZ"]
-        cycles = [passes["ViewLayer.DiffDir." + c][y][x] for c in "RGB"]
-        expected = expected_diffdir(samples, uniform, point, normal)
+    for what, (x, y) in chosen_pixels(passes, width, height):
+        point = [passes["Position." + c][y][x] for c in "XYZ"]
+        normal = [passes["Normal." + c][y][x] for c in "XYZ"]
+        cycles = [passes["DiffDir." + c][y][x] for c in "RGB"]
+        expected = expected_diffdir(samples, point, normal)
         ratio = sum(cycles) / sum(expected)
         errors.append(abs(ratio - 1.0))
         print("environment_reference: %-16s (%3d, %3d) n (%.2f, %.2f, %.2f): Cycles %.4f, expected %.4f, ratio %.4f"

@@ -41,19 +41,29 @@ def write(path, rows):
         out.write(header + struct.pack("<%dQ" % height, *table) + b"".join(lines))
 
 
-def _header(data):
+def _headers(data):
+    """Each part's header attributes (one part unless the file is multi-part, as Blender 5's multilayer
+    EXRs are), and where the offset tables begin."""
     if struct.unpack_from("<i", data)[0] != MAGIC:
         raise ValueError("not an OpenEXR file")
-    if struct.unpack_from("<i", data, 4)[0] & (TILED | DEEP | MULTIPART):
-        raise ValueError("tiled, deep or multi-part EXR: only single-part scanline files are read")
-    attributes, at = {}, 8
-    while data[at] != 0:
-        name_end = data.index(b"\0", at)
-        kind_end = data.index(b"\0", name_end + 1)
-        size = struct.unpack_from("<i", data, kind_end + 1)[0]
-        attributes[data[at:name_end].decode()] = data[kind_end + 5:kind_end + 5 + size]
-        at = kind_end + 5 + size
-    return attributes, at + 1
+    flags = struct.unpack_from("<i", data, 4)[0]
+    if flags & (TILED | DEEP):
+        raise ValueError("tiled or deep EXR: only scanline files are read")
+    headers, at = [], 8
+    while True:
+        attributes = {}
+        while data[at] != 0:
+            name_end = data.index(b"\0", at)
+            kind_end = data.index(b"\0", name_end + 1)
+            size = struct.unpack_from("<i", data, kind_end + 1)[0]
+            attributes[data[at:name_end].decode()] = data[kind_end + 5:kind_end + 5 + size]
+            at = kind_end + 5 + size
+        headers.append(attributes)
+        at += 1
+        if not flags & MULTIPART:
+            return headers, at
+        if data[at] == 0:  # an empty header ends a multi-part file's headers
+            return headers, at + 1
 
 
 def _channels(chlist):
@@ -76,24 +86,16 @@ def _unzip(block):
     return bytes(out)
 
 
-def read(path, names):
-    """The named channels (e.g. "ViewLayer.DiffDir.R") as {name: rows}, plus (width, height)."""
-    data = open(path, "rb").read()
-    attributes, at = _header(data)
+def _read_part(data, attributes, offsets, multipart, names, images):
     compression = attributes["compression"][0]
     if compression not in LINES_PER_BLOCK:
-        raise ValueError("%s: EXR compression %d is not read (uncompressed, ZIPS and ZIP are)" % (path, compression))
+        raise ValueError("EXR compression %d is not read (uncompressed, ZIPS and ZIP are)" % compression)
     xmin, ymin, xmax, ymax = struct.unpack("<iiii", attributes["dataWindow"])
-    width, height = xmax - xmin + 1, ymax - ymin + 1
+    width = xmax - xmin + 1
     channels = sorted(_channels(attributes["channels"]))
-    missing = [n for n in names if n not in dict(channels)]
-    if missing:
-        raise ValueError("%s has no channel %s" % (path, ", ".join(missing)))
     lines = LINES_PER_BLOCK[compression]
-    blocks = (height + lines - 1) // lines
-    offsets = struct.unpack_from("<%dQ" % blocks, data, at)
-    images = {n: [] for n in names}
     for offset in offsets:
+        offset += 4 if multipart else 0  # a multi-part chunk starts with its part's number
         y, size = struct.unpack_from("<ii", data, offset)
         block = data[offset + 8:offset + 8 + size]
         rows = min(lines, ymax - y + 1)
@@ -102,9 +104,38 @@ def read(path, names):
         at_line = 0
         for _ in range(rows):
             for name, kind in channels:
-                step = 2 if kind == HALF else 4
-                if name in images:
+                if name in names:
                     code = {HALF: "e", FLOAT: "f"}.get(kind, "I")
                     images[name].append(list(struct.unpack_from("<%d%s" % (width, code), block, at_line)))
-                at_line += width * step
-    return images, (width, height)
+                at_line += width * (2 if kind == HALF else 4)
+    return width, ymax - ymin + 1
+
+
+def channel_names(path):
+    """Every channel's name in the file."""
+    headers, _ = _headers(open(path, "rb").read())
+    return {name for attributes in headers for name, _ in _channels(attributes["channels"])}
+
+
+def read(path, names):
+    """The named channels (e.g. "ViewLayer.DiffDir.R") as {name: rows}, plus (width, height)."""
+    data = open(path, "rb").read()
+    try:
+        headers, at = _headers(data)
+    except ValueError as error:
+        raise ValueError("%s: %s" % (path, error))
+    present = {name for attributes in headers for name, _ in _channels(attributes["channels"])}
+    missing = [n for n in names if n not in present]
+    if missing:
+        raise ValueError("%s has no channel %s" % (path, ", ".join(missing)))
+    multipart = len(headers) > 1 or "chunkCount" in headers[0]
+    images = {n: [] for n in names}
+    for attributes in headers:
+        xmin, ymin, xmax, ymax = struct.unpack("<iiii", attributes["dataWindow"])
+        lines = LINES_PER_BLOCK.get(attributes["compression"][0], 1)
+        blocks = (struct.unpack("<i", attributes["chunkCount"])[0] if "chunkCount" in attributes
+                  else (ymax - ymin + lines) // lines)
+        offsets = struct.unpack_from("<%dQ" % blocks, data, at)
+        at += 8 * blocks
+        size = _read_part(data, attributes, offsets, multipart, set(names), images)
+    return images, size
