@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The Blender checks (60 to 65) again on the newer Blenders artists run, each from its own Debian root:
+# The Blender checks (60 to 65, 67) again on the newer Blenders artists run, each from its own Debian root:
 # 5.2 (Debian unstable) and 4.3 (Debian 13). `scripts/setup.sh blenderN` makes a root once per machine
 # (about 2 minutes and 1.3 GB each; seconds when it exists), then every check runs with
 # BLENDER=/var/cache/phongcl/bin/blenderN, so each renders its scenes with that version and holds
@@ -10,7 +10,7 @@ cd "$(dirname "$0")/../.."
 check=66-blender-versions
 versions=${PHONGCL_BLENDER_VERSIONS:-blender5 blender4}
 cache=${PHONGCL_CACHE:-/var/cache/phongcl}
-checks=(60-blender 61-blender-notes 62-blender-area 62-blender-lights 63-blender-colour 64-blender-over 65-blender-shadows)
+checks=(60-blender 61-blender-notes 62-blender-area 62-blender-lights 63-blender-colour 64-blender-over 65-blender-shadows 67-blender-environment)
 
 summary=()
 for version in $versions; do
