@@ -7,12 +7,13 @@
 "rotation" is the Mapping node's Z rotation in degrees (negated for a Mapping of type Texture, which
 applies the inverse): Cycles looks the image up in the direction rotated by it. A Mapping's location
 (type Point), X or Y rotation or scale has no phongcl counterpart: a note names it and it is left out.
-"file" is relative to the scene JSON: the image's own file where that is an EXR on disk, else (packed,
+"file" is relative to the scene JSON: the image's own file where that is a linear EXR on disk, else (packed,
 generated, or another format: .hdr, .png) a float EXR copy written next to the JSON as <image>.exr,
 8-bit sRGB pixels made linear as Cycles reads them. Anything else in the world's tree gets a note naming
 its node, and the exported light is the socket's own value. A world in a light group (World.lightgroup,
 3.2+) gives the light its "group". The world lights through geometry in Cycles, always: "shadows": true.
-A black world (colour or strength 0) exports no light.
+A black world (colour or strength 0) exports no light. The map's orientation stays Cycles' (the top row
++Z, the centre column +X: docs/formats.md "The world").
 """
 import array
 import math
@@ -106,6 +107,22 @@ def _image_file(owner, image, directory):
     return path
 
 
+def _texture_entry(owner, texture, directory):
+    """{"file", "rotation"} of an equirectangular Environment Texture with an image, else None (with a note
+    where it is an Environment Texture)."""
+    if texture is None or texture.type != "TEX_ENVIRONMENT":
+        return None
+    if texture.image is None:
+        note("%s: %s has no image (Cycles renders it magenta)" % (owner, texture.name))
+        return None
+    if texture.projection != "EQUIRECTANGULAR":
+        note("%s: %s's projection is %s, phongcl reads equirectangular maps only"
+             % (owner, texture.name, texture.projection.lower().replace("_", " ")))
+        return None
+    return {"file": os.path.relpath(_image_file(owner, texture.image, directory), directory),
+            "rotation": round(_rotation_deg(owner, texture), 4)}
+
+
 def environment_json(scene, directory):
     """The world's environment light entry, or None (with a note where the world lights but cannot be
     mapped); `directory` is the scene JSON's, which "file" is relative to."""
@@ -114,9 +131,8 @@ def environment_json(scene, directory):
         return None
     owner = "world '%s'" % world.name
     shader, tree = _output_shader(world)
-    entry = {"type": "environment"}
     if tree is None:
-        colour, strength = world.color[:3], 1.0
+        light, strength = {"color": world.color[:3]}, 1.0
     elif shader is None:
         note("%s has no shader linked to a World Output: exported no environment light" % owner)
         return None
@@ -126,29 +142,19 @@ def environment_json(scene, directory):
         return None
     else:
         strength = unlinked_value(owner, shader, "Strength", "value")
-        texture = _feeding(shader.inputs["Color"])
-        colour = None
-        if texture is not None and texture.type == "TEX_ENVIRONMENT":
-            if texture.image is None:
-                note("%s: %s has no image (Cycles renders it magenta): exported the Background's own colour" % (owner, texture.name))
-            elif texture.projection != "EQUIRECTANGULAR":
-                note("%s: %s's projection is %s, phongcl reads equirectangular maps only: exported the Background's own "
-                     "colour" % (owner, texture.name, texture.projection.lower().replace("_", " ")))
-            else:
-                path = _image_file(owner, texture.image, directory)
-                entry["file"] = os.path.relpath(path, directory)
-                entry["rotation"] = round(_rotation_deg(owner, texture), 4)
-                colour = (1.0, 1.0, 1.0)
-        if colour is None:
-            colour = unlinked_value(owner, shader, "Color", "colour")[:3]
-    if "file" not in entry:
-        if max(colour) <= 0.0 or strength <= 0.0:
+        if strength <= 0.0:
             return None
-        entry["color"] = [round(float(c), 7) for c in colour]
-    elif strength <= 0.0:
-        return None
+        light = (_texture_entry(owner, _feeding(shader.inputs["Color"]), directory)
+                 or {"color": unlinked_value(owner, shader, "Color", "colour")[:3]})
+    if strength <= 0.0 or max(light.get("color", [1.0])) <= 0.0:
+        return None  # a black world lights nothing
+    entry = {"type": "environment"}
+    if "color" in light:
+        entry["color"] = [round(float(c), 7) for c in light["color"]]
+    else:
+        entry.update(light)
     entry["strength"] = round(float(strength), 7)
     entry["shadows"] = True
-    if getattr(world, "lightgroup", ""):
+    if world.lightgroup:
         entry["group"] = world.lightgroup
     return entry
