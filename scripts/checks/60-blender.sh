@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # A .blend to a relit EXR with the two commands of the README's "Shade your own render": builds a
-# tiny scene in Blender (64x48: point, spot, sun, rect and disk area lights, all casting shadows;
+# tiny scene in Blender (64x48: point, spot, sun, rect and disk area lights and the world, all casting shadows;
 # Principled and Diffuse materials), exports it and renders its G-buffer with Cycles (4 samples, CPU) through
 # scripts/blender/export_scene.py, then shades it with phongcl, which must detect the Blender
 # layout with no flags beyond --scene. Needs build/phongcl (scripts/test.sh builds it first).
@@ -39,7 +39,7 @@ python3 - "$work/scene.json" <<'PY'
 import json, sys
 scene = json.load(open(sys.argv[1]))
 kinds = sorted({light["type"] + ("-" + light["shape"] if "shape" in light else "") for light in scene["lights"]})
-assert kinds == ["area-disk", "area-rect", "directional", "point", "spot"], kinds
+assert kinds == ["area-disk", "area-rect", "directional", "environment", "point", "spot"], kinds
 assert all(light.get("shadows") for light in scene["lights"]), "a light lost its shadows"
 specular = [any(m["ks"]) for m in scene["materials"]]
 assert specular == [True, True, True, False], "Principled materials need a specular lobe, the Diffuse one none: %s" % specular
