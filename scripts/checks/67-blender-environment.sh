@@ -5,7 +5,8 @@
 # pixel, and for each:
 #   1. the exported {"type": "environment"} light must be exactly what the world holds;
 #   2. environment_reference.py must find Cycles' diffuse light where the map, its orientation and its
-#      rotation say (brute force over the map, median within 3%): the exporter's conventions, without phongcl;
+#      rotation say (brute force over the map, median within 1.5%: measured 0.3% to 0.8%; the rotation
+#      20 degrees off is 8% to 10% off, its sign flipped 35%): the exporter's conventions, without phongcl;
 #   3. phongcl shades it with --shadows geometry (the exported meshes, default rays), screen and off, and
 #      `phongcl agreement` (Cycles' DiffDir x DiffCol within 5% of the unshadowed light, away from
 #      silhouettes) must hold the targets of docs/formats.md "The world": geometry >= 99%, screen >= 95%.
@@ -52,8 +53,9 @@ assert scene["lights"] == [expected], "exported %s, expected [%s]" % (scene["lig
 assert scene["ambient"] == [0, 0, 0], "an ambient term beside the environment: %s" % scene["ambient"]
 assert len(scene["objects"]) == 5, "the ground, three spheres and a box expected as meshes: %s" % scene["objects"]
 PY
-  python3 scripts/blender/environment_reference.py --scene "$dir/scene.json" --render "$dir/render.exr" --tolerance 0.03 \
-    >"$work/reference-$world.txt" || { cat "$work/reference-$world.txt"; echo "$check: Cycles' $world light is not where the exported light puts it" >&2; exit 1; }
+  python3 scripts/blender/environment_reference.py --scene "$dir/scene.json" --render "$dir/render.exr" --tolerance 0.015 \
+    >"$work/reference-$world.txt" ||
+    { cat "$work/reference-$world.txt"; echo "$check: Cycles' $world light is not where the exported light puts it" >&2; exit 1; }
   reference=$(tail -1 "$work/reference-$world.txt" | sed 's/^environment_reference: //')
 
   for mode in geometry screen off; do
