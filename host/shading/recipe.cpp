@@ -248,7 +248,7 @@ void decide_terms(Recipe& recipe, const Scene& scene, const GBuffer& gbuffer) {
   const bool ks_zero = gbuffer.has_per_pixel_ks() ? all_zero(gbuffer.ks) : table_ks_zero;
   const bool specular = any_lights && !ks_zero;
   add_flag(recipe, "SPECULAR", specular,
-           specular     ? "specular: compiled in (some material has ks > 0)"
+           specular     ? "specular: compiled in (some material has ks > 0 or is principled)"
            : any_lights ? "specular: compiled out (every ks is 0): no pow"
                         : "specular: compiled out (no lights)",
            specular ? "specular" : "no specular");

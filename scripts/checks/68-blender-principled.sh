@@ -43,7 +43,8 @@ scene = json.load(open(sys.argv[1]))
 scene["lights"] = [scene["lights"][int(sys.argv[2])]]
 json.dump(scene, open(sys.argv[3], "w"), indent=1)
 PY
-  "$phongcl" shade --scene "$work/light$k.json" --out "$work/shaded$k.exr" --aov "$work/shaded$k.aov.exr" \
+  # kd from the table, not from DiffCol: the material's own diffuse weight is what is held.
+  "$phongcl" shade --scene "$work/light$k.json" --kd-from table --out "$work/shaded$k.exr" --aov "$work/shaded$k.aov.exr" \
     >"$work/shade$k.log" || { cat "$work/shade$k.log"; echo "$check: shading light $k failed" >&2; exit 1; }
   cycles+=(--cycles "$work/light$k.exr") shaded+=(--shaded "$work/shaded$k.aov.exr") other+=(--cycles "$work/seed1/light$k.exr")
 done
