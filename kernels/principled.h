@@ -70,7 +70,11 @@ static inline PrincipledResponse principled_response(PrincipledSurface m, vec3 n
   const vec3 s = add3(l, v);
   const realv inverse_s = rsqrt(max(dot3(s, s), (real)1e-30f));
   const realv n_dot_h = dot3(n, s) * inverse_s, l_dot_h = dot3(l, s) * inverse_s;
-  const realv d_root = fma(n_dot_h * n_dot_h, m.alpha_sq - 1, 1);
+  /* c^2 (alpha^2 - 1) + 1 = sin^2 + c^2 alpha^2, sin^2 = |n x h|^2: near the peak 1 - c^2 would cancel
+   * to float's rounding of c, which at alpha^2 = 1e-4 is 1e-3 of D. */
+  const vec3 n_cross_s = cross3(n, s);
+  const realv sin_sq = dot3(n_cross_s, n_cross_s) * (inverse_s * inverse_s);
+  const realv d_root = fma(n_dot_h * n_dot_h, m.alpha_sq, sin_sq);
   const realv masking = half_smith_masking(n_dot_v, m.alpha_sq) * half_smith_masking(n_dot_l, m.alpha_sq);
   const realv lobe = m.alpha_sq * masking / (n_dot_v * d_root * d_root);
   const realv lit = SELECT(n_dot_l > 0 && n_dot_v > 0 && m.alpha_sq > (real)1e-7f, lobe, 0);
