@@ -200,11 +200,14 @@ typedef struct {
   layout_float ka[4], kd[4], ks[4]; /* rgb, a unused */
   layout_float shininess;
   layout_float specular_model; /* the model's number (specular.h), a float so the lanes' selects read it as the others */
-  layout_float padding[2];
+  layout_float roughness, ior; /* the Principled model's (principled.h); 0 for the others */
 } MaterialRecord;
 
 /* Float offsets of MaterialRecord's fields, for the kernel's per-lane gathers. */
-enum { MATERIAL_KA = 0, MATERIAL_KD = 4, MATERIAL_KS = 8, MATERIAL_SHININESS = 12, MATERIAL_SPECULAR_MODEL = 13 };
+enum {
+  MATERIAL_KA = 0, MATERIAL_KD = 4, MATERIAL_KS = 8, MATERIAL_SHININESS = 12, MATERIAL_SPECULAR_MODEL = 13,
+  MATERIAL_ROUGHNESS = 14, MATERIAL_IOR = 15
+};
 
 /* The G-buffer lives in one device buffer of planes (structure of arrays: kernels over plain float
  * arrays vectorise, float3 code does not). Plane k of a tile starts at k * plane_stride. The

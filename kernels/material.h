@@ -46,7 +46,9 @@ real material_scalar(UNIFORM_SPACE const MaterialRecord* record, int field) {
          : field < MATERIAL_KS ? record->kd[field - MATERIAL_KD]
          : field < MATERIAL_SHININESS ? record->ks[field - MATERIAL_KS]
          : field == MATERIAL_SHININESS ? record->shininess
-                                       : record->specular_model;
+         : field == MATERIAL_SPECULAR_MODEL ? record->specular_model
+         : field == MATERIAL_ROUGHNESS ? record->roughness
+                                       : record->ior;
 }
 
 /* `value`, or entry m's field in the lanes whose index is m. */

@@ -26,6 +26,7 @@
 #include "phong_math.h"
 #include "shadow.h"
 #include "soft_shadow.h"
+#include "principled.h"
 #include "specular.h"
 #include "storage.h"
 #include "tiles.h"
@@ -38,6 +39,7 @@ typedef struct {
   realv shininess; /* q */
   realv highlight_cutoff; /* with SPECULAR, highlight_cutoff(q) */
   realv specular_model; /* the lane's model number (specular.h); read only where lanes may differ */
+  PrincipledSurface principled; /* with PRINCIPLED_LOBES, the lane's Principled parameters */
   intv material;   /* material index, PHONGCL_BACKGROUND in background lanes */
 } Surface;
 
@@ -177,6 +179,37 @@ void light_contribution(LightSums* sums, PendingLobes* pending, vec3 n, vec3 v, 
   }
 }
 
+/* What a Principled lane adds (principled.h): Li F times its responses, the specular one coloured. */
+void principled_light(LightSums* sums, vec3 n, vec3 v, PrincipledSurface material, vec3 toward, realv inverse,
+                      UNIFORM_SPACE const float* color, realv weight) {
+  const PrincipledResponse response = principled_response(material, n, v, scale3(toward, inverse));
+  const realv lit = NONNEGATIVE_TIMES(weight, response.diffuse);
+  sums->diffuse.x += NONNEGATIVE_TIMES(color[0], lit);
+  sums->diffuse.y += NONNEGATIVE_TIMES(color[1], lit);
+  sums->diffuse.z += NONNEGATIVE_TIMES(color[2], lit);
+  sums->specular.x += NONNEGATIVE_TIMES(color[0], NONNEGATIVE_TIMES(weight, response.specular.x));
+  sums->specular.y += NONNEGATIVE_TIMES(color[1], NONNEGATIVE_TIMES(weight, response.specular.y));
+  sums->specular.z += NONNEGATIVE_TIMES(color[2], NONNEGATIVE_TIMES(weight, response.specular.z));
+}
+
+/* A point, spot or directional light on each lane's material: the Phong-family lobes
+ * (light_contribution), Principled ones (principled_light), or where lanes mix them both, each with
+ * the other's lanes' weight 0. */
+static inline void surface_light(LightSums* sums, PendingLobes* pending, const Surface* surface, vec3 toward,
+                                 realv inverse, UNIFORM_SPACE const float* color, realv weight) {
+  if (!PRINCIPLED_LOBES) {
+    light_contribution(sums, pending, surface->n, surface->v, surface->shininess, surface->highlight_cutoff,
+                       surface->specular_model, toward, inverse, color, weight);
+    return;
+  }
+  const realv principled = ONLY_PRINCIPLED_LOBES ? 1 : SELECT(surface->specular_model == PRINCIPLED_MODEL, 1, 0);
+  principled_light(sums, surface->n, surface->v, surface->principled, toward, inverse, color,
+                   SELECT(principled != 0, weight, 0));
+  if (!ONLY_PRINCIPLED_LOBES)
+    light_contribution(sums, pending, surface->n, surface->v, surface->shininess, surface->highlight_cutoff,
+                       surface->specular_model, toward, inverse, color, SELECT(principled != 0, 0, weight));
+}
+
 /* The block's pending lobes (light_contribution) raised to the power q and added, in the lights' order. */
 void sum_pending_lobes(LightSums* sums, const PendingLobes* pending, realv shininess) {
   for (int k = 0; k < pending->count; ++k) {
@@ -246,8 +279,7 @@ static inline void add_point_light(LightSums* sums, PendingLobes* pending, const
   realv weight = POINT_SHAPES ? shape_weight(shape, toward, inverse, distance, inverse_distance, gate) : gate;
   if (SHADOWS)
     weight = shadowed_weight(weight, surface, lights, position, 0, lights->point_casters[i], &lights->point_soft[i], (uint)i);
-  light_contribution(sums, pending, surface->n, surface->v, surface->shininess, surface->highlight_cutoff,
-                     surface->specular_model, toward, inverse, light->color, weight);
+  surface_light(sums, pending, surface, toward, inverse, light->color, weight);
 }
 
 /* What a directional light adds; F is its linking, times its visibility with SHADOWS. */
@@ -260,8 +292,7 @@ static inline void add_directional_light(LightSums* sums, PendingLobes* pending,
   if (SHADOWS)
     weight = shadowed_weight(weight, surface, lights, l, 1, lights->directional_casters[k], &lights->directional_soft[k],
                              DIRECTIONAL_STREAMS + (uint)k);
-  light_contribution(sums, pending, surface->n, surface->v, surface->shininess, surface->highlight_cutoff,
-                     surface->specular_model, l, 1, light->color, weight);
+  surface_light(sums, pending, surface, l, 1, light->color, weight);
 }
 
 /* An area light's shadow. With SOFT_SHADOWS and more than one ray its E and S are multiplied by
@@ -300,6 +331,9 @@ static inline void add_area_light(LightSums* sums, const Surface* surface, const
   realv irradiance, highlight;
   area_light_terms(light, surface->p, n, v, r, surface->shininess, surface->specular_model, SPECULAR, &irradiance,
                    &highlight);
+  /* Principled lanes take an area light's irradiance, Lambert's, and no highlight yet. */
+  if (PRINCIPLED_LOBES)
+    highlight = ONLY_PRINCIPLED_LOBES ? 0 : SELECT(surface->specular_model == PRINCIPLED_MODEL, 0, highlight);
   if (SHADOWS && lights->area_casters[k])
     shadow_area_light(&irradiance, &highlight, surface, lights, k, lights->area_casters[k]);
   sums->diffuse.x += light->color[0] * irradiance;
@@ -439,6 +473,15 @@ static inline void sum_groups(LightSums* out, const Surface* surface, const Ligh
   *out = sums;
 }
 
+/* The specular sum's coefficient: ks, or 1 in Principled lanes, whose sums carry their colour (their ks
+ * is the Fresnel's cspec0, principled.h). */
+static inline vec3 specular_coefficient(vec3 ks, realv model) {
+  if (!PRINCIPLED_LOBES) return ks;
+  const realv one = 1;
+  if (ONLY_PRINCIPLED_LOBES) return make_vec3(one, one, one);
+  return select3(make_vec3(one, one, one), ks, SELECT(model == PRINCIPLED_MODEL, 1, 0));
+}
+
 /* L_o's terms for one vector of pixels: ambient ka*La, diffuse kd*D, specular ks*S. */
 static inline void shade_pixel(Terms* terms, const PixelPlanes* pixels, const MaterialLookup* materials,
                                const Lights* lights, const FrameScalars* frame, const PixelOutputs* outputs) {
@@ -447,6 +490,14 @@ static inline void shade_pixel(Terms* terms, const PixelPlanes* pixels, const Ma
   surface.shininess = PER_PIXEL_Q ? pixel_plane(pixels, PLANE_Q) : material_field(materials, MATERIAL_SHININESS);
   surface.highlight_cutoff = SPECULAR ? highlight_cutoff(surface.shininess) : 0;
   surface.specular_model = MIXED_SPECULAR_MODELS ? material_field(materials, MATERIAL_SPECULAR_MODEL) : 0;
+  if (PRINCIPLED_LOBES) {
+    surface.principled.specular_color = MATERIAL_FIELD3(materials, MATERIAL_KS);
+    surface.principled.roughness = material_field(materials, MATERIAL_ROUGHNESS);
+    surface.principled.alpha_sq = surface.principled.roughness * surface.principled.roughness;
+    surface.principled.alpha_sq *= surface.principled.alpha_sq;
+    surface.principled.ior = material_field(materials, MATERIAL_IOR);
+    surface.principled.f0 = dielectric_fresnel((realv)1, surface.principled.ior);
+  }
   surface.p = PIXEL_PLANE3(pixels, PLANE_PX);
   const realv zero = 0;
   surface.p_rest = POSITION_REST ? PIXEL_PLANE3(pixels, PLANE_REST) : make_vec3(zero, zero, zero);
@@ -457,7 +508,8 @@ static inline void shade_pixel(Terms* terms, const PixelPlanes* pixels, const Ma
   LightSums sums;
   if (LIGHT_GROUPS) {
     const vec3 kd = PER_PIXEL_KD ? PIXEL_PLANE3(pixels, PLANE_KD) : MATERIAL_FIELD3(materials, MATERIAL_KD);
-    const vec3 ks = PER_PIXEL_KS ? PIXEL_PLANE3(pixels, PLANE_KS) : MATERIAL_FIELD3(materials, MATERIAL_KS);
+    const vec3 ks = specular_coefficient(PER_PIXEL_KS ? PIXEL_PLANE3(pixels, PLANE_KS) : MATERIAL_FIELD3(materials, MATERIAL_KS),
+                                         surface.specular_model);
     sum_groups(&sums, &surface, lights, kd, ks, outputs, frame->radiance_scale_a, frame->radiance_scale_b);
   } else {
     sum_lights(&sums, &surface, lights, 0);
@@ -469,7 +521,8 @@ static inline void shade_pixel(Terms* terms, const PixelPlanes* pixels, const Ma
   terms->diffuse = make_vec3(NONNEGATIVE_TIMES(kd.x, sums.diffuse.x), NONNEGATIVE_TIMES(kd.y, sums.diffuse.y),
                             NONNEGATIVE_TIMES(kd.z, sums.diffuse.z));
   if (SPECULAR) {
-    const vec3 ks = PER_PIXEL_KS ? PIXEL_PLANE3(pixels, PLANE_KS) : MATERIAL_FIELD3(materials, MATERIAL_KS);
+    const vec3 ks = specular_coefficient(PER_PIXEL_KS ? PIXEL_PLANE3(pixels, PLANE_KS) : MATERIAL_FIELD3(materials, MATERIAL_KS),
+                                         surface.specular_model);
     /* The normalised lobes' factor, (q+2)/2 or (q+8)/8: constant over the lights, so applied once. */
     if (NORMALIZED_LOBES)
       sums.specular = scale3(sums.specular, specular_normalization(surface.shininess, surface.specular_model));

@@ -163,7 +163,14 @@ void bind_scene(py::module_& module) {
   material.def_property(
       "specular_model", [](const Material& m) { return std::string(to_string(m.specular_model)); },
       [](Material& m, const std::string& name) { m.specular_model = parse_specular_model(name); },
-      "'phong' (default), 'phong-normalized', 'blinn-phong' or 'blinn-phong-normalized' (docs/shading.md).");
+      "'phong' (default), 'phong-normalized', 'blinn-phong', 'blinn-phong-normalized' or 'principled' "
+      "(docs/shading.md).");
+  vec3_property(material, "base_color", &Material::base_color, "principled: the base colour.");
+  material.def_readwrite("metallic", &Material::metallic, "principled: metallic, [0, 1].")
+      .def_readwrite("roughness", &Material::roughness, "principled: roughness, [0, 1].")
+      .def_readwrite("specular", &Material::specular, "principled: specular, [0, 12] (F0 = 0.08 specular).")
+      .def_readwrite("specular_tint", &Material::specular_tint, "principled: specular tint, [0, 1].")
+      .def_readwrite("version", &Material::version, "principled: the node's version, 1 (Blender 2.8 to 3.6).");
 
   py::class_<Scene> scene(module, "Scene",
                           "A scene: camera, ambient, background, lights, area lights, materials. Lists come out as copies: "

@@ -188,6 +188,23 @@ TEST_F(Serve, SceneRoundTripsAndEditsShadeLikeTheReference) {
   expect_matches_reference(decode_exr(image->body), parse_scene(edited.dump(), kSceneFile), server_->session().gbuffer());
 }
 
+// The material panel's principled inputs (web/app.js): a principled material's roughness and metallic
+// edited live shade as the reference says.
+TEST_F(Serve, APrincipledMaterialsRoughnessAndMetallicEditLive) {
+  auto client = server_->client();
+  json edited = default_scene();
+  edited["materials"][0] = {{"specular_model", "principled"}, {"base_color", {0.8, 0.3, 0.2}}, {"roughness", 0.25}, {"metallic", 1}};
+  for (double roughness : {0.25, 0.6}) {
+    edited["materials"][0]["roughness"] = roughness;
+    const auto put = client.Put("/api/scene", edited.dump(), "application/json");
+    ASSERT_TRUE(put);
+    ASSERT_EQ(put->status, 200) << put->body;
+    const auto image = client.Get("/api/image?format=exr");
+    ASSERT_TRUE(image);
+    expect_matches_reference(decode_exr(image->body), parse_scene(edited.dump(), kSceneFile), server_->session().gbuffer());
+  }
+}
+
 TEST_F(Serve, BadScenesAre400AndLeaveTheHeldSceneUnchanged) {
   auto client = server_->client();
   const std::string before = client.Get("/api/scene")->body;

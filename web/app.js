@@ -505,12 +505,21 @@ function renderMaterials() {
   const list = $('materials');
   list.replaceChildren();
   (state.scene.materials || []).forEach((material, index) => {
-    const shininess = el('input', { type: 'number', value: material.shininess ?? 1, min: 0, step: 1 });
-    shininess.addEventListener('input', () => { material.shininess = Number(shininess.value); edited(); });
+    const number = (key, fallback, range) => {
+      const input = el('input', { type: 'number', value: material[key] ?? fallback, ...range });
+      input.addEventListener('input', () => { material[key] = Number(input.value); edited(); });
+      return el('label', {}, [key, input]);
+    };
+    const colour = (key, fallback) =>
+      el('div', {}, [colorInput(material[key] || fallback, (c) => { material[key] = c; edited(); }, key)]);
+    // A principled material has no kd, ks or shininess (the scene refuses them): its own inputs instead.
+    const fields = material.specular_model === 'principled'
+      ? [colour('base_color', [0.8, 0.8, 0.8]), number('metallic', 0, { min: 0, max: 1, step: 0.05 }),
+         number('roughness', 0.5, { min: 0, max: 1, step: 0.05 })]
+      : [...['ka', 'kd', 'ks'].map((k) => colour(k, [0, 0, 0])), number('shininess', 1, { min: 0, step: 1 })];
     const item = el('li', { className: index === state.selectedMaterial ? 'selected' : '' }, [
       el('div', { className: 'head' }, [el('span', { className: 'grow', textContent: `${index}: ${material.name || ''}` })]),
-      ...['ka', 'kd', 'ks'].map((k) => el('div', {}, [colorInput(material[k] || [0, 0, 0], (c) => { material[k] = c; edited(); }, k)])),
-      el('label', {}, ['shininess', shininess]),
+      ...fields,
     ]);
     item.dataset.material = index;
     list.append(item);

@@ -56,7 +56,9 @@ struct Light {
 // that takes the cosine n.l and reflects at most what it receives: (q+2)/2 (v.r)^q (Lafortune and
 // Willems 1994), (q+8)/8 (n.h)^q (Akenine-Moller et al., Real-Time Rendering). The enum value is
 // the kernel's model number (kernels/specular.h).
-enum class SpecularModel { phong = 0, phong_normalized = 1, blinn_phong = 2, blinn_phong_normalized = 3 };
+// kSpecularModels are the Phong family; `principled` is none of them: Cycles' Principled BSDF, version 1 (docs/shading.md "Principled"),
+// from the material's base_color ... version fields instead of kd, ks and shininess.
+enum class SpecularModel { phong = 0, phong_normalized = 1, blinn_phong = 2, blinn_phong_normalized = 3, principled = 4 };
 inline constexpr SpecularModel kSpecularModels[] = {SpecularModel::phong, SpecularModel::phong_normalized,
                                                     SpecularModel::blinn_phong, SpecularModel::blinn_phong_normalized};
 
@@ -93,6 +95,13 @@ struct Material {
   glm::dvec3 ka{0.0}, kd{0.0}, ks{0.0};
   double shininess = 1.0;  // >= 0, validated
   SpecularModel specular_model = SpecularModel::phong;
+  // With specular_model principled, the node's inputs (Blender's defaults): kd, ks and shininess unused.
+  glm::dvec3 base_color{0.8};
+  double metallic = 0.0;       // [0, 1]
+  double roughness = 0.5;      // [0, 1]; GGX's alpha is its square
+  double specular = 0.5;       // [0, 12]: F0 = 0.08 specular for a dielectric
+  double specular_tint = 0.0;  // [0, 1]: towards the base colour's hue
+  int version = 1;             // the node's version: 1 (Blender 2.8 to 3.6) is the one implemented
 
   bool operator==(const Material&) const = default;
 };

@@ -68,6 +68,14 @@ void check_material_table(const std::vector<Material>& materials) {
     require(non_negative(m.kd), entry + ".kd", "must be finite and >= 0");
     require(non_negative(m.ks), entry + ".ks", "must be finite and >= 0");
     require(std::isfinite(m.shininess) && m.shininess >= 0.0, entry + ".shininess", "must be finite and >= 0");
+    if (m.specular_model != SpecularModel::principled) continue;
+    auto within = [](double x, double high) { return x >= 0.0 && x <= high; };
+    require(non_negative(m.base_color), entry + ".base_color", "must be finite and >= 0");
+    require(within(m.metallic, 1.0), entry + ".metallic", "must be in [0, 1]");
+    require(within(m.roughness, 1.0), entry + ".roughness", "must be in [0, 1]");
+    require(within(m.specular, 12.0), entry + ".specular", "must be in [0, 12]");
+    require(within(m.specular_tint, 1.0), entry + ".specular_tint", "must be in [0, 1]");
+    require(m.version == 1, entry + ".version", "must be 1 (the Principled BSDF of Blender 2.8 to 3.6)");
   }
 }
 

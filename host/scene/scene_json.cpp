@@ -152,9 +152,37 @@ Light read_light(const JsonValue& value, std::size_t material_count) {
   return light;
 }
 
+// A number in [low, high], else the field's one-line error.
+double read_number_in(const JsonValue& value, double low, double high) {
+  const double number = value.number();
+  if (!(number >= low && number <= high))
+    value.fail("must be in [" + format_number(low) + ", " + format_number(high) + "] (got " + format_number(number) + ")");
+  return number;
+}
+
+// The Principled model's fields, refused on other models; its Phong coefficients refused on it.
+void read_principled_fields(const JsonObject& object, Material& material) {
+  const bool principled = material.specular_model == SpecularModel::principled;
+  for (const char* key : {"base_color", "metallic", "roughness", "specular", "specular_tint", "version"})
+    if (!principled && object.has(key)) object.at(key).fail("is used only by specular_model \"principled\"");
+  for (const char* key : {"kd", "ks", "shininess"})
+    if (principled && object.has(key)) object.at(key).fail("is not used by specular_model \"principled\" (base_color, metallic, specular are)");
+  if (!principled) return;
+  if (auto color = object.find("base_color")) material.base_color = read_non_negative_vec3(*color);
+  if (auto metallic = object.find("metallic")) material.metallic = read_number_in(*metallic, 0.0, 1.0);
+  if (auto roughness = object.find("roughness")) material.roughness = read_number_in(*roughness, 0.0, 1.0);
+  if (auto specular = object.find("specular")) material.specular = read_number_in(*specular, 0.0, 12.0);
+  if (auto tint = object.find("specular_tint")) material.specular_tint = read_number_in(*tint, 0.0, 1.0);
+  if (auto version = object.find("version")) {
+    if (version->number() != 1.0) version->fail("must be 1: the Principled BSDF of Blender 2.8 to 3.6 is the version implemented");
+    material.version = 1;
+  }
+}
+
 Material read_material(const JsonValue& value) {
   const JsonObject object = value.object();
-  object.expect_keys({"name", "ka", "kd", "ks", "shininess", "specular_model"});
+  object.expect_keys({"name", "ka", "kd", "ks", "shininess", "specular_model", "base_color", "metallic", "roughness",
+                      "specular", "specular_tint", "version"});
   Material material;
   if (auto name = object.find("name")) material.name = name->string();
   if (auto ka = object.find("ka")) material.ka = read_non_negative_vec3(*ka);
@@ -172,6 +200,7 @@ Material read_material(const JsonValue& value) {
       model->fail(unknown.what());
     }
   }
+  read_principled_fields(object, material);
   return material;
 }
 
@@ -244,6 +273,7 @@ const char* to_string(SpecularModel model) {
     case SpecularModel::phong_normalized: return "phong-normalized";
     case SpecularModel::blinn_phong: return "blinn-phong";
     case SpecularModel::blinn_phong_normalized: return "blinn-phong-normalized";
+    case SpecularModel::principled: return "principled";
   }
   return "phong";
 }
@@ -251,8 +281,9 @@ const char* to_string(SpecularModel model) {
 SpecularModel parse_specular_model(const std::string& name) {
   for (SpecularModel model : kSpecularModels)
     if (name == to_string(model)) return model;
-  throw std::invalid_argument("'" + name + "' is not a specular model (expected phong, phong-normalized, blinn-phong or " +
-                              "blinn-phong-normalized)");
+  if (name == to_string(SpecularModel::principled)) return SpecularModel::principled;
+  throw std::invalid_argument("'" + name + "' is not a specular model (expected phong, phong-normalized, blinn-phong, " +
+                              "blinn-phong-normalized or principled)");
 }
 
 std::vector<std::string> light_groups(const std::vector<Light>& lights, const std::vector<AreaLight>& area_lights) {

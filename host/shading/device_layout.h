@@ -27,7 +27,9 @@ static_assert(offsetof(MaterialRecord, ka) == MATERIAL_KA * sizeof(float) &&
               offsetof(MaterialRecord, kd) == MATERIAL_KD * sizeof(float) &&
               offsetof(MaterialRecord, ks) == MATERIAL_KS * sizeof(float) &&
               offsetof(MaterialRecord, shininess) == MATERIAL_SHININESS * sizeof(float) &&
-              offsetof(MaterialRecord, specular_model) == MATERIAL_SPECULAR_MODEL * sizeof(float));
+              offsetof(MaterialRecord, specular_model) == MATERIAL_SPECULAR_MODEL * sizeof(float) &&
+              offsetof(MaterialRecord, roughness) == MATERIAL_ROUGHNESS * sizeof(float) &&
+              offsetof(MaterialRecord, ior) == MATERIAL_IOR * sizeof(float));
 static_assert(sizeof(LightShape) == 48 && offsetof(LightShape, inverse_range) == 16 && offsetof(LightShape, falloff) == 32 &&
               offsetof(LightShape, cosine_power) == 36);
 static_assert(sizeof(LightBounds) == 64 && offsetof(LightBounds, apex) == 16 && offsetof(LightBounds, distance_bins) == 48 &&

@@ -24,6 +24,23 @@ using std::numbers::pi;
 
 namespace {
 
+// The Principled BSDF v1's record (kernels/principled.h; docs/shading.md "Principled", after Cycles
+// 3.x's svm_node_closure): kd its diffuse weight base * (1 - metallic), ks the Fresnel's colour at
+// normal incidence cspec0 = mix(0.08 specular mix(1, tint, specular_tint), base, metallic) with
+// tint the base colour over its luminance 0.3 r + 0.6 g + 0.1 b, and the index the Fresnel remaps
+// from, 2 / (1 - sqrt(0.08 specular)) - 1.
+void store_principled(MaterialRecord& record, const Material& material) {
+  const glm::dvec3 base = material.base_color;
+  const double luminance = 0.3 * base.r + 0.6 * base.g + 0.1 * base.b;
+  const glm::dvec3 tint = luminance > 0.0 ? base / luminance : glm::dvec3(1.0);
+  const glm::dvec3 dielectric = 0.08 * material.specular * glm::mix(glm::dvec3(1.0), tint, material.specular_tint);
+  store3(record.kd, base * (1.0 - material.metallic));
+  store3(record.ks, glm::mix(dielectric, base, material.metallic));
+  record.shininess = 1.0f;
+  record.roughness = static_cast<float>(material.roughness);
+  record.ior = static_cast<float>(2.0 / (1.0 - std::sqrt(0.08 * material.specular)) - 1.0);
+}
+
 // What rounding `value` to float loses.
 float rest_of(double value) { return static_cast<float>(value - static_cast<double>(static_cast<float>(value))); }
 
@@ -105,6 +122,7 @@ UniformData pack_uniforms(const Scene& scene, const Recipe& recipe) {
     store3(record.ks, material.ks);
     record.shininess = static_cast<float>(material.shininess);
     record.specular_model = static_cast<float>(static_cast<int>(material.specular_model));
+    if (material.specular_model == SpecularModel::principled) store_principled(record, material);
     data.materials.push_back(record);
   }
   for (int c = 0; c < 3; ++c) {

@@ -220,6 +220,8 @@ void decide_specular_models(Recipe& recipe, const Scene& scene, const GBuffer& g
   std::string names;
   for (SpecularModel model : kSpecularModels)
     if (mask & (1u << static_cast<int>(model))) names += (names.empty() ? "" : ", ") + std::string(to_string(model));
+  if (mask & (1u << static_cast<int>(SpecularModel::principled)))
+    names += (names.empty() ? "" : ", ") + std::string("principled (Cycles' Principled BSDF v1: GGX, Fresnel, Burley)");
   const bool phong_only = mask == 1u << static_cast<int>(SpecularModel::phong);
   const bool mixed = (mask & (mask - 1)) != 0;
   add_count(recipe, "SPECULAR_MODELS", static_cast<int>(mask),
@@ -239,11 +241,14 @@ void decide_terms(Recipe& recipe, const Scene& scene, const GBuffer& gbuffer) {
   }
   const auto& materials = scene.materials;
   const bool any_lights = !scene.lights.empty() || !scene.area_lights.empty();
-  const bool table_ks_zero = std::all_of(materials.begin(), materials.end(), [](const Material& m) { return is_zero(m.ks); });
+  // A Principled material always has a specular lobe: at grazing angles its Fresnel reaches 1.
+  const bool table_ks_zero = std::all_of(materials.begin(), materials.end(), [](const Material& m) {
+    return is_zero(m.ks) && m.specular_model != SpecularModel::principled;
+  });
   const bool ks_zero = gbuffer.has_per_pixel_ks() ? all_zero(gbuffer.ks) : table_ks_zero;
   const bool specular = any_lights && !ks_zero;
   add_flag(recipe, "SPECULAR", specular,
-           specular     ? "specular: compiled in (some material has ks > 0)"
+           specular     ? "specular: compiled in (some material has ks > 0 or is principled)"
            : any_lights ? "specular: compiled out (every ks is 0): no pow"
                         : "specular: compiled out (no lights)",
            specular ? "specular" : "no specular");

@@ -20,6 +20,7 @@ struct AgreementArguments {
   std::string view_layer = "ViewLayer";
   std::string layer = "diffuse";  // phongcl's AOV layer: diffuse, or group.<name>
   std::string cycles_pass;        // empty: DiffDir x DiffCol; else a Cycles pass (Combined_<light group>)
+  bool glossy = false;            // GlossDir x GlossCol instead, on pixels where it is >= 20% of the direct light
   double tolerance = 0.05;
   double at_least = -1.0;  // percent; negative: report only
   double median_at_most = -1.0, p99_at_most = -1.0;  // relative errors; negative: report only
@@ -50,7 +51,8 @@ std::array<std::vector<float>, 3> rgb(Planes&& planes, std::size_t first) {
 // file has.
 std::string cycles_pass_prefix(const exr::InputExr& input, const std::string& layer, const std::string& short_name) {
   static const std::pair<const char*, const char*> kFullNames[] = {
-      {"DiffDir", "Diffuse Direct"}, {"DiffCol", "Diffuse Color"}, {"IndexOB", "Object Index"}};
+      {"DiffDir", "Diffuse Direct"}, {"DiffCol", "Diffuse Color"}, {"GlossDir", "Glossy Direct"},
+      {"GlossCol", "Glossy Color"},   {"IndexOB", "Object Index"}};
   for (const auto& [short_pass, full_pass] : kFullNames) {
     if (short_name != short_pass) continue;
     for (const std::string& name : input.channel_names())
@@ -59,10 +61,12 @@ std::string cycles_pass_prefix(const exr::InputExr& input, const std::string& la
   return layer + short_name + ".";
 }
 
-// The renderer's light: DiffDir x DiffCol, or the named pass; then the object index and depth.
-Planes read_cycles(const std::string& file, const std::string& layer, const std::string& pass) {
+// The renderer's light: DiffDir x DiffCol (GlossDir x GlossCol with `glossy`), or the named pass; then
+// the object index and depth.
+Planes read_cycles(const std::string& file, const std::string& layer, const std::string& pass, bool glossy = false) {
   const exr::InputExr input(file);
-  const std::string dir = cycles_pass_prefix(input, layer, "DiffDir"), col = cycles_pass_prefix(input, layer, "DiffCol");
+  const std::string dir = cycles_pass_prefix(input, layer, glossy ? "GlossDir" : "DiffDir"),
+                    col = cycles_pass_prefix(input, layer, glossy ? "GlossCol" : "DiffCol");
   const std::vector<std::string> masks = {cycles_pass_prefix(input, layer, "IndexOB") + "X", layer + "Depth.Z"};
   if (pass.empty()) {
     Planes cycles = read_planes(file, {dir + "R", dir + "G", dir + "B", col + "R", col + "G", col + "B", masks[0], masks[1]});
@@ -72,6 +76,16 @@ Planes read_cycles(const std::string& file, const std::string& layer, const std:
     return cycles;
   }
   return read_planes(file, {layer + pass + ".R", layer + pass + ".G", layer + pass + ".B", masks[0], masks[1]});
+}
+
+// With --glossy: the pixels where the glossy light (summed over R, G, B) is at least 20% of the
+// direct light, diffuse and glossy; below, a highlight's relative error is a dark pixel's.
+void keep_glossy_pixels(std::vector<bool>& mask, const Planes& glossy, const Planes& diffuse) {
+  for (std::size_t i = 0; i < mask.size(); ++i) {
+    const double g = glossy.values[0][i] + glossy.values[1][i] + glossy.values[2][i];
+    const double d = diffuse.values[0][i] + diffuse.values[1][i] + diffuse.values[2][i];
+    if (!(g > 0.0 && g >= 0.2 * (g + d))) mask[i] = false;
+  }
 }
 
 void check_relative_errors(const AgreementArguments& args, const std::vector<LightImages>& lights,
@@ -102,11 +116,12 @@ void run_agreement(const AgreementArguments& args) {
   std::vector<bool> mask;
   int width = 0, height = 0;
   for (std::size_t k = 0; k < args.cycles.size(); ++k) {
-    Planes cycles = read_cycles(args.cycles[k], layer, args.cycles_pass);
+    Planes cycles = read_cycles(args.cycles[k], layer, args.cycles_pass, args.glossy);
     if (k == 0) {
       width = cycles.width, height = cycles.height;
       mask = away_from_silhouettes(cycles.values[3], cycles.values[4], width, height);
     }
+    if (args.glossy) keep_glossy_pixels(mask, cycles, read_cycles(args.cycles[k], layer, ""));
     LightImages light;
     light.expected = rgb(std::move(cycles), 0);
     light.shaded = rgb(read_planes(args.shaded[k], shaded_channels), 0);
@@ -117,7 +132,8 @@ void run_agreement(const AgreementArguments& args) {
   }
   if (relative) {
     std::printf("phongcl agreement: %zu lights, %dx%d, %s against %s\n", lights.size(), width, height, args.layer.c_str(),
-                args.cycles_pass.empty() ? "DiffDir x DiffCol" : args.cycles_pass.c_str());
+                args.glossy ? "GlossDir x GlossCol (pixels where it is >= 20% of the direct light)"
+                : args.cycles_pass.empty() ? "DiffDir x DiffCol" : args.cycles_pass.c_str());
     check_relative_errors(args, lights, mask);
     return;
   }
@@ -151,6 +167,9 @@ void add_agreement_command(CLI::App& app) {
                       "(a shaded or composited --out)");
   command->add_option("--cycles-pass", args->cycles_pass,
                       "The Cycles pass to compare with (Combined_<light group>; default DiffDir x DiffCol)");
+  command->add_flag("--glossy", args->glossy,
+                    "Compare with GlossDir x GlossCol (use --layer specular) on the pixels where it is >= 20% of the "
+                    "direct light");
   command->add_option("--median-at-most", args->median_at_most,
                       "Report each light's median and 99th percentile relative error; exit non-zero beyond this median");
   command->add_option("--p99-at-most", args->p99_at_most, "... or beyond this 99th percentile");

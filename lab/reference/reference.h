@@ -19,6 +19,7 @@ struct SurfacePoint {
   glm::dvec3 ka{0.0}, kd{0.0}, ks{0.0};
   double shininess = 1.0;
   SpecularModel specular_model = SpecularModel::phong;  // the table's (a G-buffer has no model channel)
+  Material principled{};  // with specular_model principled, the table's material (its inputs)
   int material = 0;  // the table index, for light linking
 };
 

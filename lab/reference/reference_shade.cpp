@@ -3,6 +3,7 @@
 #include <numbers>
 
 #include "reference/reference.h"
+#include "reference/reference_principled.h"
 #include "reference/reference_area.h"
 
 namespace phongcl {
@@ -76,6 +77,7 @@ double reference_specular_lobe(SpecularModel model, const glm::dvec3& n, const g
       const double highlight = std::pow(std::max(0.0, glm::dot(n, h)), q);
       return model == SpecularModel::blinn_phong ? highlight : (q + 8.0) / 8.0 * highlight * glm::dot(n, l);
     }
+    case SpecularModel::principled: return 0.0;  // not a lobe ks scales: reference_principled.h
   }
   return 0.0;
 }
@@ -90,6 +92,7 @@ ShadingTerms reference_shade_point(const Scene& scene, const SurfacePoint& point
   const glm::dvec3 v = robust_normalize(scene.camera.eye - point.position);
 
   glm::dvec3 diffuse(0.0), specular(0.0);  // sums of Li * F * (n.l) and Li * F * lobe
+  glm::dvec3 principled_diffuse(0.0), principled_specular(0.0);  // a Principled point's, coloured
   for (const Light& light : scene.lights) {
     if (!light.reaches(point.material)) continue;
     const bool sized = soft.sized && light.shadows && light.has_size();
@@ -103,6 +106,12 @@ ShadingTerms reference_shade_point(const Scene& scene, const SurfacePoint& point
     const double factor = (positional ? light_factor(light, point.position, l) : 1.0) * (sized ? soft.sized(point, light) : 1.0);
     if (factor == 0.0) continue;
 
+    if (point.specular_model == SpecularModel::principled) {
+      const PrincipledLight lit = reference_principled(point.principled, n, v, l);
+      principled_diffuse += product(light.color, lit.diffuse * factor);
+      principled_specular += product(light.color, lit.specular * factor);
+      continue;
+    }
     diffuse += product(light.color, glm::dvec3(ndl * factor));
     const double highlight = reference_specular_lobe(point.specular_model, n, v, l, point.shininess);
     if (highlight > 0.0) specular += product(light.color, glm::dvec3(highlight * factor));
@@ -116,6 +125,13 @@ ShadingTerms reference_shade_point(const Scene& scene, const SurfacePoint& point
     const double window = area_range_window(light, point.position) * (traced ? soft.area(point, light) : 1.0);
     diffuse += product(light.color, glm::dvec3(integrals.irradiance * window));
     specular += product(light.color, glm::dvec3(integrals.highlight * window));
+  }
+  if (point.specular_model == SpecularModel::principled) {
+    // Area lights: Lambert's irradiance times the diffuse colour, no highlight (as the kernel: docs/shading.md).
+    const glm::dvec3 weight = point.principled.base_color * (1.0 - point.principled.metallic);
+    terms.diffuse = principled_diffuse + product(weight, diffuse);
+    terms.specular = principled_specular;
+    return terms;
   }
   terms.diffuse = product(point.kd, diffuse);
   terms.specular = product(point.ks, specular);

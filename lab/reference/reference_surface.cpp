@@ -37,6 +37,7 @@ SurfacePoint reference_surface(const Scene& scene, const GBuffer& gbuffer, std::
     point.shininess = table.shininess;
     // The model is never per pixel: the table's, where the table is consulted; else phong.
     point.specular_model = table.specular_model;
+    if (table.specular_model == SpecularModel::principled) point.principled = table;
   }
 
   if (gbuffer.has_per_pixel_ka()) point.ka = pixel_vec3(gbuffer.ka, index);

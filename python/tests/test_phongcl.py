@@ -216,6 +216,17 @@ def test_a_material_names_its_specular_model():
     assert scene.materials[0].specular_model == "phong-normalized"
 
 
+def test_a_principled_materials_inputs_are_settable():
+    scene = phongcl.Scene.from_dict({"materials": [{"specular_model": "principled", "base_color": [0.8, 0.2, 0.1],
+                                                    "metallic": 1, "roughness": 0.3}]})
+    material = scene.materials[0]
+    assert material.specular_model == "principled" and material.metallic == 1 and material.roughness == 0.3
+    material.roughness, material.specular, material.specular_tint = 0.6, 1.0, 0.5
+    material.base_color = (0.1, 0.2, 0.3)
+    assert (material.roughness, material.specular, material.specular_tint) == (0.6, 1.0, 0.5)
+    assert tuple(material.base_color) == pytest.approx((0.1, 0.2, 0.3))
+
+
 @needs_device
 def test_shadows_are_a_relighter_option(scene, gbuffer):
     casting = phongcl.load_scene(str(DEFAULT))

@@ -35,7 +35,10 @@ name those cases.
   scaled by the object's scale as Cycles does. An area light that casts shadows in Cycles gets
   "shadows": true: a soft shadow with phongcl's --shadows geometry, a hard one from its centre in
   screen space.
-- Materials by pass index (Material.pass_index): a Principled BSDF becomes "blinn-phong-normalized"
+- Materials by pass index (Material.pass_index): a Principled BSDF of Blender 2.8 to 3.6 becomes
+  phongcl's "principled" material, version 1, with its base colour, metallic, roughness, specular and
+  specular tint (docs/shading.md "Principled"; subsurface, sheen, clearcoat, transmission and
+  anisotropy left out with a note where set). One of 4.0+ (version 2, not implemented) becomes "blinn-phong-normalized"
   (phongcl's ks (q+8)/8 (n.h)^q n.l, a BRDF) with kd = base colour * (1 - metallic),
   ks = mix(F0, base colour, metallic) (the BSDF's normal-incidence reflectance; F0 = 0.08 * Specular
   in 3.x, ((IOR - 1)/(IOR + 1))^2 * 2 * Specular IOR Level * Specular Tint in 4.0+) and
@@ -240,6 +243,25 @@ def surface_shader(material):
     return output.inputs["Surface"].links[0].from_node
 
 
+def principled_v1_json(name, owner, node, base, metallic, roughness):
+    """A 3.x Principled BSDF as phongcl's principled material (docs/shading.md "Principled"), with a note naming
+    the inputs it leaves out (subsurface, sheen, clearcoat, transmission, anisotropy) where they are not 0, and
+    for the Multiscatter GGX distribution, shaded as GGX."""
+    for socket in ("Subsurface", "Sheen", "Clearcoat", "Transmission", "Anisotropic"):
+        if node.inputs[socket].default_value != 0.0:
+            note("%s: the Principled BSDF's %s is %.3g, which phongcl's principled material has not: left out"
+                 % (owner, socket, node.inputs[socket].default_value))
+    if node.distribution != "GGX":
+        note("%s: the Principled BSDF's distribution is %s: shaded as GGX (single scattering)" % (owner, node.distribution))
+    specular = unlinked_value(owner, node, "Specular", "value")
+    tint = unlinked_value(owner, node, "Specular Tint", "value")
+    clamp = lambda x, high=1.0: min(max(float(x), 0.0), high)  # noqa: E731
+    ka = base * (1.0 - metallic)
+    return {"name": name, "ka": rounded(ka), "specular_model": "principled", "version": 1, "base_color": rounded(base),
+            "metallic": round(clamp(metallic), 6), "roughness": round(clamp(roughness), 6),
+            "specular": round(clamp(specular, 12.0), 6), "specular_tint": round(clamp(tint), 6)}
+
+
 def material_json(material):
     owner = "material '%s'" % material.name
     node = surface_shader(material)
@@ -257,6 +279,10 @@ def material_json(material):
     roughness = unlinked_value(owner, node, "Roughness", "value")
     if versions.principled_emits(node):
         note("%s: the Principled BSDF emits light, which phongcl's materials do not: emission left out" % owner)
+    if not versions.at_least(4):
+        return principled_v1_json(material.name, owner, node, base, metallic, roughness)
+    note("%s: phongcl's principled material is the Principled BSDF of Blender 2.8 to 3.6; this one (4.0+) is "
+         "exported as normalised Blinn-Phong" % owner)
     kd = base * (1.0 - metallic)
     ks = Vector(versions.principled_f0(node)).lerp(base, metallic)
     alpha = max(roughness, 1e-3) ** 2

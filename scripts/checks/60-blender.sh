@@ -41,7 +41,7 @@ scene = json.load(open(sys.argv[1]))
 kinds = sorted({light["type"] + ("-" + light["shape"] if "shape" in light else "") for light in scene["lights"]})
 assert kinds == ["area-disk", "area-rect", "directional", "environment", "point", "spot"], kinds
 assert all(light.get("shadows") for light in scene["lights"]), "a light lost its shadows"
-specular = [any(m["ks"]) for m in scene["materials"]]
+specular = [m.get("specular_model") == "principled" or any(m.get("ks", [])) for m in scene["materials"]]
 assert specular == [True, True, True, False], "Principled materials need a specular lobe, the Diffuse one none: %s" % specular
 PY
 "$phongcl" shade --scene "$work/scene.json" --out "$work/lit.exr" --png "$work/lit.png" >"$work/shade.log"

@@ -35,7 +35,7 @@ assert kinds.count("area") == 1, "the ellipse was exported: %s" % kinds
 spot = next(light for light in scene["lights"] if light["type"] == "spot")
 assert spot["radius"] == 0.25, spot
 red, blue = scene["materials"][1], scene["materials"][2]
-assert red["kd"] == [0.8, 0.1, 0.1], red
+assert red.get("base_color", red.get("kd")) == [0.8, 0.1, 0.1], red  # 3.x: principled; 4.0+: Blinn-Phong
 assert blue["ks"] == [0, 0, 0] and blue["kd"] == [0.8, 0.8, 0.8], blue
 PY
 "$blender" -b --factory-startup --python-exit-code 1 --python scripts/blender/unmappable_scene.py -- --out "$work/hdri.json" --hdri \

@@ -1,16 +1,18 @@
 #!/usr/bin/env bash
-# The Blender checks (60 to 65, 67) again on the newer Blenders artists run, each from its own Debian root:
+# The Blender checks (60 to 65, 67 and 68) again on the newer Blenders artists run, each from its own Debian root:
 # 5.2 (Debian unstable) and 4.3 (Debian 13). `scripts/setup.sh blenderN` makes a root once per machine
 # (about 2 minutes and 1.3 GB each; seconds when it exists), then every check runs with
 # BLENDER=/var/cache/phongcl/bin/blenderN, so each renders its scenes with that version and holds
-# phongcl to that version's Cycles and colour management with the same targets as on 3.4.
+# phongcl to that version's Cycles and colour management with the same targets as on 3.4 (68 reports its
+# figures there without holding them: 4.0+ has the Principled BSDF's version 2, which phongcl has not).
 # PHONGCL_BLENDER_VERSIONS="blender5" narrows the list (default "blender5 blender4").
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 check=66-blender-versions
 versions=${PHONGCL_BLENDER_VERSIONS:-blender5 blender4}
 cache=${PHONGCL_CACHE:-/var/cache/phongcl}
-checks=(60-blender 61-blender-notes 62-blender-area 62-blender-lights 63-blender-colour 64-blender-over 65-blender-shadows 67-blender-environment)
+checks=(60-blender 61-blender-notes 62-blender-area 62-blender-lights 63-blender-colour 64-blender-over 65-blender-shadows
+        67-blender-environment 68-blender-principled)
 
 summary=()
 for version in $versions; do

@@ -1,0 +1,88 @@
+#include "reference/reference_principled.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include <glm/geometric.hpp>
+
+namespace phongcl {
+
+using std::numbers::pi;
+
+namespace {
+
+// GGX's normal density at cosine c to the normal: its slope distribution
+// P22(t) = 1 / (pi alpha^2 (1 + t^2 / alpha^2)^2) at slope t = tan, over cos^4 (Heitz 2014, eq. 12).
+double ggx_density(double alpha, double c) {
+  const double t_sq = (1.0 - c * c) / (c * c);
+  const double shape = 1.0 + t_sq / (alpha * alpha);
+  return 1.0 / (pi * alpha * alpha * shape * shape * c * c * c * c);
+}
+
+}  // namespace
+
+double reference_smith_masking(double alpha, double mu) {
+  // Lambda = (1 / a) int_a^inf (x - a) P2(x) dx, a = cot(theta), P2 the slope distribution's marginal
+  // 1 / (2 alpha (1 + x^2 / alpha^2)^(3/2)). With x = alpha tan(phi) the integrand is smooth on
+  // [atan(a / alpha), pi / 2]: Simpson's rule with 2048 intervals, error far below 1e-9 there.
+  const double a = mu / std::sqrt(std::max(1.0 - mu * mu, 0.0));
+  if (!std::isfinite(a)) return 1.0;
+  const double start = std::atan(a / alpha), end = pi / 2.0;
+  const int intervals = 2048;
+  const double h = (end - start) / intervals;
+  auto integrand = [&](double phi) {
+    const double x = alpha * std::tan(phi);
+    const double marginal = 1.0 / (2.0 * alpha * std::pow(1.0 + x * x / (alpha * alpha), 1.5));
+    const double dx = alpha / (std::cos(phi) * std::cos(phi));
+    return (x - a) * marginal * dx;  // at pi / 2 (cos 6e-17 in double) this is its limit, alpha / 2
+  };
+  double sum = integrand(start) + integrand(end);
+  for (int k = 1; k < intervals; ++k) sum += (k % 2 ? 4.0 : 2.0) * integrand(start + k * h);
+  const double lambda = sum * h / 3.0 / a;
+  return 1.0 / (1.0 + lambda);
+}
+
+double reference_dielectric_fresnel(double c, double eta) {
+  const double sin_t_sq = (1.0 - c * c) / (eta * eta);
+  if (sin_t_sq >= 1.0) return 1.0;
+  const double t = std::sqrt(1.0 - sin_t_sq);
+  const double rs = (c - eta * t) / (c + eta * t), rp = (eta * c - t) / (eta * c + t);
+  return 0.5 * (rs * rs + rp * rp);
+}
+
+PrincipledLight reference_principled(const Material& material, const glm::dvec3& n, const glm::dvec3& v,
+                                     const glm::dvec3& l) {
+  PrincipledLight light;
+  const double ndl = glm::dot(n, l), ndv = glm::dot(n, v);
+  if (!(ndl > 0.0)) return light;
+  const glm::dvec3 h = glm::normalize(l + v);
+  const double ldh = glm::dot(l, h);
+  // Burley 2015, "Extending the Disney BRDF to a BSDF with Integrated Subsurface Scattering", section
+  // 2.3: Lambert's part (1 - FL / 2)(1 - FV / 2) and the retro-reflection
+  // R (FL + FV + FL FV (R - 1)), R = 2 roughness cos^2(theta_d), F = (1 - cos)^5.
+  auto weight = [](double c) { return std::pow(std::clamp(1.0 - c, 0.0, 1.0), 5.0); };
+  const double fl = weight(ndl), fv = weight(ndv), retro = 2.0 * material.roughness * ldh * ldh;
+  const double burley = (1.0 - fl / 2.0) * (1.0 - fv / 2.0) + retro * (fl + fv + fl * fv * (retro - 1.0));
+  light.diffuse = material.base_color * (1.0 - material.metallic) * (burley * ndl);
+  const double alpha = material.roughness * material.roughness;
+  if (!(ndv > 0.0) || alpha * alpha <= 1e-7) return light;
+  // Walter et al. 2007: f = D G F / (4 n.l n.v); pi f n.l.
+  const double brdf_pi = pi * ggx_density(alpha, glm::dot(n, h)) * reference_smith_masking(alpha, ndv) *
+                         reference_smith_masking(alpha, ndl) / (4.0 * ndv);
+  // v1's Fresnel: the dielectric's of the index that Specular implies, remapped from [F(1), 1] to
+  // [cspec0, 1]; cspec0 mixes 0.08 Specular (tinted) into the base colour by metallic.
+  const double eta = 2.0 / (1.0 - std::sqrt(0.08 * material.specular)) - 1.0;
+  const double f0 = reference_dielectric_fresnel(1.0, eta);
+  const double fh = (reference_dielectric_fresnel(ldh, eta) - f0) / (1.0 - f0);
+  const glm::dvec3 base = material.base_color;
+  const double luminance = 0.3 * base.r + 0.6 * base.g + 0.1 * base.b;
+  const glm::dvec3 tint = luminance > 0.0 ? base / luminance : glm::dvec3(1.0);
+  const glm::dvec3 dielectric = 0.08 * material.specular * ((1.0 - material.specular_tint) * glm::dvec3(1.0) +
+                                                            material.specular_tint * tint);
+  const glm::dvec3 cspec0 = (1.0 - material.metallic) * dielectric + material.metallic * base;
+  light.specular = brdf_pi * (cspec0 * (1.0 - fh) + glm::dvec3(fh));
+  return light;
+}
+
+}  // namespace phongcl
