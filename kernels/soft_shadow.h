@@ -14,6 +14,7 @@
 #define PHONGCL_SOFT_SHADOW_H
 
 #include "area_light.h"
+#include "light_shape.h"
 #include "sampling.h"
 #include "shadow.h"
 
@@ -81,9 +82,12 @@ static inline realv emitter_weight(vec3 d, vec3 n, vec3 normal) {
 /* The visible fraction of an emitter in the lanes of `pending` (1 elsewhere). `caster` is the
  * light's place in the culling's casters, `shift` its lattice's (sampling.h). A sun's rays run to
  * infinity along the directions through its disk and traverse the BVH: tiled shadow culling's hulls
- * are swept along l alone. */
+ * are swept along l alone. With `cone` (a spot's shape; 0 for none) each visible point counts times
+ * the cone seen from it, the way from that point to P, as Cycles evaluates a spot of some radius:
+ * the fraction is then the cone's mean over the visible emitter, its edge blurred by the emitter. */
 static inline SHADOW_INLINE realv emitter_visibility(const ShadowInputs* shadows, vec3 p, vec3 n, const Emitter* emitter,
-                                                     uint caster, uint rays, LatticeShift shift, intv pending) {
+                                                     UNIFORM_SPACE const LightShape* cone, uint caster, uint rays,
+                                                     LatticeShift shift, intv pending) {
   ShadowInputs traced = *shadows;
   if (emitter->directional) traced.tiles = 0;
   const vec3 c = emitter->directional ? emitter->center : sub3(emitter->center, p);
@@ -103,9 +107,25 @@ static inline SHADOW_INLINE realv emitter_visibility(const ShadowInputs* shadows
     const intv blocked =
         light_blocked(&traced, p, n, where, emitter->directional, 0, caster, pending & LANE_MASK(weight > 0));
     total += weight;
-    seen += SELECT(TO_REALV(blocked) != 0, 0, weight);
+    const realv counted = cone ? times_cone(cone, d, 1 / sqrt(fmax(dot3(d, d), (real)1e-30)), weight) : weight;
+    seen += SELECT(TO_REALV(blocked) != 0, 0, counted);
   }
   return SELECT(total > 0, seen / total, 1);
+}
+
+/* What a light of angular radius sigma lights, relative to a point light's at its centre, for
+ * c = n.l and sin_sq = sin(sigma)^2: E / (pi sin_sq), the irradiance E of a uniform disk of
+ * directions (a sphere's or a sun's) over the surface's horizon, which is max(0, c) wherever the
+ * whole disk is above the horizon or below it (c^2 >= sin_sq) and, where it straddles it, the
+ * closed form of the part above (a uniform spherical cap cut by a plane; as Frostbite's sphere
+ * lights, Lagarde and de Rousiers 2014): positive a little past c = 0, as Cycles lights there. */
+static inline realv horizon_cosine(realv c, realv sin_sq) {
+  const realv sine = sqrt(fmax(1 - c * c, (real)0));
+  const realv cotangent = sqrt(1 / sin_sq - 1);
+  const realv y = clamp(-cotangent * c / fmax(sine, (real)1e-12), (real)-1, (real)1);
+  const realv t = sine * sqrt(fmax(1 - y * y, (real)0));
+  const realv straddling = ((c * acos(y) - cotangent * t) * sin_sq + atan(t / cotangent)) / ((real)AREA_PI * sin_sq);
+  return SELECT(c * c >= sin_sq, fmax(c, (real)0), fmax(straddling, (real)0));
 }
 
 #endif
