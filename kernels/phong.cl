@@ -257,13 +257,13 @@ static inline void add_point_light(LightSums* sums, PendingLobes* pending, const
   realv distance = 0, inverse_distance = 0; /* spots alone read neither */
   const realv inverse = NEEDS_DISTANCE ? distance_in_range(&toward, &distance, &inverse_distance)
                                        : inverse_length_in_range(&toward);
-  const int soft = SOFT_SHADOWS && SHADOWS && lights->point_casters[i] && lights->point_soft[i].rays > 1;
-  if (TILED_CULLING && SPOT_LIGHTS && !soft && outside_cone_in_every_lane(shape, toward, inverse)) return;
+  const bool soft = SOFT_SHADOWS && SHADOWS && lights->point_casters[i] && lights->point_soft[i].rays > 1;
+  if (TILED_CULLING && SPOT_LIGHTS && (soft ? false : outside_cone_in_every_lane(shape, toward, inverse))) return;
   const realv gate = link_gate(link_mask, surface->material);
   realv weight = POINT_SHAPES ? shape_weight(shape, toward, inverse, distance, inverse_distance, gate, !soft) : gate;
   if (SHADOWS)
     weight = shadowed_weight(weight, surface, lights, position, 0, lights->point_casters[i], &lights->point_soft[i],
-                             SPOT_LIGHTS && soft ? shape : 0, (uint)i);
+                             soft && SPOT_LIGHTS ? shape : 0, (uint)i);
   light_contribution(sums, pending, surface->n, surface->v, surface->shininess, surface->highlight_cutoff,
                      surface->specular_model, toward, inverse, light->color, weight);
   if (soft) {
