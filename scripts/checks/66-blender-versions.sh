@@ -10,7 +10,8 @@ cd "$(dirname "$0")/../.."
 check=66-blender-versions
 versions=${PHONGCL_BLENDER_VERSIONS:-blender5 blender4}
 cache=${PHONGCL_CACHE:-/var/cache/phongcl}
-checks=(60-blender 61-blender-notes 62-blender-area 62-blender-lights 63-blender-colour 64-blender-over 65-blender-shadows)
+checks=(60-blender 61-blender-notes 62-blender-area 62-blender-lights 63-blender-colour 64-blender-over 65-blender-shadows
+        65-blender-soft-shadows)
 
 summary=()
 for version in $versions; do
