@@ -12,6 +12,7 @@
 #include "cl/compute_context.h"
 #include "cli/bench_arguments.h"
 #include "cli/shadow_bench_report.h"
+#include "cli/shadow_image_error.h"
 #include "peers/light_sweep.h"
 #include "raycast/raycast.h"
 #include "report/statistics.h"
@@ -51,28 +52,6 @@ struct SoftVariant {
   double kernel_ms = 0.0, agreement = 0.0, mean_abs_error = 0.0;
 };
 
-// The fraction of shaded pixels within kAgreement of `converged` (of the unshadowed pixel's largest
-// channel), and the mean absolute error over R, G, B.
-void compare(const Image& image, const Image& converged, const Image& unshadowed, const GBuffer& gbuffer,
-             SoftVariant& variant) {
-  std::size_t shaded = 0, agree = 0;
-  double error = 0.0;
-  for (std::size_t i = 0; i < gbuffer.pixel_count(); ++i) {
-    if (classify_pixel(gbuffer, i) != PixelClass::shaded) continue;
-    ++shaded;
-    double largest = 0.0, reach = 0.0;
-    for (int c = 0; c < 3; ++c) {
-      const double miss = std::abs(static_cast<double>(image.pixel(i)[c]) - converged.pixel(i)[c]);
-      largest = std::max(largest, miss);
-      reach = std::max(reach, static_cast<double>(unshadowed.pixel(i)[c]));
-      error += miss;
-    }
-    agree += largest <= kAgreement * reach;
-  }
-  variant.agreement = static_cast<double>(agree) / static_cast<double>(std::max<std::size_t>(shaded, 1));
-  variant.mean_abs_error = error / (3.0 * static_cast<double>(std::max<std::size_t>(shaded, 1)));
-}
-
 }  // namespace
 
 void run_soft_shadow_bench(const BenchArguments& args) {
@@ -110,7 +89,11 @@ void run_soft_shadow_bench(const BenchArguments& args) {
   for (Run& run : runs) images.push_back(shader.shade(*run.scene, gbuffer, run.options).image);
   const Image& unshadowed = images.front();
   const Image& converged = images[runs.size() - 2];
-  for (std::size_t v = 0; v + 1 < runs.size(); ++v) compare(images[v], converged, unshadowed, gbuffer, runs[v].variant);
+  for (std::size_t v = 0; v + 1 < runs.size(); ++v) {
+    const ShadowImageError error = shadow_image_error(images[v], converged, unshadowed, gbuffer, kAgreement);
+    runs[v].variant.agreement = 1.0 - error.beyond;
+    runs[v].variant.mean_abs_error = error.mean_abs_error;
+  }
   std::vector<std::vector<double>> times(runs.size());
   for (int round = 0; round < args.runs; ++round)
     for (std::size_t v = 0; v < runs.size(); ++v)
