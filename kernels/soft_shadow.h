@@ -105,7 +105,7 @@ static inline SHADOW_INLINE realv emitter_visibility(const ShadowInputs* shadows
     const realv weight = emitter_weight(scale3(d, inverse_scale), n, emitter->normal);
     const vec3 where = emitter->directional ? unit_or_zero(d) : add3(emitter->center, offset);
     const intv blocked =
-        light_blocked(&traced, p, n, where, emitter->directional, 0, caster, pending & LANE_MASK(weight > 0));
+        light_blocked(&traced, p, n, where, emitter->directional, SCREEN_SHADOWS, caster, pending & LANE_MASK(weight > 0));
     total += weight;
     const realv counted = cone ? times_cone(cone, d, 1 / sqrt(fmax(dot3(d, d), (real)1e-30)), weight) : weight;
     seen += SELECT(TO_REALV(blocked) != 0, 0, counted);
