@@ -1,6 +1,7 @@
 // phongcl bench --shadows, the soft-shadow part: scenes/large at 480x270 with 16 generated point
 // lights (with_generated_lights' 32, less the directional half) as area lights casting shadows, shaded with 1 ray (the hard shadow), 4, 16 and 64, and
-// with kSoftReferenceRays, the converged estimate each image is compared with; beside them the
+// with kSoftReferenceRays, the converged estimate each image is compared with, and in screen space
+// with 1, 4, 16 and 64 marches against the same estimate; beside them the
 // same scene's 16 point lights with their hard shadows. Timed round-robin, medians of the kernel's
 // profiling events (the shadow culling included; the kernel's build, the transfers not).
 #include <algorithm>
@@ -60,7 +61,10 @@ void run_soft_shadow_bench(const BenchArguments& args) {
   Scene large = with_generated_lights(load_scene("scenes/large/scene.json"), 32);
   std::erase_if(large.lights, [](const Light& light) { return light.type == LightType::directional; });
   large.ambient = glm::dvec3(0.0);  // the agreement is of the lights' light, as the Cycles checks count it
-  const GBuffer gbuffer = resample_nearest(generate_gbuffer(large), 480, 270);
+  // Rendered at 480x270 by its own camera, which screen space's march needs.
+  large.camera.width = 480;
+  large.camera.height = 270;
+  const GBuffer gbuffer = generate_gbuffer(large);
   const Scene soft = with_area_lights(large);
   Scene hard_points = large;
   for (Light& light : hard_points.lights) light.shadows = true;
@@ -80,6 +84,11 @@ void run_soft_shadow_bench(const BenchArguments& args) {
   add(soft, "area lights, unshadowed", ShadowMode::off, 1);
   for (int rays : {1, 4, 16, 64, kSoftReferenceRays})
     add(soft, "area lights, " + std::to_string(rays) + (rays == 1 ? " ray (hard)" : " rays"), ShadowMode::geometry, rays);
+  const std::size_t converged_run = runs.size() - 1;
+  // Screen space's marches, each against the same converged geometry shadows.
+  for (int rays : {1, 4, 16, 64})
+    add(soft, "area lights, screen, " + std::to_string(rays) + (rays == 1 ? " march (hard)" : " marches"),
+        ShadowMode::screen, rays);
   add(hard_points, "point lights, hard (1 ray)", ShadowMode::geometry, 1);
   std::cout << "\nSoft shadows: scenes/large, 480x270, " << soft.area_lights.size()
             << " area lights casting shadows (and the same " << hard_points.lights.size() << " as point lights)\n"
@@ -88,7 +97,7 @@ void run_soft_shadow_bench(const BenchArguments& args) {
   std::vector<Image> images;  // the untimed warm-up builds each program
   for (Run& run : runs) images.push_back(shader.shade(*run.scene, gbuffer, run.options).image);
   const Image& unshadowed = images.front();
-  const Image& converged = images[runs.size() - 2];
+  const Image& converged = images[converged_run];
   for (std::size_t v = 0; v + 1 < runs.size(); ++v) {
     const ShadowImageError error = shadow_image_error(images[v], converged, unshadowed, gbuffer, kAgreement);
     runs[v].variant.agreement = 1.0 - error.beyond;
