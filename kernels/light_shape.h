@@ -58,25 +58,31 @@ static inline realv times_inverse_powers(realv weight, realv inverse_distance, i
   return weight;
 }
 
+/* `bounded` times cone(l) for toward * inverse = l: the smoothstep of the penumbra, and with
+ * SPOT_COSINE_POWER max(0, c)^p (1 for a point light). */
+realv times_cone(UNIFORM_SPACE const LightShape* shape, vec3 toward, realv inverse, realv bounded) {
+  const realv versine = cone_versine(shape, toward, inverse);
+  const realv s = SELECT(versine <= shape->versine_inner, 1,
+                         clamp((shape->versine_outer - versine) * shape->inverse_cone_width, (real)0, (real)1));
+  bounded *= s * s * (3 - 2 * s);
+  /* max(0, c)^p, c = 1 - versine: the power takes its logarithm from the versine near the axis,
+   * as the specular lobe's from 1 - v.r, so a large p keeps its precision; p = 0 gives 1. */
+  if (SPOT_COSINE_POWER) bounded *= specular_power(1 - versine, versine, (realv)(real)shape->cosine_power);
+  return bounded;
+}
+
 /* F for one point or spot light; `gate` (0 or 1) is its linking. toward * inverse is l; distance and
- * inverse_distance are d and 1/d, read only with NEEDS_DISTANCE. */
+ * inverse_distance are d and 1/d, read only with NEEDS_DISTANCE. Without `with_cone` the cone is
+ * left out: a soft spot's comes from its emitter's points (soft_shadow.h). */
 realv shape_weight(UNIFORM_SPACE const LightShape* shape, vec3 toward, realv inverse, realv distance,
-                                 realv inverse_distance, realv gate) {
+                                 realv inverse_distance, realv gate, int with_cone) {
   realv bounded = gate; /* window * cone * link, in [0, 1] */
   if (RANGE_WINDOW) {
     const realv x = distance * shape->inverse_range, x2 = x * x;
     const realv t = clamp(1 - x2 * x2, (real)0, (real)1);
     bounded *= t * t;
   }
-  if (SPOT_LIGHTS) {
-    const realv versine = cone_versine(shape, toward, inverse);
-    const realv s = SELECT(versine <= shape->versine_inner, 1,
-                           clamp((shape->versine_outer - versine) * shape->inverse_cone_width, (real)0, (real)1));
-    bounded *= s * s * (3 - 2 * s);
-    /* max(0, c)^p, c = 1 - versine: the power takes its logarithm from the versine near the axis,
-     * as the specular lobe's from 1 - v.r, so a large p keeps its precision; p = 0 gives 1. */
-    if (SPOT_COSINE_POWER) bounded *= specular_power(1 - versine, versine, (realv)(real)shape->cosine_power);
-  }
+  if (SPOT_LIGHTS && with_cone) bounded = times_cone(shape, toward, inverse, bounded);
   const realv weight = times_inverse_powers(bounded, inverse_distance, FALLOFF_MIXED ? shape->falloff : FALLOFF);
   return WEIGHT_CAN_OVERFLOW ? SELECT(bounded > 0, weight, 0) : weight; /* 0 * (1/d^k = Inf) */
 }

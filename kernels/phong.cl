@@ -227,17 +227,18 @@ void sum_pending_lobes(LightSums* sums, const PendingLobes* pending, realv shini
  * caster word) and lights the lane. `where` is a point light's eye-relative position or a
  * directional light's unit l. With SOFT_SHADOWS a light with a size (`soft`: more than one ray)
  * takes the visible fraction of its sphere or sun instead (soft_shadow.h), `stream` numbering its
- * lattice; 0 stays a select. */
+ * lattice, and `cone` (a soft spot's shape, else 0) counted per ray; 0 stays a select. */
 static inline SHADOW_INLINE realv shadowed_weight(realv weight, const Surface* surface, const Lights* lights,
                                                   vec3 where, int directional, uint casts,
-                                                  UNIFORM_SPACE const SoftLight* soft, uint stream) {
+                                                  UNIFORM_SPACE const SoftLight* soft, UNIFORM_SPACE const LightShape* cone,
+                                                  uint stream) {
   if (!casts) return weight;
   const intv pending = LANE_MASK(weight > 0) & LANE_MASK(surface->material != PHONGCL_BACKGROUND);
   if (SOFT_SHADOWS && soft->rays > 1) {
     const Emitter emitter =
         directional ? sun_emitter(where, soft->size) : sphere_emitter(where, soft->size, surface->p);
-    const realv visible = emitter_visibility(lights->shadows, surface->p, surface->n, &emitter, casts - 1, soft->rays,
-                                             lattice_shift(lights->first_pixel, stream), pending);
+    const realv visible = emitter_visibility(lights->shadows, surface->p, surface->n, &emitter, cone, casts - 1,
+                                             soft->rays, lattice_shift(lights->first_pixel, stream), pending);
     return SELECT(visible > 0, weight * visible, 0);
   }
   const intv blocked =
@@ -261,9 +262,24 @@ static inline vec3 light_offset(vec3 position, vec3 rest, const Surface* surface
                    leading.z + (rest.z - surface->p_rest.z));
 }
 
+/* What a light with a size that casts soft shadows adds past light_contribution()'s max(0, n.l), to
+ * the diffuse sum alone: its emitter lights a little beyond the horizon (horizon_cosine), where
+ * sin_sq is its angular radius's sine squared. 0 wherever the emitter is wholly above or below it. */
+static inline void add_horizon_light(LightSums* sums, vec3 n, vec3 toward, realv inverse, realv sin_sq,
+                                     UNIFORM_SPACE const float* color, realv weight) {
+  const realv c = dot3(n, toward) * inverse;
+  const realv beyond = horizon_cosine(c, sin_sq) - fmax(c, (real)0);
+  const realv lit = SELECT(beyond > 0, beyond * weight, 0); /* 0, not 0 * Inf, at the light */
+  sums->diffuse.x += NONNEGATIVE_TIMES(color[0], lit);
+  sums->diffuse.y += NONNEGATIVE_TIMES(color[1], lit);
+  sums->diffuse.z += NONNEGATIVE_TIMES(color[2], lit);
+}
+
 /* What a point or spot light adds, F from its shape and linking mask, times its visibility with
  * SHADOWS. In a tile's list a spot whose cone leaves out every lane is left early: that changes no
- * bit of the sums. */
+ * bit of the sums. A light with a radius that casts soft shadows lights as its emitter does: a
+ * spot's cone from the emitter's points (wider than the centre's: never left early) and a little
+ * past the horizon. */
 static inline void add_point_light(LightSums* sums, PendingLobes* pending, const Surface* surface,
                                    const Lights* lights, int i) {
   UNIFORM_SPACE const PointLight* light = &lights->point[i];
@@ -274,15 +290,22 @@ static inline void add_point_light(LightSums* sums, PendingLobes* pending, const
   realv distance = 0, inverse_distance = 0; /* spots alone read neither */
   const realv inverse = NEEDS_DISTANCE ? distance_in_range(&toward, &distance, &inverse_distance)
                                        : inverse_length_in_range(&toward);
-  if (TILED_CULLING && SPOT_LIGHTS && outside_cone_in_every_lane(shape, toward, inverse)) return;
+  const bool soft = SOFT_SHADOWS && SHADOWS && lights->point_casters[i] && lights->point_soft[i].rays > 1;
+  if (TILED_CULLING && SPOT_LIGHTS && (soft ? false : outside_cone_in_every_lane(shape, toward, inverse))) return;
   const realv gate = link_gate(link_mask, surface->material);
-  realv weight = POINT_SHAPES ? shape_weight(shape, toward, inverse, distance, inverse_distance, gate) : gate;
+  realv weight = POINT_SHAPES ? shape_weight(shape, toward, inverse, distance, inverse_distance, gate, !soft) : gate;
   if (SHADOWS)
-    weight = shadowed_weight(weight, surface, lights, position, 0, lights->point_casters[i], &lights->point_soft[i], (uint)i);
+    weight = shadowed_weight(weight, surface, lights, position, 0, lights->point_casters[i], &lights->point_soft[i],
+                             soft && SPOT_LIGHTS ? shape : 0, (uint)i);
   surface_light(sums, pending, surface, toward, inverse, light->color, weight);
+  if (soft) {
+    const realv tangent = lights->point_soft[i].size * inverse; /* of the disk facing P: r / d */
+    add_horizon_light(sums, surface->n, toward, inverse, tangent * tangent / (1 + tangent * tangent), light->color, weight);
+  }
 }
 
-/* What a directional light adds; F is its linking, times its visibility with SHADOWS. */
+/* What a directional light adds; F is its linking, times its visibility with SHADOWS; a sun with an
+ * angle that casts soft shadows a little past the horizon too. */
 static inline void add_directional_light(LightSums* sums, PendingLobes* pending, const Surface* surface,
                                          const Lights* lights, int k) {
   UNIFORM_SPACE const DirectionalLight* light = &lights->directional[k];
@@ -291,8 +314,12 @@ static inline void add_directional_light(LightSums* sums, PendingLobes* pending,
   realv weight = link_gate(link_mask, surface->material);
   if (SHADOWS)
     weight = shadowed_weight(weight, surface, lights, l, 1, lights->directional_casters[k], &lights->directional_soft[k],
-                             DIRECTIONAL_STREAMS + (uint)k);
+                             0, DIRECTIONAL_STREAMS + (uint)k);
   surface_light(sums, pending, surface, l, 1, light->color, weight);
+  if (SOFT_SHADOWS && SHADOWS && lights->directional_casters[k] && lights->directional_soft[k].rays > 1) {
+    const real tangent = lights->directional_soft[k].size; /* of the sun's angular radius */
+    add_horizon_light(sums, surface->n, l, 1, tangent * tangent / (1 + tangent * tangent), light->color, weight);
+  }
 }
 
 /* An area light's shadow. With SOFT_SHADOWS and more than one ray its E and S are multiplied by
@@ -308,7 +335,7 @@ static inline void shadow_area_light(realv* irradiance, realv* highlight, const 
   const uint rays = SOFT_SHADOWS ? lights->area_soft[k].rays : 1;
   if (rays > 1) {
     const Emitter emitter = area_emitter(light);
-    const realv visible = emitter_visibility(lights->shadows, surface->p, surface->n, &emitter, casts - 1, rays,
+    const realv visible = emitter_visibility(lights->shadows, surface->p, surface->n, &emitter, 0, casts - 1, rays,
                                              lattice_shift(lights->first_pixel, AREA_STREAMS + (uint)k), pending);
     *irradiance *= visible;
     *highlight *= visible;

@@ -4,6 +4,8 @@
  *   PHONGCL_LANES=n   pixels (rays) per work-item
  * Rays: 7 planes of `stride` floats, eye-relative: origin x y z, direction x y z, t_max; a ray with
  * t_max <= 0 is padding (a background pixel, or one facing away from the light) and is not traced. */
+#include "emitter.h"
+#include "sampling.h"
 #include "shadow.h"
 #include "tiles.h"
 
@@ -26,6 +28,19 @@ static inline vec3 pixel_normal(__global const float* pixels, uint stride, size_
                                 TO_REALV(VLOAD(group, pixels + 5 * (size_t)stride))));
 }
 
+/* A packet of rays into the 7 planes of `rays`; t_max 0 in the lanes not `traced`. */
+static inline void store_ray(const ShadowRay* ray, intv traced, size_t group, uint stride, __global float* rays) {
+  const vec3 o = ray->origin, d = ray->direction;
+  const realv t_max = SELECT(LANE_MASK(ray->t_max > 0) & traced, ray->t_max, 0);
+  VSTORE(TO_FLOATV(o.x), group, rays);
+  VSTORE(TO_FLOATV(o.y), group, rays + stride);
+  VSTORE(TO_FLOATV(o.z), group, rays + 2 * (size_t)stride);
+  VSTORE(TO_FLOATV(d.x), group, rays + 3 * (size_t)stride);
+  VSTORE(TO_FLOATV(d.y), group, rays + 4 * (size_t)stride);
+  VSTORE(TO_FLOATV(d.z), group, rays + 5 * (size_t)stride);
+  VSTORE(TO_FLOATV(t_max), group, rays + 6 * (size_t)stride);
+}
+
 /* One light's shadow rays from packed pixels, as the shading kernel builds them. */
 __kernel void make_shadow_rays(__global const float* restrict pixels, __global const int* restrict material_index,
                                const uint stride, __global const ShadowLight* restrict lights, const uint light,
@@ -34,15 +49,32 @@ __kernel void make_shadow_rays(__global const float* restrict pixels, __global c
   intv traced = VLOAD(group, material_index) >= 0;
   const ShadowRay ray = light_ray(pixel_position(pixels, stride, group), pixel_normal(pixels, stride, group), lights[light],
                                   offset_scale, eye_extent, &traced);
-  const vec3 o = ray.origin, d = ray.direction;
-  const realv t_max = SELECT(LANE_MASK(ray.t_max > 0) & traced, ray.t_max, 0);
-  VSTORE(TO_FLOATV(o.x), group, rays);
-  VSTORE(TO_FLOATV(o.y), group, rays + stride);
-  VSTORE(TO_FLOATV(o.z), group, rays + 2 * (size_t)stride);
-  VSTORE(TO_FLOATV(d.x), group, rays + 3 * (size_t)stride);
-  VSTORE(TO_FLOATV(d.y), group, rays + 4 * (size_t)stride);
-  VSTORE(TO_FLOATV(d.z), group, rays + 5 * (size_t)stride);
-  VSTORE(TO_FLOATV(t_max), group, rays + 6 * (size_t)stride);
+  store_ray(&ray, traced, group, stride, rays);
+}
+
+/* Ray `k` of a light's soft shadow from packed pixels, as the shading kernel makes them
+ * (soft_shadow.h): a point light as a sphere of radius `size`, a directional one as a sun whose
+ * angular radius has tangent `size`; toward point k of the pixel's shifted lattice on the emitter
+ * (the pixel's number its slot here, the stream the light's). A point the diffuse integrand weighs 0
+ * (below the pixel's horizon) is not traced, as in the kernel. */
+__kernel void make_soft_shadow_rays(__global const float* restrict pixels, __global const int* restrict material_index,
+                                    const uint stride, __global const ShadowLight* restrict lights, const uint light,
+                                    const float size, const uint k, const float offset_scale, const float eye_extent,
+                                    __global float* restrict rays) {
+  const size_t group = get_global_id(0);
+  const vec3 p = pixel_position(pixels, stride, group), n = pixel_normal(pixels, stride, group);
+  const ShadowLight source = lights[light];
+  const vec3 center = make_vec3((realv)source.where[0], (realv)source.where[1], (realv)source.where[2]);
+  const int directional = source.directional != 0;
+  const Emitter emitter = directional ? sun_emitter(center, size) : sphere_emitter(center, size, p);
+  realv s, t;
+  lattice_point(k, lattice_shift((uint)(group * PHONGCL_LANES), light), &s, &t);
+  const vec3 offset = emitter_offset(&emitter, s, t);
+  const vec3 d = add3(directional ? center : sub3(center, p), offset);
+  const vec3 where = directional ? unit_or_zero(d) : add3(center, offset);
+  intv traced = (VLOAD(group, material_index) >= 0) & LANE_MASK(emitter_weight(d, n, emitter.normal) > 0);
+  const ShadowRay ray = shadow_ray_toward(p, n, where, directional, offset_scale, eye_extent, &traced);
+  store_ray(&ray, traced, group, stride, rays);
 }
 
 static inline ShadowRay load_ray(__global const float* rays, uint stride, size_t group) {

@@ -14,16 +14,10 @@
 #define PHONGCL_SOFT_SHADOW_H
 
 #include "area_light.h"
+#include "emitter.h"
+#include "light_shape.h"
 #include "sampling.h"
 #include "shadow.h"
-
-/* A flat emitter, eye-relative: centre, unit normal of the emitting side, and the axes a rect
- * spans (centre +- u +- v) or a disk's radii along two orthogonal directions. A sun's is the disk
- * of directions about l at unit distance from the point, `center` then l itself. */
-typedef struct {
-  vec3 center, normal, u, v;
-  int disk, directional;
-} Emitter;
 
 static inline Emitter area_emitter(UNIFORM_SPACE const AreaLightRecord* light) {
   const Emitter emitter = {area_vector(light->center), area_vector(light->normal), area_vector(light->axis_u),
@@ -31,59 +25,15 @@ static inline Emitter area_emitter(UNIFORM_SPACE const AreaLightRecord* light) {
   return emitter;
 }
 
-/* Two unit vectors completing a unit normal to an orthonormal basis, without a branch (Duff et
- * al. 2017, "Building an orthonormal basis, revisited"). */
-static inline void orthonormal_basis(vec3 normal, vec3* u, vec3* v) {
-  const realv sign = copysign((realv)1, normal.z);
-  const realv a = -1 / (sign + normal.z), b = normal.x * normal.y * a;
-  *u = make_vec3(1 + sign * normal.x * normal.x * a, sign * b, -sign * normal.x);
-  *v = make_vec3(b, sign + normal.y * normal.y * a, -normal.y);
-}
-
-/* A disk of radius `radius` about `center` with unit normal `normal`. */
-static inline Emitter disk_facing(vec3 center, vec3 normal, real radius, int directional) {
-  Emitter emitter;
-  emitter.center = center;
-  emitter.normal = normal;
-  orthonormal_basis(normal, &emitter.u, &emitter.v);
-  emitter.u = scale3(emitter.u, radius);
-  emitter.v = scale3(emitter.v, radius);
-  emitter.disk = 1;
-  emitter.directional = directional;
-  return emitter;
-}
-
-/* A sphere light of radius `radius` at `center` as the disk through its centre facing the point p. */
-static inline Emitter sphere_emitter(vec3 center, real radius, vec3 p) {
-  return disk_facing(center, unit_or_zero(sub3(p, center)), radius, 0);
-}
-
-/* A sun of unit direction l (toward it) whose angular radius has tangent `spread`. */
-static inline Emitter sun_emitter(vec3 l, real spread) {
-  return disk_facing(l, make_vec3(-l.x, -l.y, -l.z), spread, 1);
-}
-
-/* The emitter's point for lattice point (s, t), relative to its centre: a rect's (2s - 1) u +
- * (2t - 1) v; a disk's polar map, radius sqrt(s) and angle 2 pi t (uniform by area). */
-static inline vec3 emitter_offset(const Emitter* emitter, realv s, realv t) {
-  if (!emitter->disk) return add3(scale3(emitter->u, 2 * s - 1), scale3(emitter->v, 2 * t - 1));
-  const realv radius = sqrt(s), angle = (real)(2 * AREA_PI) * t;
-  return add3(scale3(emitter->u, radius * cos(angle)), scale3(emitter->v, radius * sin(angle)));
-}
-
-/* The diffuse integrand's weight of a point at d from P (any common scale), capped: a point on the
- * emitter's own plane would weigh +Inf, and Inf / Inf is no fraction. */
-static inline realv emitter_weight(vec3 d, vec3 n, vec3 normal) {
-  const realv length_sq = dot3(d, d), facing_p = dot3(n, d), facing_light = -dot3(normal, d);
-  return SELECT(facing_p > 0 && facing_light > 0, fmin(facing_p * facing_light / (length_sq * length_sq), (real)0x1p64), 0);
-}
-
 /* The visible fraction of an emitter in the lanes of `pending` (1 elsewhere). `caster` is the
  * light's place in the culling's casters, `shift` its lattice's (sampling.h). A sun's rays run to
  * infinity along the directions through its disk and traverse the BVH: tiled shadow culling's hulls
- * are swept along l alone. */
+ * are swept along l alone. With `cone` (a spot's shape; 0 for none) each visible point counts times
+ * the cone seen from it, the way from that point to P, as Cycles evaluates a spot of some radius:
+ * the fraction is then the cone's mean over the visible emitter, its edge blurred by the emitter. */
 static inline SHADOW_INLINE realv emitter_visibility(const ShadowInputs* shadows, vec3 p, vec3 n, const Emitter* emitter,
-                                                     uint caster, uint rays, LatticeShift shift, intv pending) {
+                                                     UNIFORM_SPACE const LightShape* cone, uint caster, uint rays,
+                                                     LatticeShift shift, intv pending) {
   ShadowInputs traced = *shadows;
   if (emitter->directional) traced.tiles = 0;
   const vec3 c = emitter->directional ? emitter->center : sub3(emitter->center, p);
@@ -101,11 +51,27 @@ static inline SHADOW_INLINE realv emitter_visibility(const ShadowInputs* shadows
     const realv weight = emitter_weight(scale3(d, inverse_scale), n, emitter->normal);
     const vec3 where = emitter->directional ? unit_or_zero(d) : add3(emitter->center, offset);
     const intv blocked =
-        light_blocked(&traced, p, n, where, emitter->directional, 0, caster, pending & LANE_MASK(weight > 0));
+        light_blocked(&traced, p, n, where, emitter->directional, SCREEN_SHADOWS, caster, pending & LANE_MASK(weight > 0));
     total += weight;
-    seen += SELECT(TO_REALV(blocked) != 0, 0, weight);
+    const realv counted = cone ? times_cone(cone, d, 1 / sqrt(fmax(dot3(d, d), (real)1e-30)), weight) : weight;
+    seen += SELECT(TO_REALV(blocked) != 0, 0, counted);
   }
   return SELECT(total > 0, seen / total, 1);
+}
+
+/* What a light of angular radius sigma lights, relative to a point light's at its centre, for
+ * c = n.l and sin_sq = sin(sigma)^2: E / (pi sin_sq), the irradiance E of a uniform disk of
+ * directions (a sphere's or a sun's) over the surface's horizon, which is max(0, c) wherever the
+ * whole disk is above the horizon or below it (c^2 >= sin_sq) and, where it straddles it, the
+ * closed form of the part above (a uniform spherical cap cut by a plane; as Frostbite's sphere
+ * lights, Lagarde and de Rousiers 2014): positive a little past c = 0, as Cycles lights there. */
+static inline realv horizon_cosine(realv c, realv sin_sq) {
+  const realv sine = sqrt(fmax(1 - c * c, (real)0));
+  const realv cotangent = sqrt(1 / sin_sq - 1);
+  const realv y = clamp(-cotangent * c / fmax(sine, (real)1e-12), (real)-1, (real)1);
+  const realv t = sine * sqrt(fmax(1 - y * y, (real)0));
+  const realv straddling = ((c * acos(y) - cotangent * t) * sin_sq + atan(t / cotangent)) / ((real)AREA_PI * sin_sq);
+  return SELECT(c * c >= sin_sq, fmax(c, (real)0), fmax(straddling, (real)0));
 }
 
 #endif

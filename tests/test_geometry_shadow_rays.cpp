@@ -143,6 +143,37 @@ void expect_kernel_matches_reference(const glm::dvec3& offset, int lanes) {
 }
 
 TEST(ShadowRays, EveryShapeAgreesWithTheBruteForceReferencePacketsOf16) { expect_kernel_matches_reference({0, 0, 0}, 16); }
+
+// The bench's soft rays (16 per pixel; the point lights as spheres, the directional one a sun): a
+// point light's rays end on its sphere's facing disk (t = 1 is the point of the emitter), and the
+// traversal decides every ray as the reference.
+TEST(ShadowRays, SoftRaysEndOnTheEmitterAndAgreeWithTheReference) {
+  REQUIRE_DEVICE(device);
+  TempDir dir;
+  Traced traced(*device, shadow_test_scene(dir.path, {0, 0, 0}, 48, 36), 16);
+  auto& [scene, gbuffer, eye, bvh, tracer] = traced;
+  constexpr float kRadius = 0.3f;
+  constexpr int kRays = 16;
+  const ShadowRaySet hard = tracer.make_rays();
+  const ShadowRaySet rays = tracer.make_soft_rays(kRadius, kRays);
+  ASSERT_EQ(rays.size, hard.size * kRays);
+  const std::size_t frame = hard.size / scene.lights.size();
+  double farthest = 0.0;
+  for (std::size_t i = 0; i < rays.size; ++i) {
+    if (!(rays.t_max[i] > 0.0f)) continue;
+    const Light& light = scene.lights[i / frame / kRays];
+    if (light.type == LightType::directional) continue;
+    const glm::dvec3 end = eye + glm::dvec3(rays.ox[i] + rays.dx[i], rays.oy[i] + rays.dy[i], rays.oz[i] + rays.dz[i]);
+    farthest = std::max(farthest, glm::length(end - light.position));
+  }
+  // Float rounding of eye-relative points a few units from the eye: far below a millimetre.
+  EXPECT_LE(farthest, kRadius * (1.0 + 1e-4));
+  EXPECT_GT(farthest, kRadius * 0.9) << "the rays spread over the disk";
+  EXPECT_GT(rays.traced(), hard.traced() * kRays / 2);
+  const Agreement agreement = compare(reference_outcomes(bvh, eye, rays), rays, tracer.trace(rays), eye);
+  EXPECT_EQ(agreement.disagree, 0u);
+  EXPECT_LE(agreement.borderline, agreement.rays / 2000) << agreement.borderline << " of " << agreement.rays;
+}
 TEST(ShadowRays, EveryShapeAgreesWithTheBruteForceReferenceOneRayPerWorkItem) { expect_kernel_matches_reference({0, 0, 0}, 1); }
 TEST(ShadowRays, AMillionUnitsFromTheOriginAgreesToo) { expect_kernel_matches_reference({1e6, -3e5, 7e5}, 16); }
 

@@ -186,9 +186,14 @@ LightBounds light_bounds(const Light& light, const glm::dvec3& eye) {
   // A spot's outer half angle (the cone and its penumbra) and its axis.
   const double half_angle = spot ? (light.cone_angle_deg / 2.0 + light.penumbra_angle_deg) * pi / 180.0 : 0.0;
   const glm::dvec3 axis = spot ? glm::normalize(light.direction) : glm::dvec3(0.0);
+  // A spot with a radius whose shadow is soft takes its cone from every point of its emitter
+  // (soft_shadow.h): every such cone lies in the one of the same angle whose apex is r / sin(angle)
+  // behind the centre. Its range (from the centre) is then bounded by the range's ball alone.
+  const bool wide_cone = spot && light.radius > 0.0;
+  const glm::dvec3 apex = wide_cone ? position - light.radius / std::sin(std::max(half_angle, 1e-6)) * axis : position;
   glm::dvec3 center = position;
   double radius = light.has_range() ? light.range : -1.0;
-  if (spot && light.has_range()) {
+  if (spot && light.has_range() && !wide_cone) {
     const double narrow = light.range / (2.0 * std::cos(half_angle));
     if (half_angle <= pi / 4.0) {
       center += narrow * axis;
@@ -207,7 +212,7 @@ LightBounds light_bounds(const Light& light, const glm::dvec3& eye) {
   // axis: the culling cone is 2e-3 wider, and nothing is tested past 89 degrees.
   const double culling_half_angle = half_angle + 2e-3;
   if (spot && culling_half_angle < 89.0 * pi / 180.0) {
-    store3(bounds.apex, position);
+    store3(bounds.apex, apex);
     store3(bounds.axis, axis);
     bounds.cone_cos = static_cast<float>(std::cos(culling_half_angle));
     bounds.cone_sin = static_cast<float>(std::sin(culling_half_angle));

@@ -296,7 +296,7 @@ void decide_materials(Recipe& recipe, const Scene& scene, const GBuffer& gbuffer
 }
 
 // Soft shadows: lights with a size (area lights, spheres, suns with an angle) that cast them with
-// more than one ray, traced against the geometry (screen space keeps one ray to the centre).
+// more than one ray, traced against the geometry or marched across the depth plane.
 // Without one, nothing of them is compiled in, and the hard shadows shade as before, bit for bit.
 void decide_soft_shadows(Recipe& recipe, const Scene& scene) {
   int soft = 0, most_rays = 0;
@@ -305,7 +305,7 @@ void decide_soft_shadows(Recipe& recipe, const Scene& scene) {
     ++soft;
     most_rays = std::max(most_rays, rays);
   };
-  if (recipe.shadows == ShadowMode::geometry) {
+  if (recipe.shadows == ShadowMode::geometry || recipe.shadows == ShadowMode::screen) {
     for (const Light& light : scene.lights) count(light.shadows, shadow_rays(light, recipe.shadow_settings));
     for (const AreaLight& light : scene.area_lights) count(light.shadows, shadow_rays(light, recipe.shadow_settings));
   }

@@ -36,7 +36,7 @@ void add_bench_command(CLI::App& app) {
                     "Shadows: screen-space marches against exact geometry shadows (error against run time), and the "
                     "BVH traversal against Embree on the same rays, and soft shadows' error against their rays");
   command->add_flag("--soft-shadows", args->soft_shadows,
-                    "Soft shadows alone (a part of --shadows): area lights' error and time at 1 to 64 rays");
+                    "Soft shadows alone (a part of --shadows): area lights' error and time at 1 to 64 rays, geometry and screen space");
   command->add_option("--mesh-triangles", args->mesh_triangles, "--shadows: triangles of the mesh scene (default 128000)")
       ->check(CLI::Range(1000, 100000000));
   command->add_flag("--display", args->display,

@@ -12,6 +12,7 @@
 #include "cl/compute_context.h"
 #include "cli/bench_arguments.h"
 #include "cli/shadow_bench_report.h"
+#include "cli/shadow_image_error.h"
 #include "geometry/device_geometry.h"
 #include "geometry/scene_bvh.h"
 #include "peers/light_sweep.h"
@@ -63,27 +64,6 @@ BenchScene bundled(const std::string& name, int lights = 0) {
   return loaded(inputs, lights);
 }
 
-// Shaded pixels whose shadows differ, and the mean absolute error over their R, G, B.
-void compare_with_exact(const Image& image, const Image& exact, const Image& unshadowed, const GBuffer& gbuffer,
-                        ShadowVariant& variant) {
-  std::size_t shaded = 0, differ = 0;
-  double error = 0.0;
-  for (std::size_t i = 0; i < gbuffer.pixel_count(); ++i) {
-    if (classify_pixel(gbuffer, i) != PixelClass::shaded) continue;
-    ++shaded;
-    double largest = 0.0, reach = 0.0;
-    for (int c = 0; c < 3; ++c) {
-      const double miss = std::abs(static_cast<double>(image.pixel(i)[c]) - exact.pixel(i)[c]);
-      largest = std::max(largest, miss);
-      reach = std::max(reach, static_cast<double>(unshadowed.pixel(i)[c]));
-      error += miss;
-    }
-    differ += largest > kDifferentShadows * reach;
-  }
-  variant.mismatch = static_cast<double>(differ) / static_cast<double>(std::max<std::size_t>(shaded, 1));
-  variant.mean_abs_error = error / (3.0 * static_cast<double>(std::max<std::size_t>(shaded, 1)));
-}
-
 ShadowSceneResult measure(PhongShader& shader, const BenchScene& bench, int runs) {
   ShadowSceneResult result;
   result.name = bench.name;
@@ -116,7 +96,11 @@ ShadowSceneResult measure(PhongShader& shader, const BenchScene& bench, int runs
   }
   for (std::size_t i = 0; i < bench.gbuffer.pixel_count(); ++i)
     result.shaded += classify_pixel(bench.gbuffer, i) == PixelClass::shaded;
-  for (std::size_t v = 0; v < options.size(); ++v) compare_with_exact(images[v], images[0], images[1], bench.gbuffer, result.variants[v]);
+  for (std::size_t v = 0; v < options.size(); ++v) {
+    const ShadowImageError error = shadow_image_error(images[v], images[0], images[1], bench.gbuffer, kDifferentShadows);
+    result.variants[v].mismatch = error.beyond;
+    result.variants[v].mean_abs_error = error.mean_abs_error;
+  }
   std::vector<std::vector<double>> times(options.size());
   for (int run = 0; run < runs; ++run)
     for (std::size_t v = 0; v < options.size(); ++v)

@@ -59,11 +59,56 @@ Scene mesh_scene(const std::filesystem::path& directory, int triangles, int ligh
   return scene;
 }
 
+namespace {
+
+// The soft rays: knot_scene's point lights as spheres of this radius, this many rays per pixel (the
+// default --shadow-rays).
+constexpr float kSoftRadius = 0.25f;
+constexpr int kSoftRays = 16;
+
+#ifdef PHONGCL_HAVE_EMBREE
+using EmbreeTracer = EmbreeShadowPeer;
+#else
+struct EmbreeTracer {};  // none: the OpenCL traversal alone
+#endif
+
+// One set of rays through the OpenCL traversal and (with Embree) both of Embree's APIs, each the
+// median of `runs` after a warm-up, with rays per second.
+std::vector<ShadowTracerResult> trace_each(OpenClShadowRays& tracer, const ShadowRaySet& rays, double bvh_build_ms,
+                                           int runs, [[maybe_unused]] const EmbreeTracer& embree) {
+  std::vector<ShadowTracerResult> tracers;
+  std::vector<float> ours;
+  const double ours_ms = median_of_runs(runs, [&] {
+    double ms = 0.0;
+    ours = tracer.trace(rays, &ms);
+    return ms;
+  });
+  tracers.push_back({"opencl (" + std::to_string(tracer.lanes()) + " rays per work-item)", bvh_build_ms, ours_ms, 0.0});
+#ifdef PHONGCL_HAVE_EMBREE
+  for (EmbreeApi api : {EmbreeApi::packet16, EmbreeApi::single}) {
+    std::vector<float> theirs;
+    const double ms = median_of_runs(runs, [&] {
+      double run_ms = 0.0;
+      theirs = embree.trace(rays, api, &run_ms);
+      return run_ms;
+    });
+    tracers.push_back({std::string("embree ") + to_string(api), embree.build_milliseconds(), ms,
+                       disagreement(ours, theirs, rays)});
+  }
+#endif
+  const auto traced = static_cast<double>(rays.traced());
+  for (ShadowTracerResult& result : tracers) result.mrays_per_s = traced / (result.trace_ms * 1e-3) / 1e6;
+  return tracers;
+}
+
+}  // namespace
+
 ShadowRaysResult run_shadow_rays_bench(const BenchArguments& args, const std::filesystem::path& scratch) {
   ShadowRaysResult result;
   const Scene scene = mesh_scene(scratch, args.mesh_triangles, 4, 1280, 720);
   std::cout << "  rays       the same shadow rays, OpenCL against Embree: a knot of >= " << args.mesh_triangles
-            << " triangles, 4 point lights, " << scene.camera.width << "x" << scene.camera.height << "\n";
+            << " triangles, 4 point lights, " << scene.camera.width << "x" << scene.camera.height
+            << "; then their soft rays as spheres of radius " << kSoftRadius << ", " << kSoftRays << " per pixel\n";
   const GBuffer gbuffer = generate_gbuffer(scene);
   auto start = Clock::now();
   SceneShapes shapes = flatten_objects(scene.objects);
@@ -79,38 +124,21 @@ ShadowRaysResult run_shadow_rays_bench(const BenchArguments& args, const std::fi
   result.device = describe(compute.device.info);
   OpenClShadowRays tracer(compute, cache, pack_device_geometry(bvh, eye));
   tracer.set_frame(pack_frame(gbuffer, scene), gbuffer.width, gbuffer.height, scene, eye, PHONGCL_SHADOW_OFFSET_FLOAT);
-  const ShadowRaySet rays = tracer.make_rays();
-  result.rays = rays.traced();
-  std::vector<float> ours;
-  const double ours_ms = median_of_runs(args.runs, [&] {
-    double ms = 0.0;
-    ours = tracer.trace(rays, &ms);
-    return ms;
-  });
-  result.tracers.push_back({"opencl (" + std::to_string(tracer.lanes()) + " rays per work-item)", result.bvh_build_ms,
-                            ours_ms, 0.0});
-  std::cout << "    opencl: mesh read " << result.mesh_read_ms << " ms, BVH " << result.bvh_build_ms << " ms (depth "
-            << result.bvh_depth << "), " << ours_ms
-            << " ms for " << result.rays << " rays\n";
 #ifdef PHONGCL_HAVE_EMBREE
-  const EmbreeShadowPeer embree(bvh.shapes, eye);
+  const EmbreeTracer embree(bvh.shapes, eye);
   result.embree = embree.describe();
-  for (EmbreeApi api : {EmbreeApi::packet16, EmbreeApi::single}) {
-    std::vector<float> theirs;
-    const double ms = median_of_runs(args.runs, [&] {
-      double run_ms = 0.0;
-      theirs = embree.trace(rays, api, &run_ms);
-      return run_ms;
-    });
-    result.tracers.push_back({std::string("embree ") + to_string(api), embree.build_milliseconds(), ms,
-                              disagreement(ours, theirs, rays)});
-    std::cout << "    embree " << to_string(api) << ": BVH " << embree.build_milliseconds() << " ms, " << ms << " ms\n";
-  }
 #else
+  const EmbreeTracer embree;
   result.embree = "SKIP: Embree not installed (scripts/setup.sh embree)";
 #endif
-  for (ShadowTracerResult& tracer_result : result.tracers)
-    tracer_result.mrays_per_s = static_cast<double>(result.rays) / (tracer_result.trace_ms * 1e-3) / 1e6;
+  const ShadowRaySet rays = tracer.make_rays();
+  result.rays = rays.traced();
+  result.tracers = trace_each(tracer, rays, result.bvh_build_ms, args.runs, embree);
+  const ShadowRaySet soft = tracer.make_soft_rays(kSoftRadius, kSoftRays);
+  result.soft_rays = soft.traced();
+  result.soft_tracers = trace_each(tracer, soft, result.bvh_build_ms, args.runs, embree);
+  std::cout << "    mesh read " << result.mesh_read_ms << " ms, BVH " << result.bvh_build_ms << " ms (depth "
+            << result.bvh_depth << "); " << result.rays << " rays, " << result.soft_rays << " soft rays\n";
   return result;
 }
 

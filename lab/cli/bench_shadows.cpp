@@ -20,7 +20,8 @@ void run_shadows_bench(const BenchArguments& args) {
   run_soft_shadow_bench(args);
   const ShadowRaysResult rays = run_shadow_rays_bench(args, scratch.path());
   std::cout << "\nShadow rays: " << rays.rays << " rays on " << rays.triangles << " triangles; " << rays.device << "; "
-            << rays.embree << "\n\n" << shadow_rays_table(rays);
+            << rays.embree << "\n\n" << shadow_rays_table(rays.tracers) << "\nTheir soft rays (spheres, 16 per pixel): "
+            << rays.soft_rays << " rays\n\n" << shadow_rays_table(rays.soft_tracers);
   machine.load_end = load_average();
   std::cout << "  load       " << machine.load_end << " at the end\n";
   if (!args.report_dir.empty())

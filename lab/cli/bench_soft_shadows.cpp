@@ -1,6 +1,7 @@
 // phongcl bench --shadows, the soft-shadow part: scenes/large at 480x270 with 16 generated point
 // lights (with_generated_lights' 32, less the directional half) as area lights casting shadows, shaded with 1 ray (the hard shadow), 4, 16 and 64, and
-// with kSoftReferenceRays, the converged estimate each image is compared with; beside them the
+// with kSoftReferenceRays, the converged estimate each image is compared with, and in screen space
+// with 1, 4, 16 and 64 marches against the same estimate; beside them the
 // same scene's 16 point lights with their hard shadows. Timed round-robin, medians of the kernel's
 // profiling events (the shadow culling included; the kernel's build, the transfers not).
 #include <algorithm>
@@ -12,6 +13,7 @@
 #include "cl/compute_context.h"
 #include "cli/bench_arguments.h"
 #include "cli/shadow_bench_report.h"
+#include "cli/shadow_image_error.h"
 #include "peers/light_sweep.h"
 #include "raycast/raycast.h"
 #include "report/statistics.h"
@@ -51,28 +53,6 @@ struct SoftVariant {
   double kernel_ms = 0.0, agreement = 0.0, mean_abs_error = 0.0;
 };
 
-// The fraction of shaded pixels within kAgreement of `converged` (of the unshadowed pixel's largest
-// channel), and the mean absolute error over R, G, B.
-void compare(const Image& image, const Image& converged, const Image& unshadowed, const GBuffer& gbuffer,
-             SoftVariant& variant) {
-  std::size_t shaded = 0, agree = 0;
-  double error = 0.0;
-  for (std::size_t i = 0; i < gbuffer.pixel_count(); ++i) {
-    if (classify_pixel(gbuffer, i) != PixelClass::shaded) continue;
-    ++shaded;
-    double largest = 0.0, reach = 0.0;
-    for (int c = 0; c < 3; ++c) {
-      const double miss = std::abs(static_cast<double>(image.pixel(i)[c]) - converged.pixel(i)[c]);
-      largest = std::max(largest, miss);
-      reach = std::max(reach, static_cast<double>(unshadowed.pixel(i)[c]));
-      error += miss;
-    }
-    agree += largest <= kAgreement * reach;
-  }
-  variant.agreement = static_cast<double>(agree) / static_cast<double>(std::max<std::size_t>(shaded, 1));
-  variant.mean_abs_error = error / (3.0 * static_cast<double>(std::max<std::size_t>(shaded, 1)));
-}
-
 }  // namespace
 
 void run_soft_shadow_bench(const BenchArguments& args) {
@@ -81,7 +61,10 @@ void run_soft_shadow_bench(const BenchArguments& args) {
   Scene large = with_generated_lights(load_scene("scenes/large/scene.json"), 32);
   std::erase_if(large.lights, [](const Light& light) { return light.type == LightType::directional; });
   large.ambient = glm::dvec3(0.0);  // the agreement is of the lights' light, as the Cycles checks count it
-  const GBuffer gbuffer = resample_nearest(generate_gbuffer(large), 480, 270);
+  // Rendered at 480x270 by its own camera, which screen space's march needs.
+  large.camera.width = 480;
+  large.camera.height = 270;
+  const GBuffer gbuffer = generate_gbuffer(large);
   const Scene soft = with_area_lights(large);
   Scene hard_points = large;
   for (Light& light : hard_points.lights) light.shadows = true;
@@ -101,6 +84,11 @@ void run_soft_shadow_bench(const BenchArguments& args) {
   add(soft, "area lights, unshadowed", ShadowMode::off, 1);
   for (int rays : {1, 4, 16, 64, kSoftReferenceRays})
     add(soft, "area lights, " + std::to_string(rays) + (rays == 1 ? " ray (hard)" : " rays"), ShadowMode::geometry, rays);
+  const std::size_t converged_run = runs.size() - 1;
+  // Screen space's marches, each against the same converged geometry shadows.
+  for (int rays : {1, 4, 16, 64})
+    add(soft, "area lights, screen, " + std::to_string(rays) + (rays == 1 ? " march (hard)" : " marches"),
+        ShadowMode::screen, rays);
   add(hard_points, "point lights, hard (1 ray)", ShadowMode::geometry, 1);
   std::cout << "\nSoft shadows: scenes/large, 480x270, " << soft.area_lights.size()
             << " area lights casting shadows (and the same " << hard_points.lights.size() << " as point lights)\n"
@@ -109,8 +97,12 @@ void run_soft_shadow_bench(const BenchArguments& args) {
   std::vector<Image> images;  // the untimed warm-up builds each program
   for (Run& run : runs) images.push_back(shader.shade(*run.scene, gbuffer, run.options).image);
   const Image& unshadowed = images.front();
-  const Image& converged = images[runs.size() - 2];
-  for (std::size_t v = 0; v + 1 < runs.size(); ++v) compare(images[v], converged, unshadowed, gbuffer, runs[v].variant);
+  const Image& converged = images[converged_run];
+  for (std::size_t v = 0; v + 1 < runs.size(); ++v) {
+    const ShadowImageError error = shadow_image_error(images[v], converged, unshadowed, gbuffer, kAgreement);
+    runs[v].variant.agreement = 1.0 - error.beyond;
+    runs[v].variant.mean_abs_error = error.mean_abs_error;
+  }
   std::vector<std::vector<double>> times(runs.size());
   for (int round = 0; round < args.runs; ++round)
     for (std::size_t v = 0; v < runs.size(); ++v)

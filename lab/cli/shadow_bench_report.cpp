@@ -47,14 +47,19 @@ json scene_json(const ShadowSceneResult& scene) {
           {"variants", variants}, {"shadow_culling", culling}};
 }
 
-json rays_json(const ShadowRaysResult& rays) {
+json tracers_json(const std::vector<ShadowTracerResult>& results) {
   json tracers = json::array();
-  for (const ShadowTracerResult& t : rays.tracers)
+  for (const ShadowTracerResult& t : results)
     tracers.push_back({{"name", t.name}, {"bvh_build_ms", t.build_ms}, {"trace_median_ms", t.trace_ms},
                        {"mrays_per_s", t.mrays_per_s}, {"disagreement", t.disagreement}});
+  return tracers;
+}
+
+json rays_json(const ShadowRaysResult& rays) {
   return {{"device", rays.device}, {"embree", rays.embree}, {"triangles", rays.triangles}, {"rays", rays.rays},
           {"bvh_depth", rays.bvh_depth}, {"mesh_read_ms", rays.mesh_read_ms}, {"bvh_build_ms", rays.bvh_build_ms},
-          {"tracers", tracers}};
+          {"tracers", tracers_json(rays.tracers)}, {"soft_rays", rays.soft_rays},
+          {"soft_tracers", tracers_json(rays.soft_tracers)}};
 }
 
 // Screen-space variants as one line per thickness (steps in order); geometry and off as markers.
@@ -87,13 +92,13 @@ Chart scene_chart(const ShadowSceneResult& scene) {
 
 }  // namespace
 
-std::string shadow_rays_table(const ShadowRaysResult& result) {
+std::string shadow_rays_table(const std::vector<ShadowTracerResult>& tracers) {
   MarkdownTable table{{"tracer", "BVH build ms", "trace ms", "Mrays/s", "opencl / this", "decisions differing"},
                       {},
                       {ColumnAlign::left, ColumnAlign::right, ColumnAlign::right, ColumnAlign::right,
                        ColumnAlign::right, ColumnAlign::right}};
-  const double ours = result.tracers.empty() ? 0.0 : result.tracers.front().mrays_per_s;
-  for (const ShadowTracerResult& tracer : result.tracers)
+  const double ours = tracers.empty() ? 0.0 : tracers.front().mrays_per_s;
+  for (const ShadowTracerResult& tracer : tracers)
     table.rows.push_back({tracer.name, format_cell("%.1f", tracer.build_ms), format_cell("%.2f", tracer.trace_ms),
                           format_cell("%.1f", tracer.mrays_per_s), format_cell("%.2fx", ours / tracer.mrays_per_s),
                           format_cell("%.1e", tracer.disagreement)});
@@ -164,7 +169,8 @@ std::string write_shadow_report(const std::filesystem::path& directory, const Sh
   }
   markdown += "\n## Shadow rays: OpenCL against Embree\n\n" + std::to_string(rays.rays) + " rays on " +
               std::to_string(rays.triangles) + " triangles (BVH depth " + std::to_string(rays.bvh_depth) + "); " +
-              rays.embree + ".\n\n" + shadow_rays_table(rays);
+              rays.embree + ".\n\n" + shadow_rays_table(rays.tracers) + "\nThe same lights' soft shadow rays (spheres, 16 per pixel): " +
+              std::to_string(rays.soft_rays) + " rays.\n\n" + shadow_rays_table(rays.soft_tracers);
   write_text_file(directory / "report.md", markdown);
   write_text_file(directory / "report.json", document.dump(2) + "\n");
   return (directory / "{report.md, report.json, error_*.svg}").string();

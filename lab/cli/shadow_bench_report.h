@@ -25,6 +25,8 @@ struct ShadowRaysResult {
   double mesh_read_ms = 0.0;  // the PLY through Assimp, flattened into world space
   double bvh_build_ms = 0.0;
   std::vector<ShadowTracerResult> tracers;  // opencl first
+  std::size_t soft_rays = 0;                 // the same lights' soft rays (spheres, 16 per pixel)
+  std::vector<ShadowTracerResult> soft_tracers;
 };
 
 // One way of making shadows on one scene, timed and compared with exact geometry shadows.
@@ -80,6 +82,7 @@ Scene mesh_scene(const std::filesystem::path& directory, int triangles, int ligh
 // The same rays through every tracer (bench_shadow_rays.cpp); mesh files go to `scratch`.
 ShadowRaysResult run_shadow_rays_bench(const BenchArguments& args, const std::filesystem::path& scratch);
 
-std::string shadow_rays_table(const ShadowRaysResult& result);  // Markdown, with rays/s against Embree's packets
+// Markdown, one tracer a row, with rays/s against the first's (the OpenCL traversal's).
+std::string shadow_rays_table(const std::vector<ShadowTracerResult>& tracers);
 
 }  // namespace phongcl::cli

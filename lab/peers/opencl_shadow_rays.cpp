@@ -90,6 +90,27 @@ ShadowRaySet OpenClShadowRays::make_rays() {
   return set;
 }
 
+ShadowRaySet OpenClShadowRays::make_soft_rays(float size, int rays) {
+  const cl::Buffer ray_buffer(compute_.context, CL_MEM_WRITE_ONLY, kRayPlanes * stride_ * sizeof(float));
+  cl::KernelFunctor<cl::Buffer, cl::Buffer, cl_uint, cl::Buffer, cl_uint, cl_float, cl_uint, cl_float, cl_float, cl::Buffer>
+      make(program_, "make_soft_shadow_rays");
+  const std::size_t frames = light_count_ * static_cast<std::size_t>(rays);
+  ShadowRaySet set;
+  set.size = stride_ * frames;
+  AlignedVector<float>* planes[kRayPlanes] = {&set.ox, &set.oy, &set.oz, &set.dx, &set.dy, &set.dz, &set.t_max};
+  for (AlignedVector<float>* plane : planes) plane->resize(set.size);
+  std::vector<float> frame(kRayPlanes * stride_);
+  for (std::size_t f = 0; f < frames; ++f) {
+    const auto light = static_cast<cl_uint>(f / static_cast<std::size_t>(rays));
+    const auto k = static_cast<cl_uint>(f % static_cast<std::size_t>(rays));
+    make(cl::EnqueueArgs(compute_.queue, cl::NDRange(stride_ / lanes_)), pixels_, materials_, static_cast<cl_uint>(stride_),
+         lights_, light, size, k, offset_scale_, eye_extent_, ray_buffer);
+    compute_.queue.enqueueReadBuffer(ray_buffer, CL_TRUE, 0, frame.size() * sizeof(float), frame.data());
+    for (int p = 0; p < kRayPlanes; ++p) std::copy_n(frame.begin() + p * stride_, stride_, planes[p]->begin() + f * stride_);
+  }
+  return set;
+}
+
 std::vector<float> OpenClShadowRays::trace(const ShadowRaySet& rays, double* kernel_ms) {
   if (rays.size % static_cast<std::size_t>(lanes_) != 0) throw std::invalid_argument("shadow rays: set not padded to the lanes");
   std::vector<float> blocked(rays.size, 0.0f);

@@ -28,6 +28,10 @@ class OpenClShadowRays {
 
   // Every light's rays from the frame's shaded pixels.
   ShadowRaySet make_rays();
+  // Every light's soft shadow rays, `rays` per pixel (soft_shadow.h): a point light as a sphere of
+  // radius `size`, a directional one as a sun whose angular radius has tangent `size`; light after
+  // light, ray k after ray k - 1, each a frame of slots.
+  ShadowRaySet make_soft_rays(float size, int rays);
 
   // 1 where a ray is blocked, 0 where not (and in empty slots); every ray traverses the BVH. The
   // trace kernel's time from its profiling event in kernel_ms.

@@ -40,6 +40,10 @@ struct SoftVisibility {
   std::function<double(const SurfacePoint& point, const Light& light)> sized;
 };
 
+// A spot's cone(l) for unit l from the surface towards it: the smoothstep of its penumbra (a step
+// without one) times max(0, c)^p, c the cosine to its axis.
+double reference_spot_cone(const Light& light, const glm::dvec3& l);
+
 // What the specular term takes from a light of unit colour and F = 1 per unit ks, for unit n, v and
 // l with n.l > 0 (docs/shading.md "Specular models"): max(0, v.r)^q or max(0, n.h)^q, the
 // normalised models times their factor and n.l. pow(0, 0) = 1; l + v = 0 has no half vector: n.h = 0.

@@ -5,6 +5,7 @@
 #include "reference/reference.h"
 #include "reference/reference_principled.h"
 #include "reference/reference_area.h"
+#include "reference/reference_soft_shadows.h"
 
 namespace phongcl {
 
@@ -22,8 +23,9 @@ glm::dvec3 robust_normalize(const glm::dvec3& x) {
   return scaled / std::sqrt(glm::dot(scaled, scaled));
 }
 
-// falloff(d) * window(d) * cone(l) (docs/shading.md "The formula"), straight from the formula.
-double light_factor(const Light& light, const glm::dvec3& position, const glm::dvec3& l) {
+// falloff(d) * window(d) * cone(l) (docs/shading.md "The formula"), straight from the formula;
+// without `with_cone` the cone is left out (a soft spot's is in its visible fraction).
+double light_factor(const Light& light, const glm::dvec3& position, const glm::dvec3& l, bool with_cone) {
   const double d = glm::length(light.position - position);
   const double falloff = std::pow(d, -static_cast<double>(static_cast<int>(light.falloff)));
   double window = 1.0;
@@ -31,21 +33,7 @@ double light_factor(const Light& light, const glm::dvec3& position, const glm::d
     const double t = std::clamp(1.0 - std::pow(d / light.range, 4.0), 0.0, 1.0);
     window = t * t;
   }
-  double cone = 1.0;
-  if (light.type == LightType::spot) {
-    const double c = glm::dot(-l, glm::normalize(light.direction));
-    const double half_angle = light.cone_angle_deg / 2.0 * pi / 180.0;
-    const double ci = std::cos(half_angle);
-    const double co = std::cos(half_angle + light.penumbra_angle_deg * pi / 180.0);
-    if (light.penumbra_angle_deg == 0.0) {
-      cone = c >= ci ? 1.0 : 0.0;
-    } else {
-      const double s = std::clamp((c - co) / (ci - co), 0.0, 1.0);
-      cone = s * s * (3.0 - 2.0 * s);
-    }
-    // The cosine power (Arnold's cosine_power; p = 1 is Blender 3.x Cycles' spot): std::pow(x, 0) = 1.
-    cone *= std::pow(std::max(0.0, c), light.cosine_power);
-  }
+  const double cone = light.type == LightType::spot && with_cone ? reference_spot_cone(light, l) : 1.0;
   // 1/d^k may be +Inf where the window or cone is 0: the light contributes nothing there.
   return window * cone == 0.0 ? 0.0 : falloff * window * cone;
 }
@@ -59,6 +47,22 @@ glm::dvec3 product(const glm::dvec3& x, const glm::dvec3& y) {
 }
 
 }  // namespace
+
+double reference_spot_cone(const Light& light, const glm::dvec3& l) {
+  const double c = glm::dot(-l, glm::normalize(light.direction));
+  const double half_angle = light.cone_angle_deg / 2.0 * pi / 180.0;
+  const double ci = std::cos(half_angle);
+  const double co = std::cos(half_angle + light.penumbra_angle_deg * pi / 180.0);
+  double cone = 0.0;
+  if (light.penumbra_angle_deg == 0.0) {
+    cone = c >= ci ? 1.0 : 0.0;
+  } else {
+    const double s = std::clamp((c - co) / (ci - co), 0.0, 1.0);
+    cone = s * s * (3.0 - 2.0 * s);
+  }
+  // The cosine power (Arnold's cosine_power; p = 1 is Blender 3.x Cycles' spot): std::pow(x, 0) = 1.
+  return cone * std::pow(std::max(0.0, c), light.cosine_power);
+}
 
 double reference_specular_lobe(SpecularModel model, const glm::dvec3& n, const glm::dvec3& v, const glm::dvec3& l,
                                double shininess) {
@@ -102,18 +106,23 @@ ShadingTerms reference_shade_point(const Scene& scene, const SurfacePoint& point
     const bool positional = light.type != LightType::directional;
     const glm::dvec3 l = positional ? robust_normalize(light.position - point.position) : -robust_normalize(light.direction);
     const double ndl = glm::dot(n, l);
-    if (!(ndl > 0.0)) continue;  // back-facing, zero normal, or light at the point
-    const double factor = (positional ? light_factor(light, point.position, l) : 1.0) * (sized ? soft.sized(point, light) : 1.0);
+    // A light with a size whose shadow is soft lights a little past the horizon, as its emitter
+    // does; its highlight stays where n.l > 0.
+    const double lit = sized && n != glm::dvec3(0.0) ? reference_horizon_cosine(ndl, reference_size_sin_sq(light, point.position))
+                                                     : std::max(ndl, 0.0);
+    if (!(lit > 0.0)) continue;  // back-facing, zero normal, or light at the point
+    const double factor =
+        (positional ? light_factor(light, point.position, l, !sized) : 1.0) * (sized ? soft.sized(point, light) : 1.0);
     if (factor == 0.0) continue;
 
     if (point.specular_model == SpecularModel::principled) {
-      const PrincipledLight lit = reference_principled(point.principled, n, v, l);
-      principled_diffuse += product(light.color, lit.diffuse * factor);
-      principled_specular += product(light.color, lit.specular * factor);
+      const PrincipledLight lobes = reference_principled(point.principled, n, v, l);
+      principled_diffuse += product(light.color, lobes.diffuse * factor);
+      principled_specular += product(light.color, lobes.specular * factor);
       continue;
     }
-    diffuse += product(light.color, glm::dvec3(ndl * factor));
-    const double highlight = reference_specular_lobe(point.specular_model, n, v, l, point.shininess);
+    diffuse += product(light.color, glm::dvec3(lit * factor));
+    const double highlight = ndl > 0.0 ? reference_specular_lobe(point.specular_model, n, v, l, point.shininess) : 0.0;
     if (highlight > 0.0) specular += product(light.color, glm::dvec3(highlight * factor));
   }
   // Area lights: E and S by quadrature over the emitter (reference_area.h).

@@ -9,7 +9,8 @@
 namespace phongcl {
 
 double reference_area_visibility(const SceneShapes& shapes, const AreaLight& light, const SurfacePoint& point,
-                                 const glm::dvec3& eye, double offset_scale, int grid) {
+                                 const glm::dvec3& eye, double offset_scale, int grid,
+                                 const std::function<double(const glm::dvec3& emitter_point)>& cone) {
   const glm::dvec3 normal = glm::normalize(light.direction);
   // The emitter's frame, written here from docs/shading.md: v along up made orthogonal to the normal
   // (any such for a disk), u completing it; a disk's diameter is size.x.
@@ -35,7 +36,7 @@ double reference_area_visibility(const SceneShapes& shapes, const AreaLight& lig
       ReferenceShadowRay ray;
       if (!reference_shadow_ray_from(point.position, point.normal, at, eye, offset_scale, ray) ||
           reference_shadow_ray(shapes, ray.origin, ray.direction, ray.t_max) != RayOutcome::blocked)
-        seen += weight;
+        seen += cone ? weight * cone(at.position) : weight;
     }
   }
   return total > 0.0 ? seen / total : 1.0;
@@ -56,7 +57,36 @@ double reference_light_visibility(const SceneShapes& shapes, const Light& light,
     disk.direction = point.position - light.position;
     disk.size = glm::dvec2(2.0 * light.radius);
   }
-  return reference_area_visibility(shapes, disk, point, eye, offset_scale, grid);
+  if (light.type != LightType::spot) return reference_area_visibility(shapes, disk, point, eye, offset_scale, grid);
+  return reference_area_visibility(shapes, disk, point, eye, offset_scale, grid, [&](const glm::dvec3& emitter_point) {
+    return reference_spot_cone(light, glm::normalize(emitter_point - point.position));
+  });
+}
+
+double reference_size_sin_sq(const Light& light, const glm::dvec3& position) {
+  const double tangent = light.type == LightType::directional
+                             ? std::tan(light.angle_deg / 2.0 * std::numbers::pi / 180.0)
+                             : light.radius / glm::length(light.position - position);
+  return tangent * tangent / (1.0 + tangent * tangent);
+}
+
+double reference_horizon_cosine(double c, double sin_sq, int steps) {
+  // The disk about l = (sqrt(1 - c^2), 0, c), the normal z: rings of equal width in the angle from
+  // l (weighted by their solid angle) and sectors, each direction's max(0, n.w) summed.
+  // Wholly above or below the horizon: n.w's integral over the disk is c pi sin_sq exactly.
+  if (c * c >= sin_sq) return std::max(c, 0.0);
+  const double sigma = std::asin(std::sqrt(sin_sq)), sine = std::sqrt(std::max(0.0, 1.0 - c * c));
+  double sum = 0.0;
+  for (int i = 0; i < steps; ++i) {
+    const double theta = (i + 0.5) / steps * sigma, ring = std::sin(theta) * sigma / steps;
+    for (int j = 0; j < steps; ++j) {
+      const double phi = (j + 0.5) / steps * 2.0 * std::numbers::pi;
+      // z of the direction at angle theta from l, azimuth phi about it (phi = 0 towards the normal)
+      const double z = std::cos(theta) * c + std::sin(theta) * std::cos(phi) * sine;
+      sum += std::max(0.0, z) * ring * 2.0 * std::numbers::pi / steps;
+    }
+  }
+  return sum / (std::numbers::pi * sin_sq);
 }
 
 }  // namespace phongcl
