@@ -3,6 +3,7 @@
 #include <numbers>
 
 #include "reference/reference.h"
+#include "reference/reference_environment.h"
 #include "reference/reference_area.h"
 
 namespace phongcl {
@@ -116,6 +117,12 @@ ShadingTerms reference_shade_point(const Scene& scene, const SurfacePoint& point
     const double window = area_range_window(light, point.position) * (traced ? soft.area(point, light) : 1.0);
     diffuse += product(light.color, glm::dvec3(integrals.irradiance * window));
     specular += product(light.color, glm::dvec3(integrals.highlight * window));
+  }
+  // The environment: its irradiance by brute force over the map (reference_environment.h).
+  if (scene.environment && n != glm::dvec3(0.0)) {
+    const EnvironmentLight& world = *scene.environment;
+    const double visible = soft.environment && world.shadows ? soft.environment(point) : 1.0;
+    diffuse += reference_environment_light(world, reference_map(world), n) * visible;
   }
   terms.diffuse = product(point.kd, diffuse);
   terms.specular = product(point.ks, specular);
