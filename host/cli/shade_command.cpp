@@ -195,7 +195,7 @@ void add_shade_command(CLI::App& app) {
   command->add_option("--environment-rays", args->environment_rays,
                       "Environment light: visibility rays per pixel where it has no \"rays\" of its own (default " +
                           std::to_string(args->environment_rays) + ")")
-      ->check(CLI::Range(1, kMaxShadowRays));
+      ->check(CLI::Range(1, kMaxEnvironmentRays));
   command->add_option("--shadow-thickness", args->shadow_thickness,
                       "Screen-space shadows: how deep a surface is taken to be, in world units (0.25) or as a "
                       "percentage of its depth (default " + args->shadow_thickness + ")")

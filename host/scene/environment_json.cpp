@@ -4,7 +4,6 @@
 #include <stdexcept>
 #include <string>
 
-#include "scene/area_light_json.h"
 #include "scene/scene_check.h"
 
 namespace phongcl {
@@ -38,7 +37,12 @@ EnvironmentLight read_environment_light(const JsonObject& object, const std::fil
       strength->fail("must be from 0 to " + format_number(kMaxEnvironmentStrength) + " (got " +
                      format_number(light.strength) + ")");
   }
-  if (auto rays = object.find("rays")) light.rays = read_shadow_rays(*rays);
+  if (auto rays = object.find("rays")) {
+    light.rays = rays->integer();
+    if (light.rays < 1 || light.rays > kMaxEnvironmentRays)
+      rays->fail("must be a whole number from 1 to " + std::to_string(kMaxEnvironmentRays) + " (got " +
+                 std::to_string(light.rays) + ")");
+  }
   if (auto shadows = object.find("shadows")) light.shadows = shadows->boolean();
   if (auto group = object.find("group")) {
     light.group = group->string();
@@ -56,8 +60,8 @@ void check_environment_light(const EnvironmentLight& light) {
   require(std::isfinite(light.rotation_deg), "rotation", "must be finite");
   require(light.strength >= 0.0 && light.strength <= kMaxEnvironmentStrength, "strength",
           "must be from 0 to " + format_number(kMaxEnvironmentStrength));
-  require(light.rays >= 0 && light.rays <= kMaxShadowRays, "rays",
-          "must be 1 to " + std::to_string(kMaxShadowRays) + " (0: the shade's default)");
+  require(light.rays >= 0 && light.rays <= kMaxEnvironmentRays, "rays",
+          "must be 1 to " + std::to_string(kMaxEnvironmentRays) + " (0: the shade's default)");
   require(light.group.empty() || valid_light_group_name(light.group), "group", kLightGroupNameRule);
 }
 

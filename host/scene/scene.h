@@ -28,6 +28,9 @@ enum class Falloff { none = 0, linear = 1, quadratic = 2, cubic = 3 };
 // The most shadow rays a light traces per pixel: 1024 rays put the penumbra's sampling error near
 // float's rounding of the fraction (docs/shadows.md "Soft shadows"); more only costs.
 inline constexpr int kMaxShadowRays = 1024;
+// An environment's visibility rays: up to 4096, the converged estimate its error is measured against
+// (docs/environment.md "Visibility").
+inline constexpr int kMaxEnvironmentRays = 4096;
 
 struct Light {
   LightType type = LightType::point;
@@ -97,7 +100,7 @@ struct EnvironmentLight {
   std::filesystem::path file{};   // equirect EXR, resolved relative to the scene file; empty: uniform colour
   double rotation_deg = 0.0;      // about +Z, as Blender's Mapping node's Z rotation of the lookup
   double strength = 1.0;          // multiplies the radiance
-  int rays = 0;                   // visibility rays per pixel, 1 to kMaxShadowRays; 0: the shade's --environment-rays
+  int rays = 0;                   // visibility rays per pixel, 1 to kMaxEnvironmentRays; 0: the shade's --environment-rays
   bool shadows = true;            // blocked by the scene's geometry (when the shadow mode is not off)
   std::string group{};            // light group, as a Light's; empty: none
   // The shading frame's directions into the world's: identity, or the view's inverse rotation once a

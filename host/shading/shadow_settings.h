@@ -24,8 +24,8 @@ struct ShadowSettings {
   double thickness = -0.06;  // screen: > 0 world units; < 0 that fraction of the surface's depth
   int rays = 16;             // geometry: rays per pixel over an area light without its own "shadow_rays",
                              // 1 to kMaxShadowRays (1: one ray to the centre, a hard shadow)
-  int environment_rays = 16; // visibility rays per pixel of an environment light without its own "rays",
-                             // 1 to kMaxShadowRays (docs/environment.md "Visibility": error against time)
+  int environment_rays = 64; // visibility rays per pixel of an environment light without its own "rays",
+                             // 1 to kMaxEnvironmentRays (docs/environment.md "Visibility": error against time)
   bool operator==(const ShadowSettings&) const = default;
 };
 
