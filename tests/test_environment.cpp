@@ -216,8 +216,8 @@ TEST(EnvironmentShading, TheMiddleColumnLooksAlongPlusX) {
 // Spheres and a box's lid on a floor under a uniform world: the ratio estimator's visible fraction
 // against the reference's 4,096 cosine-weighted directions per pixel. A fraction from N rays of a
 // 0/1 visibility has a standard deviation of at most 1/(2 sqrt N); the rms over the image is held to it.
-TEST(EnvironmentShading, GeometryVisibilityAgreesWithTheReference) {
-  PHONGCL_REQUIRE_DEVICE(shader);
+// A floor and a sphere resting on it under a uniform white world.
+Scene sphere_on_floor() {
   Scene scene;
   scene.camera.eye = {0.0, 4.0, 6.0};
   scene.camera.look_at = {0.0, 0.4, 0.0};
@@ -235,6 +235,12 @@ TEST(EnvironmentShading, GeometryVisibilityAgreesWithTheReference) {
   scene.objects = {floor, ball};
   scene.environment = EnvironmentLight{};
   scene.environment->color = glm::dvec3(1.0);
+  return scene;
+}
+
+TEST(EnvironmentShading, GeometryVisibilityAgreesWithTheReference) {
+  PHONGCL_REQUIRE_DEVICE(shader);
+  const Scene scene = sphere_on_floor();
   const GBuffer gbuffer = generate_gbuffer(scene);
   const SceneShapes shapes = flatten_objects(scene.objects);
   SoftVisibility visibility;
@@ -266,6 +272,34 @@ TEST(EnvironmentShading, GeometryVisibilityAgreesWithTheReference) {
     EXPECT_GT(occluded, count / 10) << "occlusion to get wrong";
     EXPECT_LE(rms, 1.0 / (2.0 * std::sqrt(static_cast<double>(rays))));
   }
+}
+
+// Screen space marches the same rays across the depth plane: it sees what the camera sees, so it
+// is held to darkening the pixels the reference finds mostly hidden (under 70% visible: the floor
+// at the sphere's contact), not to the reference's values (docs/environment.md gives its agreement).
+TEST(EnvironmentShading, ScreenSpaceVisibilityDarkensContactPixels) {
+  PHONGCL_REQUIRE_DEVICE(shader);
+  const Scene scene = sphere_on_floor();
+  const GBuffer gbuffer = generate_gbuffer(scene);
+  const SceneShapes shapes = flatten_objects(scene.objects);
+  ShadeOptions options;
+  options.shadows.mode = ShadowMode::screen;
+  options.shadows.environment_rays = 64;
+  const ShadeResult result = shader.shade(scene, gbuffer, options);
+  EXPECT_NE(result.build_options.find("-DSCREEN_SHADOWS=1"), std::string::npos);
+  double hidden_sum = 0.0;
+  std::size_t hidden = 0;
+  for (std::size_t i = 0; i < gbuffer.pixel_count(); ++i) {
+    if (classify_pixel(gbuffer, i) != PixelClass::shaded) continue;
+    const SurfacePoint point = reference_surface(scene, gbuffer, i);
+    if (reference_environment_visibility(shapes, point, scene.camera.eye, PHONGCL_SHADOW_OFFSET_FLOAT, 8) >= 0.7) continue;
+    hidden_sum += result.image.pixel(i)[0] / 0.8;  // kd * C: the visible fraction's scale
+    ++hidden;
+  }
+  ASSERT_GT(hidden, 10u);
+  std::cout << "[          ] screen space, 64 rays: " << hidden << " pixels under 70% visible average "
+            << hidden_sum / static_cast<double>(hidden) << " visible\n";
+  EXPECT_LT(hidden_sum / static_cast<double>(hidden), 0.85);
 }
 
 TEST(EnvironmentShading, CompiledOutWithoutAnEnvironment) {

@@ -142,7 +142,7 @@ struct Object {
 struct RenderedLights {
   std::vector<Light> lights;
   std::vector<AreaLight> area_lights;
-  std::optional<EnvironmentLight> environment;  // kept as read; composites do not relight the world
+  std::optional<EnvironmentLight> environment{};  // kept as read; composites do not relight the world
 };
 
 struct Scene {
@@ -152,7 +152,7 @@ struct Scene {
   glm::dvec3 ambient{0.0};
   std::vector<Light> lights;
   std::vector<AreaLight> area_lights;  // the file's lights of type "area", in file order
-  std::optional<EnvironmentLight> environment;  // the file's light of type "environment", if any
+  std::optional<EnvironmentLight> environment{};  // the file's light of type "environment", if any
   std::vector<Material> materials;
   std::vector<Object> objects;
   std::optional<RenderedLights> rendered;  // "rendered": {"lights": [...]}; absent: none stated
