@@ -38,7 +38,7 @@ using LightReach = std::function<bool(const SurfacePoint& point, const Light& li
 struct SoftVisibility {
   std::function<double(const SurfacePoint& point, const AreaLight& light)> area;
   std::function<double(const SurfacePoint& point, const Light& light)> sized;
-  std::function<double(const SurfacePoint& point)> environment;
+  std::function<double(const SurfacePoint& point)> environment{};
 };
 
 // What the specular term takes from a light of unit colour and F = 1 per unit ks, for unit n, v and
