@@ -9,7 +9,9 @@ phongcl_room(cl       DEPS phongcl_common phongcl_opencl phongcl_kernels)
 # Shadow geometry: meshes read with Assimp, the scene flattened into world space, the BVH and its
 # device layout (kernels/shadow_layout.h).
 phongcl_room(geometry DEPS phongcl_scene phongcl_kernels assimp::assimp)
-phongcl_room(shading  DEPS phongcl_cl phongcl_scene phongcl_gbuffer phongcl_image phongcl_geometry phongcl_kernels)
+# The environment light's maps: an equirect EXR read, validated and convolved to its irradiance.
+phongcl_room(environment DEPS phongcl_common phongcl_exr phongcl_scene)
+phongcl_room(shading  DEPS phongcl_cl phongcl_scene phongcl_gbuffer phongcl_image phongcl_geometry phongcl_environment phongcl_kernels)
 phongcl_room(raycast  DEPS phongcl_scene phongcl_gbuffer phongcl_geometry)
 phongcl_room(color    DEPS phongcl_image phongcl_scene phongcl_gbuffer PkgConfig::OCIO yaml-cpp)
 # The display transforms' AVX2 loops, chosen at run time where the CPU has AVX2 and FMA

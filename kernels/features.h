@@ -28,6 +28,8 @@
  *   AREA_LIGHTS                            some light is a rect or disk emitter (area_light.h)
  *   SHADOWS, SCREEN_SHADOWS                some light casts shadows: traced against the scene's geometry,
  *                                          or marched across the frame's depth plane (shadow.h)
+ *   ENVIRONMENT                            the scene has an environment light (environment.h)
+ *   ENVIRONMENT_SHADOWS                    its visibility rays are traced (with SHADOWS; SCREEN_SHADOWS marches them)
  *   SOFT_SHADOWS                           some area light's shadow is traced with several rays over the
  *                                          emitter, weighted by the visible fraction (soft_shadow.h)
  */
@@ -41,7 +43,8 @@
     !defined(PER_PIXEL_Q) || !defined(FALLOFF) || !defined(FALLOFF_MIXED) || !defined(RANGE_WINDOW) ||            \
     !defined(SPOT_LIGHTS) || !defined(SPOT_COSINE_POWER) || !defined(LIGHT_LINKING) || !defined(TILED_CULLING) ||   \
     !defined(WRITE_TERMS) || !defined(SHADOWS) || !defined(SCREEN_SHADOWS) || !defined(POSITION_REST) ||          \
-    !defined(LIGHT_GROUPS) || !defined(SPECULAR_MODELS) || !defined(AREA_LIGHTS) || !defined(SOFT_SHADOWS)
+    !defined(LIGHT_GROUPS) || !defined(SPECULAR_MODELS) || !defined(AREA_LIGHTS) || !defined(SOFT_SHADOWS) ||   \
+    !defined(ENVIRONMENT) || !defined(ENVIRONMENT_SHADOWS)
 #error "phong.cl is built with every flag of features.h defined (host/shading/recipe.cpp writes them)"
 #endif
 

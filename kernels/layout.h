@@ -49,6 +49,9 @@ typedef struct {
   layout_uint shadow_casters;     /* SHADOWS: 1 + the light's place among the casters where it casts shadows, else 0 */
   layout_uint light_groups;       /* LIGHT_GROUPS: the light's group, LIGHT_GROUPS for none */
   layout_uint soft_lights;        /* SOFT_SHADOWS: SoftLight per light, in the casters' order */
+  layout_uint environment;        /* ENVIRONMENT: one EnvironmentRecord */
+  layout_uint environment_texels; /* ENVIRONMENT: its irradiance map, RGB floats row by row from the top */
+  layout_uint environment_suns;   /* ENVIRONMENT: EnvironmentSun per bright cell taken out of the map */
 } SceneTables;
 
 /* Tiled culling's block (cull.cl): tile t's point lights are lights[offsets[t] ...], counts[t] of
@@ -194,6 +197,27 @@ typedef struct {
   layout_uint rays;
   layout_float size;
 } SoftLight;
+
+/* The environment light (kernels/environment.h): its irradiance map (E / pi, so that kd times it is the
+ * diffuse light) is width x height texels, equirectangular in the map's frame. to_map's rows take an
+ * eye-relative direction into that frame (the world's orientation, then the light's rotation about
+ * +Z). scale is the strength times 2^-radiance_exponent. The map's brightest cells (a sun) are taken
+ * out of it and come as sun_count EnvironmentSuns: directional lights, each with a shadow ray. */
+typedef struct {
+  layout_float to_map[12]; /* three rows of xyz, w unused */
+  layout_float scale;
+  layout_int width, height;
+  layout_uint rays;        /* ENVIRONMENT_SHADOWS: visibility rays per pixel */
+  layout_int sun_count;
+  layout_float padding[3];
+} EnvironmentRecord;
+
+/* A bright cell of the environment as a directional light: unit direction toward it (eye frame) and
+ * its E / pi per unit cosine (unscaled: the record's scale multiplies). */
+typedef struct {
+  layout_float direction[4]; /* xyz, w unused */
+  layout_float color[4];     /* rgb, a unused */
+} EnvironmentSun;
 
 /* One entry of the scene's material table. */
 typedef struct {

@@ -10,6 +10,8 @@
  * With AREA_LIGHTS rects and disks add theirs too (area_light.h: the diffuse term exact, the
  * specular one by quadrature), looped over untiled; their shadows are one ray to the centre, or
  * with SOFT_SHADOWS the visible fraction of the emitter from several (soft_shadow.h).
+ * With ENVIRONMENT the world's light adds its irradiance from a precomputed map to the diffuse sum,
+ * with ENVIRONMENT_SHADOWS times the fraction of its visibility rays that leave the scene (environment.h).
  * With SHADOWS a light that casts shadows is multiplied by its visibility (shadow.h: a ray traced
  * against the scene's geometry, or with SCREEN_SHADOWS marched across the frame's depth plane).
  * With LIGHT_GROUPS the lights are summed group by group, and each group's terms also written apart.
@@ -19,6 +21,7 @@
  * FrameScalars saying where each table starts (layout.h; docs/kernel.md).
  */
 #include "area_light.h"
+#include "environment.h"
 #include "features.h"
 #include "layout.h"
 #include "light_shape.h"
@@ -74,10 +77,16 @@ typedef struct {
   UNIFORM_SPACE const SoftLight* directional_soft;   /* SOFT_SHADOWS: the same per directional light */
   UNIFORM_SPACE const SoftLight* area_soft;          /* SOFT_SHADOWS: the same per area light */
   uint first_pixel;                                  /* SOFT_SHADOWS: the frame pixel of the launch's slot 0 */
+  uint pixel;                                        /* ENVIRONMENT_SHADOWS: the frame pixel of the work-item's
+                                                        first lane: each pixel's own lattice shift */
   const ShadowInputs* shadows;                       /* SHADOWS: what the shadow rays test (shadow.h) */
   UNIFORM_SPACE const uint* point_groups;            /* LIGHT_GROUPS: point light i's group, LIGHT_GROUPS for none */
   UNIFORM_SPACE const uint* directional_groups;      /* LIGHT_GROUPS: the same per directional light */
   UNIFORM_SPACE const uint* area_groups;             /* LIGHT_GROUPS: the same per area light */
+  UNIFORM_SPACE const EnvironmentRecord* environment; /* ENVIRONMENT: the world's light */
+  UNIFORM_SPACE const float* environment_texels;     /* ENVIRONMENT: its irradiance map */
+  UNIFORM_SPACE const EnvironmentSun* environment_suns; /* ENVIRONMENT: its brightest cells as directional lights */
+  uint environment_group;                            /* LIGHT_GROUPS: its group, LIGHT_GROUPS for none */
 } Lights;
 
 /* A work-item's slots of the G-buffer planes. */
@@ -221,6 +230,7 @@ void sum_pending_lobes(LightSums* sums, const PendingLobes* pending, realv shini
 /* Each light's own lattice shift (sampling.h): point light i's stream i, the other kinds' from these. */
 #define DIRECTIONAL_STREAMS 0x40000000u
 #define AREA_STREAMS 0x80000000u
+#define ENVIRONMENT_STREAM 0xC0000000u
 
 /* F times the light's visibility: 0 in the lanes where its shadow ray is blocked (a select, not a
  * product: F may be +Inf at a light), traced only where the light casts shadows (`casts`, its
@@ -373,6 +383,24 @@ static inline void add_area_light(LightSums* sums, const Surface* surface, const
   }
 }
 
+/* What the environment adds: E(n) / pi to the diffuse sum (kd times it is the light a Lambertian
+ * surface reflects), with ENVIRONMENT_SHADOWS times its visible fraction. No specular lobe yet. */
+static inline void add_environment(LightSums* sums, const Surface* surface, const Lights* lights) {
+  UNIFORM_SPACE const EnvironmentRecord* environment = lights->environment;
+  vec3 light = environment_irradiance(environment, lights->environment_texels, surface->n);
+  const intv pending =
+      LANE_MASK(surface->material != PHONGCL_BACKGROUND) & LANE_MASK(dot3(surface->n, surface->n) > 0);
+  if (ENVIRONMENT_SHADOWS) {
+    const realv visible = environment_visibility(lights->shadows, surface->p, surface->n, environment->rays,
+                                                 lattice_shift(lights->pixel, ENVIRONMENT_STREAM), pending);
+    light = scale3(light, visible);
+  }
+  const vec3 suns =
+      environment_suns(lights->environment_suns, environment->sun_count, lights->shadows, surface->p, surface->n, pending);
+  light = add3(light, scale3(suns, (realv)environment->scale));
+  sums->diffuse = add3(sums->diffuse, light);
+}
+
 void add_block(LightSums* sums, LightSums* compensation, const LightSums* block) {
   kahan_add(&sums->diffuse.x, &compensation->diffuse.x, block->diffuse.x, WEIGHT_CAN_OVERFLOW);
   kahan_add(&sums->diffuse.y, &compensation->diffuse.y, block->diffuse.y, WEIGHT_CAN_OVERFLOW);
@@ -452,6 +480,13 @@ static inline void sum_lights(LightSums* out, const Surface* surface, const Ligh
   if (DIRECTIONAL_LIGHTS)
     sum_light_kind(&sums, &compensation, surface, lights, DIRECTIONAL_KIND, lights->directional_count, group);
   if (AREA_LIGHTS) sum_light_kind(&sums, &compensation, surface, lights, AREA_KIND, lights->area_count, group);
+  if (ENVIRONMENT) {
+    if (!LIGHT_GROUPS || lights->environment_group == group) {
+      LightSums world = no_light;
+      add_environment(&world, surface, lights);
+      add_block(&sums, &compensation, &world);
+    }
+  }
   *out = sums;
 }
 
@@ -654,10 +689,15 @@ __kernel void phong_shade(
       .directional_soft = soft + frame.point_count,
       .area_soft = soft + frame.point_count + frame.directional_count,
       .first_pixel = frame.first_pixel,
+      .pixel = frame.first_pixel + first_pixel,
       .shadows = &shadows,
       .point_groups = groups,
       .directional_groups = groups + frame.point_count,
       .area_groups = groups + frame.point_count + frame.directional_count,
+      .environment = TABLE(UNIFORM_SPACE, EnvironmentRecord, scene, frame.scene.environment),
+      .environment_texels = TABLE(UNIFORM_SPACE, float, scene, frame.scene.environment_texels),
+      .environment_suns = TABLE(UNIFORM_SPACE, EnvironmentSun, scene, frame.scene.environment_suns),
+      .environment_group = LIGHT_GROUPS && ENVIRONMENT ? groups[frame.point_count + frame.directional_count + frame.area_count] : 0,
   };
   MaterialLookup material;
   look_up_materials(&material, TABLE(UNIFORM_SPACE, MaterialRecord, scene, frame.scene.materials), material_index,

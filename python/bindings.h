@@ -1,6 +1,7 @@
 #pragma once
 // The phongcl Python module, one binder per part of the API (python/*.cpp).
 #include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -32,6 +33,9 @@ inline glm::dvec3 to_vec3(const std::array<double, 3>& a) { return {a[0], a[1], 
 std::vector<Light> lights_from_python(const py::handle& lights);
 std::vector<AreaLight> area_lights_from_python(const py::handle& lights);
 std::vector<Material> materials_from_python(const py::handle& materials);
+// None, or a dict in the scene file's form ({'type': 'environment', 'color' or 'file', ...}); a
+// relative 'file' is taken from the working directory.
+std::optional<EnvironmentLight> environment_from_python(const py::handle& environment);
 
 // The config `--ocio WHICH` would load (color/color_config.h), loaded once per process: views
 // compiled for one image are ready for the next.

@@ -224,6 +224,13 @@ void bind_relighter(py::module_& module) {
           "'area', 'shape': 'rect' or 'disk', 'position', 'direction', 'size', ...}). Raises InputError or "
           "ValueError naming the entry.")
       .def(
+          "set_environment",
+          [](Relighter& r, const py::object& environment) { r.set_environment(environment_from_python(environment)); },
+          py::arg("environment"),
+          "The world's light, a dict in the scene file's form ({'type': 'environment', 'color': [r, g, b]} or "
+          "'file': an equirect EXR, with 'rotation', 'strength', 'rays', 'shadows', 'group'), or None to remove "
+          "it. Raises InputError naming the entry.")
+      .def(
           "set_materials",
           [](Relighter& r, const py::object& materials) { r.set_materials(materials_from_python(materials)); },
           py::arg("materials"), "A new material table: Material objects or dicts in the scene file's form.")

@@ -4,6 +4,8 @@
 
 #include "bindings.h"
 #include "color/color_conversion.h"
+#include "scene/environment_json.h"
+#include "scene/json_reader.h"
 #include "scene/scene.h"
 #include "scene/scene_check.h"
 
@@ -85,6 +87,13 @@ std::vector<AreaLight> area_lights_from_python(const py::handle& lights) {
   } catch (const py::cast_error&) {
     return read_area_lights(json_of(lights), "area_lights");  // dicts in the scene file's form
   }
+}
+
+std::optional<EnvironmentLight> environment_from_python(const py::handle& environment) {
+  if (environment.is_none()) return std::nullopt;
+  const nlohmann::json document = json_of(environment);
+  const std::filesystem::path source = "environment";
+  return read_environment_light(JsonValue(document, "environment", source).object(), source);
 }
 
 std::vector<Material> materials_from_python(const py::handle& materials) {

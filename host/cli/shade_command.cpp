@@ -31,6 +31,7 @@ struct ShadeArguments {
   std::string shadows = "auto";
   int shadow_steps = ShadowSettings{}.steps;
   int shadow_rays = ShadowSettings{}.rays;
+  int environment_rays = ShadowSettings{}.environment_rays;
   std::string shadow_thickness = format_shadow_thickness(ShadowSettings{}.thickness);
   bool explain = false;
   std::string over;  // a render to composite over (cli/shade_over.h)
@@ -57,7 +58,7 @@ RelighterOptions relighter_options(const ShadeArguments& args) {
   options.tile_size = args.tile;
   options.terms = args.outputs.wants_terms() || !args.over.empty();
   options.shadows = {parse_shadow_mode(args.shadows), args.shadow_steps, parse_shadow_thickness(args.shadow_thickness),
-                     args.shadow_rays};
+                     args.shadow_rays, args.environment_rays};
   check_options(options);
   return options;
 }
@@ -191,6 +192,10 @@ void add_shade_command(CLI::App& app) {
                       "Geometry shadows: rays per pixel over an area light without its own \"shadow_rays\" (default " +
                           std::to_string(args->shadow_rays) + "; 1: one ray to the centre, a hard shadow)")
       ->check(CLI::Range(1, kMaxShadowRays));
+  command->add_option("--environment-rays", args->environment_rays,
+                      "Environment light: visibility rays per pixel where it has no \"rays\" of its own (default " +
+                          std::to_string(args->environment_rays) + ")")
+      ->check(CLI::Range(1, kMaxEnvironmentRays));
   command->add_option("--shadow-thickness", args->shadow_thickness,
                       "Screen-space shadows: how deep a surface is taken to be, in world units (0.25) or as a "
                       "percentage of its depth (default " + args->shadow_thickness + ")")

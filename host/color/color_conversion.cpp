@@ -83,6 +83,8 @@ void convert_scene_colors(Scene& scene, const ColorConfig& config) {
   for (std::size_t i = 0; i < scene.lights.size(); ++i) convert(scene.lights[i].color, "lights[" + std::to_string(i) + "].color");
   for (std::size_t i = 0; i < scene.area_lights.size(); ++i)
     convert(scene.area_lights[i].color, "area light " + std::to_string(i) + "'s color");
+  // A uniform world's colour; a map's texels are taken as the working space's, as G-buffers are.
+  if (scene.environment && scene.environment->file.empty()) convert(scene.environment->color, "the environment's color");
   if (scene.rendered) {
     for (std::size_t i = 0; i < scene.rendered->lights.size(); ++i)
       convert(scene.rendered->lights[i].color, "rendered.lights[" + std::to_string(i) + "].color");

@@ -38,6 +38,7 @@ bool RenderCompositor::shade_group(Relighter& relighter, const GroupLights& ligh
   relighter.set_materials(materials);
   relighter.set_lights(alone.lights);
   relighter.set_area_lights(alone.area_lights);
+  relighter.set_environment(std::nullopt);  // a group alone: composites do not relight the world
   if (light.width != relighter.width() || light.height != relighter.height()) light = Image(relighter.width(), relighter.height());
   relighter.shade_into(light.rgba.data(), light.rgba.size());
   return true;
@@ -56,6 +57,7 @@ const RenderCompositor::RenderedGroup& RenderCompositor::rendered_group(Relighte
     const GroupLights alone = ungrouped(lights);
     relighter.set_lights(alone.lights);
     relighter.set_area_lights(alone.area_lights);
+    relighter.set_environment(std::nullopt);  // a group alone: composites do not relight the world
     TermImages terms;
     relighter.shade(terms);
     rendered.fit = fit_group(pass->second, {std::move(terms.diffuse), std::move(terms.specular)});
@@ -87,6 +89,7 @@ RelitOver RenderCompositor::relight(Relighter& relighter, const Scene& edited, I
     relighter.set_materials(held.materials);
     relighter.set_lights(held.lights);
     relighter.set_area_lights(held.area_lights);
+    relighter.set_environment(held.environment);
   };
   try {
     for (const GroupEdit& edit : result.edits) {

@@ -18,6 +18,8 @@ Scene to_camera_space(const Scene& scene) {
     light.direction = glm::dvec3(view * glm::dvec4(light.direction, 0.0));
     light.up = glm::dvec3(view * glm::dvec4(light.up, 0.0));
   }
+  // The world's directions stay the world's: the lookup turns camera-space directions back.
+  if (moved.environment) moved.environment->to_world = moved.environment->to_world * glm::transpose(glm::dmat3(view));
   moved.camera.eye = glm::dvec3(0.0);
   moved.camera.look_at = glm::dvec3(0.0, 0.0, -1.0);
   moved.camera.up = glm::dvec3(0.0, 1.0, 0.0);

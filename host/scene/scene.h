@@ -28,6 +28,9 @@ enum class Falloff { none = 0, linear = 1, quadratic = 2, cubic = 3 };
 // The most shadow rays a light traces per pixel: 1024 rays put the penumbra's sampling error near
 // float's rounding of the fraction (docs/shadows.md "Soft shadows"); more only costs.
 inline constexpr int kMaxShadowRays = 1024;
+// An environment's visibility rays: up to 4096, the converged estimate its error is measured against
+// (docs/environment.md "Visibility").
+inline constexpr int kMaxEnvironmentRays = 4096;
 
 struct Light {
   LightType type = LightType::point;
@@ -90,6 +93,25 @@ const char* to_string(AreaShape shape);  // "rect", "disk"
 // std::invalid_argument naming the shapes for any other name.
 AreaShape parse_area_shape(const std::string& name);
 
+// The world's light (docs/environment.md): a uniform colour or an equirectangular float EXR in
+// Blender's orientation, arriving from every direction. Its radiance is the world's L(w); a
+// Lambertian surface of albedo kd sees kd * (1/pi) * integral L(w) max(0, n.w) dw, as Cycles' diffuse
+// direct light does. Kept apart from `lights`, as AreaLight is; a scene holds at most one.
+struct EnvironmentLight {
+  glm::dvec3 color{1.0};          // the uniform world's radiance (without "file")
+  std::filesystem::path file{};   // equirect EXR, resolved relative to the scene file; empty: uniform colour
+  double rotation_deg = 0.0;      // about +Z, as Blender's Mapping node's Z rotation of the lookup
+  double strength = 1.0;          // multiplies the radiance
+  int rays = 0;                   // visibility rays per pixel, 1 to kMaxEnvironmentRays; 0: the shade's --environment-rays
+  bool shadows = true;            // blocked by the scene's geometry (when the shadow mode is not off)
+  std::string group{};            // light group, as a Light's; empty: none
+  // The shading frame's directions into the world's: identity, or the view's inverse rotation once a
+  // scene is moved to camera space (scene/camera_space.h). Not in the file.
+  glm::dmat3 to_world{1.0};
+
+  bool operator==(const EnvironmentLight&) const = default;
+};
+
 struct Material {
   std::string name;
   glm::dvec3 ka{0.0}, kd{0.0}, ks{0.0};
@@ -129,6 +151,7 @@ struct Object {
 struct RenderedLights {
   std::vector<Light> lights;
   std::vector<AreaLight> area_lights;
+  std::optional<EnvironmentLight> environment{};  // kept as read; composites do not relight the world
 };
 
 struct Scene {
@@ -138,6 +161,7 @@ struct Scene {
   glm::dvec3 ambient{0.0};
   std::vector<Light> lights;
   std::vector<AreaLight> area_lights;  // the file's lights of type "area", in file order
+  std::optional<EnvironmentLight> environment{};  // the file's light of type "environment", if any
   std::vector<Material> materials;
   std::vector<Object> objects;
   std::optional<RenderedLights> rendered;  // "rendered": {"lights": [...]}; absent: none stated
@@ -161,7 +185,8 @@ const char* to_string(SpecularModel model);  // "phong", "blinn-phong-normalized
 SpecularModel parse_specular_model(const std::string& name);
 
 // The scene's light groups, each name once, in the order of the lights that first name them: the
-// point, spot and directional lights first, then the area lights.
-std::vector<std::string> light_groups(const std::vector<Light>& lights, const std::vector<AreaLight>& area_lights = {});
+// point, spot and directional lights first, then the area lights, then the environment.
+std::vector<std::string> light_groups(const std::vector<Light>& lights, const std::vector<AreaLight>& area_lights = {},
+                                      const std::optional<EnvironmentLight>& environment = std::nullopt);
 
 }  // namespace phongcl

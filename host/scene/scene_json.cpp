@@ -6,6 +6,7 @@
 
 #include "common/error.h"
 #include "scene/area_light_json.h"
+#include "scene/environment_json.h"
 #include "scene/json_reader.h"
 #include "scene/object_json.h"
 #include "scene/scene.h"
@@ -215,11 +216,18 @@ std::filesystem::path read_gbuffer_path(const JsonValue& value, const std::files
   return path.is_absolute() ? path : source.parent_path() / path;
 }
 
+// At most one environment: two worlds have no meaning a renderer agrees on (Blender has one).
 void read_lights(const JsonValue& list, std::size_t material_count, std::vector<Light>& lights,
-                 std::vector<AreaLight>& area_lights) {
+                 std::vector<AreaLight>& area_lights, std::optional<EnvironmentLight>& environment) {
   for (const JsonValue& light : list.elements()) {
-    if (is_area_light(light)) area_lights.push_back(read_area_light(light.object()));
-    else lights.push_back(read_light(light, material_count));
+    if (is_area_light(light)) {
+      area_lights.push_back(read_area_light(light.object()));
+    } else if (is_environment_light(light)) {
+      if (environment) light.fail("is a second environment light (a scene has at most one world)");
+      environment = read_environment_light(light.object(), list.file());
+    } else {
+      lights.push_back(read_light(light, material_count));
+    }
   }
 }
 
@@ -241,12 +249,13 @@ Scene read_scene(const nlohmann::json& document, const std::filesystem::path& so
   if (auto value = top.find("materials"))
     for (const JsonValue& material : value->elements()) scene.materials.push_back(read_material(material));
   // After materials: lights (linking) and objects refer to them by index.
-  if (auto value = top.find("lights")) read_lights(*value, scene.materials.size(), scene.lights, scene.area_lights);
+  if (auto value = top.find("lights")) read_lights(*value, scene.materials.size(), scene.lights, scene.area_lights, scene.environment);
   if (auto value = top.find("rendered")) {
     const JsonObject rendered = value->object();
     rendered.expect_keys({"lights"});
     scene.rendered.emplace();
-    read_lights(rendered.at("lights"), scene.materials.size(), scene.rendered->lights, scene.rendered->area_lights);
+    read_lights(rendered.at("lights"), scene.materials.size(), scene.rendered->lights, scene.rendered->area_lights,
+                scene.rendered->environment);
   }
   if (auto value = top.find("objects")) scene.objects = read_objects(*value, scene.materials.size());
   if (auto value = top.find("gbuffer")) scene.gbuffer = read_gbuffer_path(*value, source);
@@ -286,13 +295,15 @@ SpecularModel parse_specular_model(const std::string& name) {
                               "blinn-phong-normalized or principled)");
 }
 
-std::vector<std::string> light_groups(const std::vector<Light>& lights, const std::vector<AreaLight>& area_lights) {
+std::vector<std::string> light_groups(const std::vector<Light>& lights, const std::vector<AreaLight>& area_lights,
+                                      const std::optional<EnvironmentLight>& environment) {
   std::vector<std::string> names;
   auto add = [&](const std::string& group) {
     if (!group.empty() && std::find(names.begin(), names.end(), group) == names.end()) names.push_back(group);
   };
   for (const Light& light : lights) add(light.group);
   for (const AreaLight& light : area_lights) add(light.group);
+  if (environment) add(environment->group);
   return names;
 }
 
@@ -325,6 +336,7 @@ std::vector<Light> read_lights(const nlohmann::json& document, const std::filesy
   std::vector<Light> lights;
   for (const JsonValue& light : JsonValue(document, "lights", source).elements()) {
     if (is_area_light(light)) light.fail("is an area light: set_area_lights takes those");
+    if (is_environment_light(light)) light.fail("is an environment light: set_environment takes it");
     lights.push_back(read_light(light, material_count));
   }
   return lights;

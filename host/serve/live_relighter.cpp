@@ -77,7 +77,7 @@ bool LiveRelighter::render_thread_ended_by(std::chrono::steady_clock::time_point
 
 SceneSnapshot LiveRelighter::scene() const {
   std::lock_guard lock(mutex_);
-  return {scene_version_, scene_json_, light_groups(scene_.lights, scene_.area_lights), mesh_files(scene_.objects)};
+  return {scene_version_, scene_json_, light_groups(scene_.lights, scene_.area_lights, scene_.environment), mesh_files(scene_.objects)};
 }
 
 // The document as the shader takes it: colours in the working space. A mesh file that cannot be

@@ -80,6 +80,7 @@ Relighter& RelightSession::relighter_for(const Scene& scene, const RenderSetting
   relighter_->set_materials(scene.materials);
   relighter_->set_lights(scene.lights);
   relighter_->set_area_lights(scene.area_lights);
+  relighter_->set_environment(scene.environment);
   return *relighter_;
 }
 
@@ -94,13 +95,15 @@ bool left_out(const std::string& group, const RenderSettings& settings, bool ove
   return muted || (!settings.solo.empty() && group != settings.solo);
 }
 
-// The scene with the lights that solo and mute leave out at colour 0, area lights too.
+// The scene with the lights that solo and mute leave out at colour 0, area lights too, and the
+// environment at strength 0.
 Scene soloed_and_muted(const Scene& scene, const RenderSettings& settings, bool over_render) {
   Scene lit = scene;
   for (Light& light : lit.lights)
     if (left_out(light.group, settings, over_render)) light.color = glm::dvec3(0.0);
   for (AreaLight& light : lit.area_lights)
     if (left_out(light.group, settings, over_render)) light.color = glm::dvec3(0.0);
+  if (lit.environment && left_out(lit.environment->group, settings, over_render)) lit.environment->strength = 0.0;
   return lit;
 }
 

@@ -77,6 +77,8 @@ UniformData pack_uniforms(const Scene& scene, const Recipe& recipe) {
   double brightest = largest_component(scene.ambient);
   for (const Light& light : scene.lights) brightest = std::max(brightest, largest_component(light.color));
   brightest = std::max(brightest, brightest_area_light(scene));
+  const std::shared_ptr<const IrradianceMap> irradiance = environment_irradiance(scene);
+  brightest = std::max(brightest, brightest_environment(scene, *irradiance));
   // Scale so the brightest colour lands in [0.5, 1); split 2^e in two factors that are both normal floats.
   const int exponent = brightest > 0.0 ? std::ilogb(brightest) + 1 : 0;
   const double scale = std::ldexp(1.0, -exponent);
@@ -106,7 +108,7 @@ UniformData pack_uniforms(const Scene& scene, const Recipe& recipe) {
     for_each_light_in_kernel_order(scene.lights, [&](const Light& light) {
       append_link_mask(light, recipe.link_words, data.links);
     });
-  // Light groups, the area lights' last; a light in none gets the group count.
+  // Light groups, the area lights' then the environment's last; a light in none gets the group count.
   if (!recipe.light_groups.empty()) {
     const auto& groups = recipe.light_groups;
     auto index = [&](const std::string& group) {
@@ -114,6 +116,7 @@ UniformData pack_uniforms(const Scene& scene, const Recipe& recipe) {
     };
     for_each_light_in_kernel_order(scene.lights, [&](const Light& light) { data.light_groups.push_back(index(light.group)); });
     for (const AreaLight& light : scene.area_lights) data.light_groups.push_back(index(light.group));
+    if (scene.environment) data.light_groups.push_back(index(scene.environment->group));
   }
   for (const Material& material : scene.materials) {
     MaterialRecord record{};
@@ -133,6 +136,7 @@ UniformData pack_uniforms(const Scene& scene, const Recipe& recipe) {
   data.scalars.directional_count = static_cast<layout_int>(data.directional_lights.size());
   data.area_lights = pack_area_lights(scene, scale);
   data.scalars.area_count = static_cast<layout_int>(data.area_lights.size());
+  data.environment = pack_environment(scene, *irradiance, recipe.environment_rays, scale);
   return data;
 }
 

@@ -8,6 +8,7 @@
 #include "gbuffer/gbuffer.h"
 #include "scene/scene.h"
 #include "shading/device_layout.h"
+#include "shading/pack_environment.h"
 #include "shading/recipe.h"
 #include "shading/shade_stats.h"  // PixelCounts
 
@@ -25,6 +26,7 @@ struct UniformData {
   // recipe.light_groups or their count for none.
   std::vector<layout_uint> light_groups;
   std::vector<AreaLightRecord> area_lights;  // shading/pack_area.h
+  PackedEnvironment environment;             // shading/pack_environment.h
   // Ambient, background, radiance scales and light counts; the shader sets plane_stride. Light and
   // ambient colours are divided by 2^e (exact), which the kernel undoes at the end.
   FrameScalars scalars{};

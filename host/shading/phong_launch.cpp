@@ -81,7 +81,10 @@ DeviceUniforms upload_uniforms(const cl::Context& context, const UniformData& un
                    .area_lights = block.add(uniforms.area_lights),
                    .shadow_casters = block.add(shadow_casters.words),
                    .light_groups = block.add(uniforms.light_groups),
-                   .soft_lights = block.add(shadow_casters.soft)};
+                   .soft_lights = block.add(shadow_casters.soft),
+                   .environment = block.add(uniforms.environment.record),
+                   .environment_texels = block.add(uniforms.environment.texels),
+                   .environment_suns = block.add(uniforms.environment.suns)};
   scalars.plane_stride = static_cast<layout_uint>(plane_stride);
   return DeviceUniforms{.scene = block.upload(context, CL_MEM_READ_ONLY),
                         .point_bounds = uniform_buffer(context, uniforms.point_bounds),

@@ -126,7 +126,7 @@ PhongShader::FrameSetup PhongShader::prepare(const Scene& scene, const GBuffer& 
       round_up(tile_pixels(compute_.device.info, recipe, pixels, max_tile_pixels), static_cast<std::size_t>(recipe.lanes));
   const std::size_t plane_bytes = stride * recipe.plane_count() * (half ? sizeof(cl_half) : sizeof(cl_float));
   if (!uniforms_ || uniforms_options_ != report.build_options || uniforms_stride_ != stride ||
-      uniforms_rays_ != recipe.shadow_settings.rays) {
+      uniforms_rays_ != recipe.shadow_settings.rays || uniforms_environment_rays_ != recipe.environment_rays) {
     const auto upload_start = Clock::now();
     const ShadowCasters casters = shadow_casters(scene, recipe.shadow_settings);
     uniforms_ = upload_uniforms(context, pack_uniforms(scene, recipe), casters, stride);
@@ -135,6 +135,7 @@ PhongShader::FrameSetup PhongShader::prepare(const Scene& scene, const GBuffer& 
     uniforms_options_ = report.build_options;
     uniforms_stride_ = stride;
     uniforms_rays_ = recipe.shadow_settings.rays;
+    uniforms_environment_rays_ = recipe.environment_rays;
     report.timings.upload_ms += milliseconds(upload_start, Clock::now());
   }
   prepare_shadows(scene, gbuffer, recipe, report);
@@ -142,7 +143,8 @@ PhongShader::FrameSetup PhongShader::prepare(const Scene& scene, const GBuffer& 
   const PackedFor wanted{scene.camera.eye, recipe.precision, recipe.plane_count(), stride};
   const bool resident = stride >= pixels;
   if (!resident || (packed_ && packed_->key != wanted)) packed_.reset();
-  const bool shadows_culled = recipe.shadows != ShadowMode::off && shadows_->device.culled;
+  // Culling lists are per light that casts shadows: none for an environment's rays alone.
+  const bool shadows_culled = recipe.shadows != ShadowMode::off && recipe.shadow_casters > 0 && shadows_->device.culled;
   return FrameSetup{
       .stride = stride,
       .pack_target = {planes_.at_least(context, plane_bytes), material_index_.at_least(context, stride * sizeof(cl_int)),

@@ -131,6 +131,7 @@ class PhongShader {
   std::string uniforms_options_;
   std::size_t uniforms_stride_ = 0;
   int uniforms_rays_ = 0;  // the default shadow rays the area lights' table was packed with
+  int uniforms_environment_rays_ = 0;  // the environment's visibility rays its record was packed with
   std::optional<PackedFrame> packed_;  // the planes hold the whole frame, packed for this
   std::uint64_t packings_ = 0;         // the planes' packings so far: the last one's number (BoxesKey)
   std::optional<ResidentShadows> shadows_;

@@ -4,6 +4,7 @@
 #include <set>
 #include <stdexcept>
 
+#include "environment/irradiance_map.h"
 #include "shading/device_layout.h"
 
 namespace phongcl {
@@ -240,7 +241,7 @@ void decide_terms(Recipe& recipe, const Scene& scene, const GBuffer& gbuffer) {
     return;
   }
   const auto& materials = scene.materials;
-  const bool any_lights = !scene.lights.empty() || !scene.area_lights.empty();
+  const bool any_lights = !scene.lights.empty() || !scene.area_lights.empty();  // the environment has no specular lobe
   // A Principled material always has a specular lobe: at grazing angles its Fresnel reaches 1.
   const bool table_ks_zero = std::all_of(materials.begin(), materials.end(), [](const Material& m) {
     return is_zero(m.ks) && m.specular_model != SpecularModel::principled;
@@ -315,6 +316,21 @@ void decide_soft_shadows(Recipe& recipe, const Scene& scene) {
   add_flag(recipe, "SOFT_SHADOWS", soft > 0, why, soft > 0 ? "soft shadows (" + plural(soft, "light") + ")" : "");
 }
 
+// The environment's visibility: with a shadow mode on and "shadows" true, `rays` cosine-distributed
+// rays per pixel, traced or marched as the mode says; else the unoccluded irradiance.
+void decide_environment_shadows(Recipe& recipe, const Scene& scene) {
+  recipe.environment_shadows = recipe.environment && scene.environment->shadows && recipe.shadows != ShadowMode::off;
+  recipe.environment_rays = recipe.environment_shadows ? shadow_rays(*scene.environment, recipe.shadow_settings) : 0;
+  const std::string rays = plural(recipe.environment_rays, "ray");
+  add_flag(recipe, "ENVIRONMENT_SHADOWS", recipe.environment_shadows,
+           recipe.environment_shadows ? "environment visibility: " + rays + " per pixel, " +
+                                            (recipe.shadows == ShadowMode::screen ? "marched across the depth plane"
+                                                                                  : "traced against the scene's objects")
+           : recipe.environment ? "environment visibility: none (shadows off or the light's \"shadows\" false)"
+                                : "environment visibility: compiled out (no environment)",
+           recipe.environment_shadows ? "environment visibility (" + rays + ")" : "");
+}
+
 // Lights cast shadows when they ask ("shadows": true) and the mode is not off: auto traces the
 // scene's objects when it has some, else marches across the G-buffer's depth. Decided by the scene
 // in the general kernel too: without a light that casts them nothing of it is compiled in.
@@ -327,15 +343,18 @@ void decide_shadows(Recipe& recipe, const Scene& scene, const ShadeOptions& opti
       std::count_if(scene.area_lights.begin(), scene.area_lights.end(),
                     [](const AreaLight& light) { return light.shadows; }));
   const bool objects = !scene.objects.empty();
-  if (recipe.shadow_casters > 0 && asked.mode == ShadowMode::geometry && !objects)
+  // The environment's visibility rays need the shadow inputs as a light's shadow rays do.
+  const bool environment_casts = scene.environment && scene.environment->shadows;
+  const bool casting = recipe.shadow_casters > 0 || environment_casts;
+  if (casting && asked.mode == ShadowMode::geometry && !objects)
     throw std::invalid_argument("shadows geometry: the scene has no objects to cast them (use screen or auto)");
-  const ShadowMode mode = recipe.shadow_casters == 0 || asked.mode == ShadowMode::off ? ShadowMode::off
+  const ShadowMode mode = !casting || asked.mode == ShadowMode::off ? ShadowMode::off
                           : asked.mode == ShadowMode::automatic ? (objects ? ShadowMode::geometry : ShadowMode::screen)
                                                                 : asked.mode;
   recipe.shadows = mode;
-  const std::string casters = plural(recipe.shadow_casters, "light");
+  const std::string casters = plural(recipe.shadow_casters, "light") + (environment_casts ? " + the environment" : "");
   const std::string march = std::to_string(asked.steps) + " steps, thickness " + format_shadow_thickness(asked.thickness);
-  const std::string why = recipe.shadow_casters == 0 ? "shadows: compiled out (no light casts them)"
+  const std::string why = !casting ? "shadows: compiled out (no light casts them)"
                           : mode == ShadowMode::off  ? "shadows: compiled out (off as asked)"
                           : mode == ShadowMode::geometry
                               ? "shadows: " + casters + ", rays traced against the scene's objects (BVH)"
@@ -348,12 +367,13 @@ void decide_shadows(Recipe& recipe, const Scene& scene, const ShadeOptions& opti
   add_flag(recipe, "SCREEN_SHADOWS", mode == ShadowMode::screen,
            mode == ShadowMode::screen ? "screen-space shadows: " + march : "screen-space shadows: none");
   decide_soft_shadows(recipe, scene);
+  decide_environment_shadows(recipe, scene);
 }
 
 // Light groups are AOVs: their layers are written with the terms; without terms the kernel is the
 // one without groups. The count is compiled in (the group loop unrolls), in the general kernel too.
 void decide_groups(Recipe& recipe, const Scene& scene, const ShadeOptions& options) {
-  const std::vector<std::string> groups = light_groups(scene.lights, scene.area_lights);
+  const std::vector<std::string> groups = light_groups(scene.lights, scene.area_lights, scene.environment);
   if (options.write_terms) recipe.light_groups = groups;
   const int count = static_cast<int>(recipe.light_groups.size());
   add_count(recipe, "LIGHT_GROUPS", count,
@@ -378,6 +398,18 @@ void decide_area_lights(Recipe& recipe, const Scene& scene) {
            recipe.area_lights > 0 ? "area lights: " + kinds + ", untiled (diffuse exact, specular by quadrature)"
                                   : "area lights: compiled out (none in the scene)",
            recipe.area_lights > 0 ? kinds + " area" : "");
+}
+
+// The world's light: its irradiance map read per pixel (kernels/environment.h).
+void decide_environment(Recipe& recipe, const Scene& scene) {
+  recipe.environment = scene.environment.has_value();
+  const std::string kind = !recipe.environment ? ""
+                           : scene.environment->file.empty() ? "uniform colour"
+                                                             : "map " + scene.environment->file.filename().string();
+  add_flag(recipe, "ENVIRONMENT", recipe.environment,
+           recipe.environment ? "environment: " + kind + ", diffuse from its irradiance map"
+                              : "environment: compiled out (none in the scene)",
+           recipe.environment ? "environment (" + kind + ")" : "");
 }
 
 // Needs recipe.precision. Positions relative to the eye rounded to float lose a light near a
@@ -405,7 +437,11 @@ void decide_memory(Recipe& recipe, const Scene& scene, const DeviceInfo& device)
                                    (recipe.point_lights + recipe.directional_lights) * recipe.link_words *
                                        sizeof(LinkWord) +
                                    scene.area_lights.size() * sizeof(AreaLightRecord) +
-                                   2 * lights * sizeof(layout_uint) + kSceneTables * kSceneTableAlignment;
+                                   2 * lights * sizeof(layout_uint) + kSceneTables * kSceneTableAlignment +
+                                   (scene.environment ? sizeof(EnvironmentRecord) + sizeof(layout_uint) +
+                                                            3 * kIrradianceWidth * kIrradianceHeight * sizeof(float) +
+                                                            kMaxSunCells * sizeof(EnvironmentSun)
+                                                      : 0);
   const bool constant = recipe.specialised && device.max_constant_args >= 1 && bytes <= device.max_constant_buffer;
   recipe.flags.push_back({"UNIFORM_SPACE", constant ? "__constant" : "__global",
                           constant ? "lights and materials: __constant memory (" + std::to_string(bytes) + " bytes fit)"
@@ -469,6 +505,7 @@ Recipe make_recipe(const Scene& scene, const GBuffer& gbuffer, const DeviceInfo&
   decide_lights(recipe);
   decide_light_shapes(recipe, scene);
   decide_area_lights(recipe, scene);
+  decide_environment(recipe, scene);
   decide_terms(recipe, scene, gbuffer);
   decide_materials(recipe, scene, gbuffer);
   decide_position_rest(recipe);

@@ -40,6 +40,9 @@ struct Recipe {
   int point_lights = 0, directional_lights = 0;  // point_lights counts spots too (one array)
   int spot_lights = 0;
   int area_lights = 0;   // rects and disks (their own table, untiled)
+  bool environment = false;          // the scene's environment light
+  bool environment_shadows = false;  // its visibility rays traced (geometry) or marched (screen)
+  int environment_rays = 0;          // rays per pixel with environment_shadows
   int link_words = 0;    // light linking: mask words per light; 0: every light lights every material
   bool tiled = false;    // tiled light culling (host/shading/tile_culling.h)
   int tile_size = 16;

@@ -11,6 +11,7 @@
 #include "cl/program_cache.h"
 #include "gbuffer/material_check.h"
 #include "scene/area_light_json.h"
+#include "scene/environment_json.h"
 #include "scene/scene_check.h"
 #include "shading/frame_memory.h"
 #include "shading/phong_shader.h"
@@ -123,6 +124,7 @@ void Relighter::set_frame(const Scene& scene, GBuffer&& gbuffer) {
   check_material_table(scene.materials);
   check_lights(scene.lights, scene.materials.size());
   check_area_lights(scene.area_lights);
+  if (scene.environment) check_environment_light(*scene.environment);
   const std::lock_guard lock(state_->mutex);
   phongcl::check_materials(gbuffer, scene.materials.size());
   Recipe recipe = state_->recipe_for(scene, gbuffer);
@@ -148,6 +150,14 @@ void Relighter::set_area_lights(const std::vector<AreaLight>& lights) {
   const std::lock_guard lock(state_->mutex);
   Scene next = state_->frame().scene;
   next.area_lights = lights;
+  state_->replace_scene(std::move(next));
+}
+
+void Relighter::set_environment(const std::optional<EnvironmentLight>& environment) {
+  if (environment) check_environment_light(*environment);
+  const std::lock_guard lock(state_->mutex);
+  Scene next = state_->frame().scene;
+  next.environment = environment;
   state_->replace_scene(std::move(next));
 }
 

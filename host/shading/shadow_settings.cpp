@@ -54,10 +54,17 @@ void check_shadow_settings(const ShadowSettings& settings) {
   if (settings.rays < 1 || settings.rays > kMaxShadowRays)
     throw std::invalid_argument("shadow rays must be 1 to " + std::to_string(kMaxShadowRays) + " (got " +
                                 std::to_string(settings.rays) + ")");
+  if (settings.environment_rays < 1 || settings.environment_rays > kMaxEnvironmentRays)
+    throw std::invalid_argument("environment rays must be 1 to " + std::to_string(kMaxEnvironmentRays) + " (got " +
+                                std::to_string(settings.environment_rays) + ")");
 }
 
 int shadow_rays(const AreaLight& light, const ShadowSettings& settings) {
   return light.shadow_rays > 0 ? light.shadow_rays : settings.rays;
+}
+
+int shadow_rays(const EnvironmentLight& light, const ShadowSettings& settings) {
+  return light.rays > 0 ? light.rays : settings.environment_rays;
 }
 
 int shadow_rays(const Light& light, const ShadowSettings& settings) {

@@ -24,6 +24,8 @@ struct ShadowSettings {
   double thickness = -0.06;  // screen: > 0 world units; < 0 that fraction of the surface's depth
   int rays = 16;             // geometry: rays per pixel over an area light without its own "shadow_rays",
                              // 1 to kMaxShadowRays (1: one ray to the centre, a hard shadow)
+  int environment_rays = 64; // visibility rays per pixel of an environment light without its own "rays",
+                             // 1 to kMaxEnvironmentRays (docs/environment.md "Visibility": error against time)
   bool operator==(const ShadowSettings&) const = default;
 };
 
@@ -39,5 +41,7 @@ void check_shadow_settings(const ShadowSettings& settings);
 // (one ray, a hard shadow) for a point, spot or directional light without a size.
 int shadow_rays(const AreaLight& light, const ShadowSettings& settings);
 int shadow_rays(const Light& light, const ShadowSettings& settings);
+// An environment light's visibility rays: its own "rays", else the settings' environment_rays.
+int shadow_rays(const EnvironmentLight& light, const ShadowSettings& settings);
 
 }  // namespace phongcl

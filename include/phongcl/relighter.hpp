@@ -10,6 +10,7 @@
 // The room headers included here are installed beside this one (include/phongcl/<room>/).
 #include <cstddef>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -65,6 +66,9 @@ class Relighter {
   // the new table lacks (the previous state is kept on either).
   void set_lights(const std::vector<Light>& lights);
   void set_area_lights(const std::vector<AreaLight>& lights);
+  // The world's light (at most one); std::nullopt removes it. A changed rotation or strength keeps
+  // the kernel and the map's irradiance (cached per file), and re-packs its one record.
+  void set_environment(const std::optional<EnvironmentLight>& environment);
   void set_materials(const std::vector<Material>& materials);
   void set_camera_eye(const glm::dvec3& eye);
 

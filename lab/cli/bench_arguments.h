@@ -25,6 +25,7 @@ struct BenchArguments {
   std::string compressions = "zip,piz";  // --sequence: G-buffer and output compressions
   bool shadows = false;
   bool soft_shadows = false;  // the soft-shadow part of --shadows alone
+  bool environment = false;   // the environment light's visibility: error against rays and time
   bool groups = false;       // light groups' cost: 4 groups of 4 lights against the same 16 ungrouped
   int mesh_triangles = 128000;  // --shadows: the mesh scene's triangles (at least)
 };
@@ -35,6 +36,7 @@ void run_many_lights_bench(const BenchArguments& args);    // bench_many_lights.
 void run_sequence_bench(const BenchArguments& args);       // bench_sequence.cpp
 void run_shadows_bench(const BenchArguments& args);        // bench_shadows.cpp
 void run_soft_shadow_bench(const BenchArguments& args);    // bench_soft_shadows.cpp
+void run_environment_bench(const BenchArguments& args);    // bench_environment.cpp
 void run_display_bench(const BenchArguments& args);        // bench_display.cpp
 void run_groups_bench(const BenchArguments& args);         // bench_groups.cpp
 

@@ -39,6 +39,9 @@ void add_bench_command(CLI::App& app) {
                     "Soft shadows alone (a part of --shadows): area lights' error and time at 1 to 64 rays, geometry and screen space");
   command->add_option("--mesh-triangles", args->mesh_triangles, "--shadows: triangles of the mesh scene (default 128000)")
       ->check(CLI::Range(1000, 100000000));
+  command->add_flag("--environment", args->environment,
+                    "Environment light: its visibility's error and time at 1 to 64 rays per pixel against 4096, "
+                    "geometry and screen space");
   command->add_flag("--display", args->display,
                     "Time the PNG/serve display transforms (built-in views, Blender's Filmic with looks) on the scene's "
                     "shaded frame against OpenColorIO's own processor");
@@ -47,15 +50,16 @@ void add_bench_command(CLI::App& app) {
                     "lights without groups (kernel and download apart)");
   command->callback([args] {
     if (args->throughput + args->many_lights + args->sequence + args->shadows + args->soft_shadows + args->display +
-            args->groups > 1)
+            args->groups + args->environment > 1)
       throw CLI::ValidationError(
-          "--throughput, --sequence, --many-lights, --shadows, --soft-shadows, --display and --groups are separate "
-          "benchmarks: pick one");
+          "--throughput, --sequence, --many-lights, --shadows, --soft-shadows, --environment, --display and --groups "
+          "are separate benchmarks: pick one");
     if (args->peer_schedules && !args->many_lights)
       throw CLI::ValidationError("--peer-schedules is an option of --many-lights");
     if (args->groups) return run_groups_bench(*args);
     if (args->shadows) return run_shadows_bench(*args);
     if (args->soft_shadows) return run_soft_shadow_bench(*args);
+    if (args->environment) return run_environment_bench(*args);
     if (args->sequence) return run_sequence_bench(*args);
     if (args->display) return run_display_bench(*args);
     if (args->many_lights) return run_many_lights_bench(*args);

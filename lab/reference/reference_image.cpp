@@ -29,6 +29,7 @@ Scene reference_group_scene(const Scene& scene, const std::string& group) {
   alone.ambient = glm::dvec3(0.0);
   std::erase_if(alone.lights, [&](const Light& light) { return light.group != group; });
   std::erase_if(alone.area_lights, [&](const AreaLight& light) { return light.group != group; });
+  if (alone.environment && alone.environment->group != group) alone.environment.reset();
   return alone;
 }
 

@@ -3,8 +3,9 @@
 #include <numbers>
 
 #include "reference/reference.h"
-#include "reference/reference_principled.h"
 #include "reference/reference_area.h"
+#include "reference/reference_environment.h"
+#include "reference/reference_principled.h"
 #include "reference/reference_soft_shadows.h"
 
 namespace phongcl {
@@ -135,8 +136,15 @@ ShadingTerms reference_shade_point(const Scene& scene, const SurfacePoint& point
     diffuse += product(light.color, glm::dvec3(integrals.irradiance * window));
     specular += product(light.color, glm::dvec3(integrals.highlight * window));
   }
+  // The environment: its irradiance by brute force over the map (reference_environment.h).
+  if (scene.environment && n != glm::dvec3(0.0)) {
+    const EnvironmentLight& world = *scene.environment;
+    const double visible = soft.environment && world.shadows ? soft.environment(point) : 1.0;
+    diffuse += reference_environment_light(world, reference_map(world), n) * visible;
+  }
   if (point.specular_model == SpecularModel::principled) {
-    // Area lights: Lambert's irradiance times the diffuse colour, no highlight (as the kernel: docs/shading.md).
+    // Area lights and the environment: Lambert's irradiance times the diffuse colour, no highlight (as the
+    // kernel: docs/shading.md).
     const glm::dvec3 weight = point.principled.base_color * (1.0 - point.principled.metallic);
     terms.diffuse = principled_diffuse + product(weight, diffuse);
     terms.specular = principled_specular;

@@ -140,6 +140,23 @@ def test_bad_files_and_values_raise_the_command_lines_messages(tmp_path, scene):
 
 
 @needs_device
+def test_the_environment_is_set_in_the_scene_files_form_and_removed_by_none(gbuffer):
+    document = json.loads(DEFAULT.read_text())
+    world = {"type": "environment", "color": [0.2, 0.3, 0.4], "strength": 2, "shadows": False}
+    relighter = phongcl.Relighter(phongcl.Scene.from_dict(document), gbuffer)
+    without = relighter.shade()
+    relighter.set_environment(world)
+    lit = relighter.shade()
+    document["lights"].append(world)
+    np.testing.assert_array_equal(lit, phongcl.Relighter(phongcl.Scene.from_dict(document), gbuffer).shade())
+    assert (lit[..., :3] - without[..., :3]).max() > 1e-2, "the world added no light"
+    relighter.set_environment(None)
+    np.testing.assert_array_equal(relighter.shade(), without)
+    with pytest.raises(phongcl.InputError, match=r"environment.*not both or neither"):
+        relighter.set_environment({"type": "environment"})
+
+
+@needs_device
 def test_area_lights_are_set_in_the_scene_files_form(gbuffer):
     document = json.loads(DEFAULT.read_text())
     area = {"type": "area", "shape": "rect", "position": [0, 4, 2], "direction": [0, -1, -0.3], "size": [2, 1],

@@ -1,0 +1,118 @@
+/* The environment light: the world's radiance from every direction (docs/environment.md).
+ * Diffuse: the host convolves the map with the cosine lobe once per map (host/environment/), and the
+ * kernel reads E(n) / pi bilinearly from that small irradiance map, in Blender's equirectangular
+ * mapping (Cycles' direction_to_equirectangular: u = 1/2 - atan2(y, x) / 2pi, the image's top row
+ * at +Z). With ENVIRONMENT_SHADOWS the light is multiplied by the fraction of `rays`
+ * cosine-distributed directions that leave the scene (the ratio estimator, as soft_shadow.h's:
+ * exact where every ray is free or every ray blocked), traced against the BVH, or with
+ * SCREEN_SHADOWS marched across the depth plane, as a directional light's shadow ray is. The map's
+ * brightest cells (a sun) are taken out of the irradiance map by the host and come as directional
+ * lights: E bends at their horizon faster than the bilinear lookup follows, and each casts a sharp
+ * shadow from one ray, as the sun does in Cycles. */
+#ifndef PHONGCL_ENVIRONMENT_H
+#define PHONGCL_ENVIRONMENT_H
+
+#include "layout.h"
+#include "sampling.h"
+#include "shadow.h"
+#include "soft_shadow.h"
+
+#define ENVIRONMENT_PI 3.14159265358979323846
+
+/* One direction's irradiance / pi, bilinear between texel centres: wrapping around in longitude,
+ * clamped at the top and bottom rows' centres. */
+static inline void environment_lookup(UNIFORM_SPACE const EnvironmentRecord* environment,
+                                      UNIFORM_SPACE const float* texels, real x, real y, real z, real* rgb) {
+  const int width = environment->width, height = environment->height;
+  const real u = (real)0.5 - atan2(y, x) * (real)(0.5 / ENVIRONMENT_PI);
+  const real t = acos(clamp(z, (real)-1, (real)1)) * (real)(1 / ENVIRONMENT_PI);
+  const real fx = u * width - (real)0.5, fy = clamp(t * height - (real)0.5, (real)0, (real)(height - 1));
+  const real x_floor = floor(fx), y_floor = floor(fy);
+  const real wx = fx - x_floor, wy = fy - y_floor;
+  const int x0 = ((int)x_floor % width + width) % width, x1 = (x0 + 1) % width;
+  const int y0 = (int)y_floor, y1 = min(y0 + 1, height - 1);
+  UNIFORM_SPACE const float* row0 = texels + 3 * (size_t)y0 * width;
+  UNIFORM_SPACE const float* row1 = texels + 3 * (size_t)y1 * width;
+  for (int c = 0; c < 3; ++c) {
+    const real top = row0[3 * x0 + c] + wx * (row0[3 * x1 + c] - row0[3 * x0 + c]);
+    const real bottom = row1[3 * x0 + c] + wx * (row1[3 * x1 + c] - row1[3 * x0 + c]);
+    rgb[c] = (top + wy * (bottom - top)) * environment->scale;
+  }
+}
+
+/* E(n) / pi for each lane's unit normal, scaled: the map's frame, then a lookup lane by lane (atan2
+ * and acos once per pixel; OpenCL C has no vector gather). */
+static inline vec3 environment_irradiance(UNIFORM_SPACE const EnvironmentRecord* environment,
+                                          UNIFORM_SPACE const float* texels, vec3 n) {
+  UNIFORM_SPACE const float* m = environment->to_map;
+  const vec3 row_x = make_vec3((realv)m[0], (realv)m[1], (realv)m[2]);
+  const vec3 row_y = make_vec3((realv)m[4], (realv)m[5], (realv)m[6]);
+  const vec3 row_z = make_vec3((realv)m[8], (realv)m[9], (realv)m[10]);
+  const realv x = dot3(row_x, n), y = dot3(row_y, n), z = dot3(row_z, n);
+#if PHONGCL_LANES == 1
+  real rgb[3];
+  environment_lookup(environment, texels, x, y, z, rgb);
+  return make_vec3(rgb[0], rgb[1], rgb[2]);
+#else
+  real xs[PHONGCL_LANES], ys[PHONGCL_LANES], zs[PHONGCL_LANES], r[PHONGCL_LANES], g[PHONGCL_LANES], b[PHONGCL_LANES];
+  PHONGCL_XCAT(vstore, PHONGCL_LANES)(x, 0, xs);
+  PHONGCL_XCAT(vstore, PHONGCL_LANES)(y, 0, ys);
+  PHONGCL_XCAT(vstore, PHONGCL_LANES)(z, 0, zs);
+  for (int k = 0; k < PHONGCL_LANES; ++k) {
+    real rgb[3];
+    environment_lookup(environment, texels, xs[k], ys[k], zs[k], rgb);
+    r[k] = rgb[0];
+    g[k] = rgb[1];
+    b[k] = rgb[2];
+  }
+  return make_vec3(PHONGCL_XCAT(vload, PHONGCL_LANES)(0, r), PHONGCL_XCAT(vload, PHONGCL_LANES)(0, g),
+                   PHONGCL_XCAT(vload, PHONGCL_LANES)(0, b));
+#endif
+}
+
+/* The fraction of `rays` cosine-distributed directions about n (Malley's method over the shifted R2
+ * lattice: a point of the unit disk lifted to the hemisphere) that nothing blocks, in the lanes of
+ * `pending`; 1 elsewhere. The rays are directional lights' (to infinity, every one traversing the
+ * BVH: tiled shadow culling's lists are per light direction). */
+static inline SHADOW_INLINE realv environment_visibility(const ShadowInputs* shadows, vec3 p, vec3 n, uint rays,
+                                                         LatticeShift shift, intv pending) {
+  ShadowInputs traced = *shadows;
+  traced.tiles = 0;
+  realv seen = 0;
+  if (!any_lane(pending) || rays == 0) return seen + 1;
+  vec3 u, v;
+  orthonormal_basis(n, &u, &v);
+  for (uint k = 0; k < rays; ++k) {
+    realv s, t;
+    lattice_point(k, shift, &s, &t);
+    const realv radius = sqrt(s), angle = (real)(2 * ENVIRONMENT_PI) * t;
+    const realv height = sqrt(fmax(1 - s, (realv)0));
+    const vec3 d = add3(add3(scale3(u, radius * cos(angle)), scale3(v, radius * sin(angle))), scale3(n, height));
+    const intv blocked = light_blocked(&traced, p, n, d, 1, SCREEN_SHADOWS, 0, pending);
+    seen += SELECT(TO_REALV(blocked) != 0, 0, 1);
+  }
+  return SELECT(TO_REALV(pending) != 0, seen / (real)rays, 1);
+}
+
+/* The suns' E / pi, each color max(0, n.d), with ENVIRONMENT_SHADOWS 0 in the lanes where its ray is
+ * blocked; `pending`: the lanes that trace. */
+static inline SHADOW_INLINE vec3 environment_suns(UNIFORM_SPACE const EnvironmentSun* suns, int count,
+                                                  const ShadowInputs* shadows, vec3 p, vec3 n, intv pending) {
+  const realv zero = 0;
+  vec3 sum = make_vec3(zero, zero, zero);
+  ShadowInputs traced = *shadows;
+  traced.tiles = 0;
+  for (int k = 0; k < count; ++k) {
+    UNIFORM_SPACE const EnvironmentSun* sun = &suns[k];
+    const vec3 d = make_vec3((realv)sun->direction[0], (realv)sun->direction[1], (realv)sun->direction[2]);
+    realv lit = fmax(dot3(n, d), (realv)0);
+    if (ENVIRONMENT_SHADOWS) {
+      const intv blocked = light_blocked(&traced, p, n, d, 1, SCREEN_SHADOWS, 0, pending & LANE_MASK(lit > 0));
+      lit = SELECT(TO_REALV(blocked) != 0, 0, lit);
+    }
+    sum = add3(sum, make_vec3(lit * sun->color[0], lit * sun->color[1], lit * sun->color[2]));
+  }
+  return sum;
+}
+
+#endif

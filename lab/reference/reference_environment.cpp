@@ -1,0 +1,105 @@
+#include "reference/reference_environment.h"
+
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <mutex>
+#include <string>
+#include <numbers>
+
+#include "exr/exr_channels.h"
+#include "reference/reference_shadows.h"
+
+namespace phongcl {
+
+using std::numbers::pi;
+
+namespace {
+
+ReferenceMap read_map(const std::filesystem::path& path) {
+  ReferenceMap map;
+  exr::InputExr file(path);
+  map.width = file.data_window().width();
+  map.height = file.data_window().height();
+  const std::size_t texels = static_cast<std::size_t>(map.width) * map.height;
+  std::vector<float> interleaved(3 * texels);
+  file.read({{"R", interleaved.data(), 3}, {"G", interleaved.data() + 1, 3}, {"B", interleaved.data() + 2, 3}});
+  map.rgb.assign(interleaved.begin(), interleaved.end());
+  return map;
+}
+
+}  // namespace
+
+const ReferenceMap& reference_map(const EnvironmentLight& light) {
+  static std::mutex mutex;
+  static std::map<std::string, ReferenceMap> maps;
+  const std::lock_guard<std::mutex> lock(mutex);
+  if (light.file.empty()) {
+    ReferenceMap& uniform = maps[""];
+    uniform = {1, 1, {light.color.x, light.color.y, light.color.z}};
+    return uniform;
+  }
+  const auto modified = std::filesystem::last_write_time(light.file).time_since_epoch().count();
+  const std::string key = light.file.string() + "@" + std::to_string(modified);
+  auto found = maps.find(key);
+  if (found == maps.end()) found = maps.emplace(key, read_map(light.file)).first;
+  return found->second;
+}
+
+glm::dvec3 reference_environment_light(const EnvironmentLight& light, const ReferenceMap& map, const glm::dvec3& n) {
+  const double length = glm::length(n);
+  if (!(length > 0.0)) return glm::dvec3(0.0);
+  // The lookup direction: into the world, then the Mapping node's rotation about +Z.
+  const glm::dvec3 world = light.to_world * (n / length);
+  const double turn = light.rotation_deg * pi / 180.0;
+  const glm::dvec3 m(std::cos(turn) * world.x - std::sin(turn) * world.y,
+                     std::sin(turn) * world.x + std::cos(turn) * world.y, world.z);
+  // Cells at most 1/256 of the turn wide and 1/128 of the half turn tall.
+  const int split_x = (256 + map.width - 1) / map.width, split_y = (128 + map.height - 1) / map.height;
+  const int columns = map.width * split_x, rows = map.height * split_y;
+  glm::dvec3 sum(0.0);
+  for (int row = 0; row < rows; ++row) {
+    const double polar_top = pi * row / rows, polar_bottom = pi * (row + 1) / rows;
+    const double polar = 0.5 * (polar_top + polar_bottom);
+    const double cell_solid_angle = (2.0 * pi / columns) * (std::cos(polar_top) - std::cos(polar_bottom));
+    const int y = row / split_y;
+    for (int column = 0; column < columns; ++column) {
+      // u = 1/2 - azimuth / 2 pi (Cycles' equirectangular mapping): the middle column looks along +X.
+      const double u = (column + 0.5) / columns, azimuth = 2.0 * pi * (0.5 - u);
+      const glm::dvec3 w(std::sin(polar) * std::cos(azimuth), std::sin(polar) * std::sin(azimuth), std::cos(polar));
+      const double cosine = glm::dot(m, w);
+      if (cosine <= 0.0) continue;
+      const double* texel = &map.rgb[3 * (static_cast<std::size_t>(y) * map.width + column / split_x)];
+      sum += glm::dvec3(texel[0], texel[1], texel[2]) * (cosine * cell_solid_angle);
+    }
+  }
+  return sum * (light.strength / pi);
+}
+
+double reference_environment_visibility(const SceneShapes& shapes, const SurfacePoint& point, const glm::dvec3& eye,
+                                        double offset_scale, int grid) {
+  const double length = glm::length(point.normal);
+  if (!(length > 0.0)) return 1.0;
+  const glm::dvec3 n = point.normal / length;
+  const glm::dvec3 helper = std::abs(n.x) < 0.6 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
+  const glm::dvec3 a = glm::normalize(glm::cross(helper, n)), b = glm::cross(n, a);
+  const int around = 4 * grid;
+  int free = 0;
+  for (int i = 0; i < grid; ++i) {
+    const double sine_sq = (i + 0.5) / grid;  // equal steps of sin^2: equal cosine-weighted measure
+    const double sine = std::sqrt(sine_sq), cosine = std::sqrt(1.0 - sine_sq);
+    for (int j = 0; j < around; ++j) {
+      const double azimuth = 2.0 * pi * (j + 0.5) / around;
+      const glm::dvec3 d = cosine * n + sine * (std::cos(azimuth) * a + std::sin(azimuth) * b);
+      Light sky;
+      sky.type = LightType::directional;
+      sky.direction = -d;
+      ReferenceShadowRay ray;
+      if (!reference_shadow_ray_from(point.position, n, sky, eye, offset_scale, ray)) continue;
+      free += reference_shadow_ray(shapes, ray.origin, ray.direction, ray.t_max) == RayOutcome::free;
+    }
+  }
+  return static_cast<double>(free) / (grid * around);
+}
+
+}  // namespace phongcl

@@ -1,0 +1,315 @@
+// The environment light: its scene entry, its map's validation and irradiance convolution
+// (host/environment/), and the kernel (kernels/environment.h) against the brute-force reference
+// (lab/reference/reference_environment.h), unoccluded and with geometry visibility.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <random>
+
+#include "environment/equirect_map.h"
+#include "environment/irradiance_map.h"
+#include "exr/exr_channels.h"
+#include "geometry/scene_shapes.h"
+#include "input_error_of.h"
+#include "raycast/raycast.h"
+#include "reference/reference_environment.h"
+#include "shading_support.h"
+#include "temp_dir.h"
+
+extern "C" {
+#include "kernels/shadow_layout.h"
+}
+
+namespace phongcl {
+namespace {
+
+using std::numbers::pi;
+
+// An RGB float EXR of `width` x `height` from a function of the texel.
+template <class Texel>
+std::filesystem::path write_map(const std::filesystem::path& file, int width, int height, Texel texel) {
+  std::vector<float> planes[3];
+  for (auto& plane : planes) plane.resize(static_cast<std::size_t>(width) * height);
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      const glm::dvec3 rgb = texel(x, y);
+      for (int c = 0; c < 3; ++c) planes[c][static_cast<std::size_t>(y) * width + x] = static_cast<float>(rgb[c]);
+    }
+  const PixelWindow window{0, 0, width - 1, height - 1};
+  exr::write_channels(file, window, window, ExrPixelType::float32,
+                      {{"R", planes[0].data()}, {"G", planes[1].data()}, {"B", planes[2].data()}});
+  return file;
+}
+
+// A sky: a gradient from a blue zenith to a dark ground, and a sun of one texel 2,000 times brighter
+// (the stability case: a single bright texel carries most of the light).
+glm::dvec3 sky_texel(int x, int y, int width, int height) {
+  if (x == width / 3 && y == height / 4) return {2000.0, 1800.0, 1500.0};
+  const double up = 1.0 - (y + 0.5) / height;  // 1 at the top row
+  return glm::dvec3(0.2, 0.3, 0.6) * up + glm::dvec3(0.05, 0.04, 0.03) * (1.0 - up);
+}
+
+Scene scene_with(const std::string& light_json, const std::filesystem::path& source) {
+  return parse_scene(R"({"lights": [)" + light_json + R"(], "materials": [{"name": "m", "kd": [1, 1, 1]}]})", source);
+}
+
+TEST(EnvironmentScene, ReadsAUniformWorldAndAMapBesideTheScene) {
+  const Scene uniform = scene_with(R"({"type": "environment", "color": [0.2, 0.3, 0.4], "strength": 2, "group": "sky"})",
+                                   "/scenes/a.json");
+  ASSERT_TRUE(uniform.environment);
+  EXPECT_EQ(uniform.environment->color, glm::dvec3(0.2, 0.3, 0.4));
+  EXPECT_EQ(uniform.environment->strength, 2.0);
+  EXPECT_TRUE(uniform.environment->shadows);  // visible as in Cycles unless asked
+  EXPECT_TRUE(uniform.lights.empty());
+  EXPECT_EQ(light_groups(uniform.lights, uniform.area_lights, uniform.environment), std::vector<std::string>{"sky"});
+  const Scene map = scene_with(R"({"type": "environment", "file": "sky.exr", "rotation": 30, "rays": 8, "shadows": false})",
+                               "/scenes/a.json");
+  EXPECT_EQ(map.environment->file, std::filesystem::path("/scenes/sky.exr"));
+  EXPECT_EQ(map.environment->rotation_deg, 30.0);
+  EXPECT_EQ(map.environment->rays, 8);
+  EXPECT_FALSE(map.environment->shadows);
+}
+
+TEST(EnvironmentScene, RefusesASecondWorldAndAmbiguousOnes) {
+  const std::string two = testing::input_error_of([] {
+    scene_with(R"({"type": "environment", "color": [1, 1, 1]}, {"type": "environment", "file": "b.exr"})", "two.json");
+  });
+  EXPECT_NE(two.find("two.json"), std::string::npos) << two;
+  EXPECT_NE(two.find("lights[1]"), std::string::npos) << two;
+  EXPECT_NE(two.find("second environment"), std::string::npos) << two;
+  const std::string both = testing::input_error_of(
+      [] { scene_with(R"({"type": "environment", "color": [1, 1, 1], "file": "b.exr"})", "both.json"); });
+  EXPECT_NE(both.find("not both"), std::string::npos) << both;
+  const std::string negative = testing::input_error_of(
+      [] { scene_with(R"({"type": "environment", "color": [1, -1, 1]})", "negative.json"); });
+  EXPECT_NE(negative.find("must be >= 0"), std::string::npos) << negative;
+}
+
+TEST(EnvironmentMap, RefusesInfiniteAndNaNTexelsNamingThem) {
+  testing::TempDir dir;
+  for (double bad : {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::quiet_NaN(), -1.0}) {
+    const auto file = write_map(dir.path / "bad.exr", 16, 8, [&](int x, int y) {
+      return x == 5 && y == 3 ? glm::dvec3(0.5, bad, 0.5) : glm::dvec3(0.5);
+    });
+    const std::string message = testing::input_error_of([&] { load_radiance_grid(file); });
+    EXPECT_NE(message.find("bad.exr"), std::string::npos) << message;
+    EXPECT_NE(message.find("texel (5, 3) channel G is " +
+                           std::string(std::isnan(bad) ? "NaN" : std::isinf(bad) ? "inf" : "negative")),
+              std::string::npos)
+        << message;
+  }
+  const std::string missing = testing::input_error_of([&] { load_radiance_grid(dir.path / "none.exr"); });
+  EXPECT_NE(missing.find("none.exr"), std::string::npos) << missing;
+}
+
+// A 1 x 1 map is a uniform world: E / pi is its colour for every normal. The grid's midpoint rule
+// over 256 x 128 cells integrates the clamped cosine to 1.3e-5 (measured; the kink at the horizon
+// cuts cells, an error of order the cell's width squared).
+TEST(EnvironmentMap, AOneTexelMapIsAUniformWorld) {
+  const float texel[3] = {0.25f, 0.5f, 1.0f};
+  const RadianceGrid grid = radiance_grid_from_planes("one", 1, 1, {&texel[0], &texel[1], &texel[2]});
+  const IrradianceMap irradiance = convolve_irradiance(grid);
+  double worst = 0.0;
+  for (std::size_t i = 0; i < irradiance.rgb.size(); ++i)
+    worst = std::max(worst, std::abs(irradiance.rgb[i] / texel[i % 3] - 1.0));
+  std::cout << "[          ] 1x1 map: worst relative error of E/pi over the irradiance map " << worst << "\n";
+  EXPECT_LE(worst, 5e-5);
+}
+
+// The convolution at the irradiance map's normals, plus the suns taken out of it, against the brute
+// force over every texel: the same integral over the same cells (the map is finer than neither
+// grid), so only summation order and float storage differ. The sun texel is 2 x 2 cells of the grid,
+// each over 1% of the power: taken out as four suns.
+TEST(EnvironmentMap, ConvolutionMatchesTheBruteForceAtItsNormals) {
+  testing::TempDir dir;
+  const int width = 128, height = 64;
+  EnvironmentLight light;
+  light.file = write_map(dir.path / "sky.exr", width, height, [&](int x, int y) { return sky_texel(x, y, width, height); });
+  const IrradianceMap irradiance = convolve_irradiance(load_radiance_grid(light.file));
+  const ReferenceMap& map = reference_map(light);
+  double worst = 0.0;
+  for (int y = 0; y < irradiance.height; y += 3)
+    for (int x = 0; x < irradiance.width; x += 5) {
+      const glm::dvec3 n = equirect_direction((x + 0.5) / irradiance.width, (y + 0.5) / irradiance.height);
+      const glm::dvec3 want = reference_environment_light(light, map, n);
+      glm::dvec3 suns(0.0);
+      for (const EnvironmentSunCell& sun : irradiance.suns) suns += sun.color * std::max(0.0, glm::dot(n, sun.direction));
+      for (int c = 0; c < 3; ++c) {
+        const double got = irradiance.rgb[3 * (static_cast<std::size_t>(y) * irradiance.width + x) + c] + suns[c];
+        worst = std::max(worst, std::abs(got - want[c]) / std::max(want[c], 1e-3));
+      }
+    }
+  std::cout << "[          ] sky with a sun texel: convolution against brute force, worst relative " << worst << "\n";
+  EXPECT_EQ(irradiance.suns.size(), 4u);
+  EXPECT_LE(worst, 1e-5);
+}
+
+// Every shaded pixel of a random G-buffer lit by the environment alone, kernel against reference.
+ErrorStats environment_error(PhongShader& shader, const Scene& scene, const GBuffer& gbuffer, const char* what) {
+  ShadeOptions options;
+  options.shadows.mode = ShadowMode::off;
+  const ShadeResult result = shader.shade(scene, gbuffer, options);
+  EXPECT_NE(result.build_options.find("-DENVIRONMENT=1"), std::string::npos);
+  const ErrorStats error =
+      compare_images(result.image, reference_image(scene, gbuffer), 1e-3, testing::shaded_mask(gbuffer));
+  std::cout << "[          ] " << what << ": " << testing::describe_worst(error) << "\n";
+  return error;
+}
+
+std::pair<Scene, GBuffer> environment_only(unsigned seed) {
+  testing::RandomSceneSpec spec;
+  spec.point_lights = spec.directional_lights = 0;
+  auto [scene, gbuffer] = testing::random_scene(spec, seed);
+  scene.ambient = glm::dvec3(0.0);
+  return {scene, gbuffer};
+}
+
+TEST(EnvironmentShading, AUniformWorldLightsKdTimesItsColour) {
+  PHONGCL_REQUIRE_DEVICE(shader);
+  auto [scene, gbuffer] = environment_only(71);
+  scene.environment = EnvironmentLight{};
+  scene.environment->color = {0.3, 0.6, 0.9};
+  scene.environment->strength = 1.5;
+  // The kernel's kd C s is exact to a few roundings; the reference's midpoint rule over 256 x 128
+  // cells is 3.3e-5 off for a uniform world (AOneTexelMapIsAUniformWorld).
+  EXPECT_LE(environment_error(shader, scene, gbuffer, "uniform world").max_rel, 5e-5);
+}
+
+// The bilinear lookup between the irradiance map's normals is the approximation: 2.9e-4 worst
+// (relative, 1e-3 floor) measured on the sky whose sun (16 cells of the grid) comes as directional
+// lights; left in the map it was 0.30 off at the sun's horizon. The reference integrates every
+// texel for each pixel.
+TEST(EnvironmentShading, AMapAgreesWithTheBruteForceReference) {
+  PHONGCL_REQUIRE_DEVICE(shader);
+  testing::TempDir dir;
+  auto [scene, gbuffer] = environment_only(72);
+  const int width = 64, height = 32;
+  scene.environment = EnvironmentLight{};
+  scene.environment->file = write_map(dir.path / "sky.exr", width, height, [&](int x, int y) { return sky_texel(x, y, width, height); });
+  for (double rotation : {0.0, 75.0}) {
+    scene.environment->rotation_deg = rotation;
+    scene.environment->strength = 0.5;
+    const ErrorStats error = environment_error(shader, scene, gbuffer, rotation == 0.0 ? "sky, rotation 0" : "sky, rotation 75");
+    EXPECT_LE(error.max_rel, 1e-3);
+  }
+}
+
+// The mapping's orientation: a map bright in one texel column only lights normals facing it. The
+// middle column faces +X (Cycles' equirectangular mapping); rotation r turns the lookup by +r about Z.
+TEST(EnvironmentShading, TheMiddleColumnLooksAlongPlusX) {
+  testing::TempDir dir;
+  EnvironmentLight light;
+  light.file = write_map(dir.path / "column.exr", 64, 32, [](int x, int) { return glm::dvec3(x == 32 || x == 31 ? 1.0 : 0.0); });
+  const IrradianceMap irradiance = convolve_irradiance(load_radiance_grid(light.file));
+  auto at = [&](double u) { return irradiance.rgb[3 * (static_cast<std::size_t>(irradiance.height / 2) * irradiance.width +
+                                                       static_cast<std::size_t>(u * irradiance.width))]; };
+  EXPECT_GT(at(0.5), 10.0f * at(0.0));  // the middle faces the bright column, the edge faces away
+  EXPECT_NEAR(glm::length(equirect_direction(0.5, 0.5) - glm::dvec3(1, 0, 0)), 0.0, 1e-12);
+  EXPECT_NEAR(glm::length(equirect_direction(0.75, 0.5) - glm::dvec3(0, -1, 0)), 0.0, 1e-12);
+  const ReferenceMap& map = reference_map(light);
+  light.rotation_deg = 90.0;  // the lookup along +Y is turned to -X: away from the column
+  EXPECT_LT(reference_environment_light(light, map, {0, 1, 0}).x, 0.1 * reference_environment_light(light, map, {0, -1, 0}).x);
+}
+
+// Spheres and a box's lid on a floor under a uniform world: the ratio estimator's visible fraction
+// against the reference's 4,096 cosine-weighted directions per pixel. A fraction from N rays of a
+// 0/1 visibility has a standard deviation of at most 1/(2 sqrt N); the rms over the image is held to it.
+// A floor and a sphere resting on it under a uniform white world.
+Scene sphere_on_floor() {
+  Scene scene;
+  scene.camera.eye = {0.0, 4.0, 6.0};
+  scene.camera.look_at = {0.0, 0.4, 0.0};
+  scene.camera.width = 40;
+  scene.camera.height = 30;
+  Material grey;
+  grey.kd = glm::dvec3(0.8);
+  scene.materials = {grey};
+  Object floor, ball;
+  floor.kind = Object::Kind::plane;
+  floor.normal = {0, 1, 0};
+  ball.kind = Object::Kind::sphere;
+  ball.center = {-0.5, 0.8, 0.0};
+  ball.radius = 0.8;
+  scene.objects = {floor, ball};
+  scene.environment = EnvironmentLight{};
+  scene.environment->color = glm::dvec3(1.0);
+  return scene;
+}
+
+TEST(EnvironmentShading, GeometryVisibilityAgreesWithTheReference) {
+  PHONGCL_REQUIRE_DEVICE(shader);
+  const Scene scene = sphere_on_floor();
+  const GBuffer gbuffer = generate_gbuffer(scene);
+  const SceneShapes shapes = flatten_objects(scene.objects);
+  SoftVisibility visibility;
+  visibility.environment = [&](const SurfacePoint& point) {
+    return reference_environment_visibility(shapes, point, scene.camera.eye, PHONGCL_SHADOW_OFFSET_FLOAT);
+  };
+  const Image reference = reference_image(scene, gbuffer, {}, visibility);
+  for (int rays : {16, 256}) {
+    ShadeOptions options;
+    options.shadows.mode = ShadowMode::geometry;
+    options.shadows.environment_rays = rays;
+    const ShadeResult result = shader.shade(scene, gbuffer, options);
+    const Image& image = result.image;
+    EXPECT_NE(result.build_options.find("-DENVIRONMENT_SHADOWS=1"), std::string::npos);
+    double sum_sq = 0.0, worst = 0.0;
+    std::size_t count = 0, occluded = 0;
+    for (std::size_t i = 0; i < gbuffer.pixel_count(); ++i) {
+      if (classify_pixel(gbuffer, i) != PixelClass::shaded) continue;
+      const double unoccluded = 0.8;  // kd * C: the fraction's scale
+      const double difference = (image.pixel(i)[0] - reference.pixel(i)[0]) / unoccluded;
+      sum_sq += difference * difference;
+      worst = std::max(worst, std::abs(difference));
+      occluded += reference.pixel(i)[0] < 0.95 * unoccluded;
+      ++count;
+    }
+    const double rms = std::sqrt(sum_sq / static_cast<double>(count));
+    std::cout << "[          ] " << rays << " rays: visible fraction against the reference over " << count
+              << " pixels (" << occluded << " under 95% visible): rms " << rms << ", worst " << worst << "\n";
+    EXPECT_GT(occluded, count / 10) << "occlusion to get wrong";
+    EXPECT_LE(rms, 1.0 / (2.0 * std::sqrt(static_cast<double>(rays))));
+  }
+}
+
+// Screen space marches the same rays across the depth plane: it sees what the camera sees, so it
+// is held to darkening the pixels the reference finds mostly hidden (under 70% visible: the floor
+// at the sphere's contact), not to the reference's values (docs/environment.md gives its agreement).
+TEST(EnvironmentShading, ScreenSpaceVisibilityDarkensContactPixels) {
+  PHONGCL_REQUIRE_DEVICE(shader);
+  const Scene scene = sphere_on_floor();
+  const GBuffer gbuffer = generate_gbuffer(scene);
+  const SceneShapes shapes = flatten_objects(scene.objects);
+  ShadeOptions options;
+  options.shadows.mode = ShadowMode::screen;
+  options.shadows.environment_rays = 64;
+  const ShadeResult result = shader.shade(scene, gbuffer, options);
+  EXPECT_NE(result.build_options.find("-DSCREEN_SHADOWS=1"), std::string::npos);
+  double hidden_sum = 0.0;
+  std::size_t hidden = 0;
+  for (std::size_t i = 0; i < gbuffer.pixel_count(); ++i) {
+    if (classify_pixel(gbuffer, i) != PixelClass::shaded) continue;
+    const SurfacePoint point = reference_surface(scene, gbuffer, i);
+    if (reference_environment_visibility(shapes, point, scene.camera.eye, PHONGCL_SHADOW_OFFSET_FLOAT, 8) >= 0.7) continue;
+    hidden_sum += result.image.pixel(i)[0] / 0.8;  // kd * C: the visible fraction's scale
+    ++hidden;
+  }
+  ASSERT_GT(hidden, 10u);
+  std::cout << "[          ] screen space, 64 rays: " << hidden << " pixels under 70% visible average "
+            << hidden_sum / static_cast<double>(hidden) << " visible\n";
+  EXPECT_LT(hidden_sum / static_cast<double>(hidden), 0.85);
+}
+
+TEST(EnvironmentShading, CompiledOutWithoutAnEnvironment) {
+  PHONGCL_REQUIRE_DEVICE(shader);
+  auto [scene, gbuffer] = environment_only(73);
+  scene.lights.push_back({LightType::directional, {}, {0, -1, 0}, glm::dvec3(1.0)});
+  const ShadeResult result = shader.shade(scene, gbuffer, ShadeOptions{});
+  EXPECT_NE(result.build_options.find("-DENVIRONMENT=0"), std::string::npos) << result.build_options;
+  EXPECT_NE(result.build_options.find("-DENVIRONMENT_SHADOWS=0"), std::string::npos) << result.build_options;
+}
+
+}  // namespace
+}  // namespace phongcl
