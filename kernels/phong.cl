@@ -76,9 +76,8 @@ typedef struct {
   UNIFORM_SPACE const SoftLight* point_soft;         /* SOFT_SHADOWS: rays and size per point light (1 ray: hard) */
   UNIFORM_SPACE const SoftLight* directional_soft;   /* SOFT_SHADOWS: the same per directional light */
   UNIFORM_SPACE const SoftLight* area_soft;          /* SOFT_SHADOWS: the same per area light */
-  uint first_pixel;                                  /* SOFT_SHADOWS: the frame pixel of the launch's slot 0 */
-  uint pixel;                                        /* ENVIRONMENT_SHADOWS: the frame pixel of the work-item's
-                                                        first lane: each pixel's own lattice shift */
+  uint pixel;                                        /* SOFT_SHADOWS, ENVIRONMENT_SHADOWS: the frame pixel of the
+                                                        work-item's first lane: each pixel's own lattice shift */
   const ShadowInputs* shadows;                       /* SHADOWS: what the shadow rays test (shadow.h) */
   UNIFORM_SPACE const uint* point_groups;            /* LIGHT_GROUPS: point light i's group, LIGHT_GROUPS for none */
   UNIFORM_SPACE const uint* directional_groups;      /* LIGHT_GROUPS: the same per directional light */
@@ -248,7 +247,7 @@ static inline SHADOW_INLINE realv shadowed_weight(realv weight, const Surface* s
     const Emitter emitter =
         directional ? sun_emitter(where, soft->size) : sphere_emitter(where, soft->size, surface->p);
     const realv visible = emitter_visibility(lights->shadows, surface->p, surface->n, &emitter, cone, casts - 1,
-                                             soft->rays, lattice_shift(lights->first_pixel, stream), pending);
+                                             soft->rays, lattice_shift(lights->pixel, stream), pending);
     return SELECT(visible > 0, weight * visible, 0);
   }
   const intv blocked =
@@ -346,7 +345,7 @@ static inline void shadow_area_light(realv* irradiance, realv* highlight, const 
   if (rays > 1) {
     const Emitter emitter = area_emitter(light);
     const realv visible = emitter_visibility(lights->shadows, surface->p, surface->n, &emitter, 0, casts - 1, rays,
-                                             lattice_shift(lights->first_pixel, AREA_STREAMS + (uint)k), pending);
+                                             lattice_shift(lights->pixel, AREA_STREAMS + (uint)k), pending);
     *irradiance *= visible;
     *highlight *= visible;
     return;
@@ -688,7 +687,6 @@ __kernel void phong_shade(
       .point_soft = soft,
       .directional_soft = soft + frame.point_count,
       .area_soft = soft + frame.point_count + frame.directional_count,
-      .first_pixel = frame.first_pixel,
       .pixel = frame.first_pixel + first_pixel,
       .shadows = &shadows,
       .point_groups = groups,
