@@ -202,14 +202,17 @@ typedef struct {
  * diffuse light) is width x height texels, equirectangular in the map's frame. to_map's rows take an
  * eye-relative direction into that frame (the world's orientation, then the light's rotation about
  * +Z). scale is the strength times 2^-radiance_exponent. The map's brightest cells (a sun) are taken
- * out of it and come as sun_count EnvironmentSuns: directional lights, each with a shadow ray. */
+ * out of it and come as sun_count EnvironmentSuns: directional lights, each with a shadow ray. The
+ * radiance without them (sky_width x sky_height texels after the irradiance's) is what a blocked
+ * visibility ray takes away. */
 typedef struct {
   layout_float to_map[12]; /* three rows of xyz, w unused */
   layout_float scale;
   layout_int width, height;
   layout_uint rays;        /* ENVIRONMENT_SHADOWS: visibility rays per pixel */
   layout_int sun_count;
-  layout_float padding[3];
+  layout_int sky_width, sky_height; /* ENVIRONMENT_SHADOWS: the radiance without the suns, */
+  layout_uint sky_offset;           /* at this float offset in the texels */
 } EnvironmentRecord;
 
 /* A bright cell of the environment as a directional light: unit direction toward it (eye frame) and

@@ -11,7 +11,7 @@
  * specular one by quadrature), looped over untiled; their shadows are one ray to the centre, or
  * with SOFT_SHADOWS the visible fraction of the emitter from several (soft_shadow.h).
  * With ENVIRONMENT the world's light adds its irradiance from a precomputed map to the diffuse sum,
- * with ENVIRONMENT_SHADOWS times the fraction of its visibility rays that leave the scene (environment.h).
+ * with ENVIRONMENT_SHADOWS less the sky its blocked visibility rays point at (environment.h).
  * With SHADOWS a light that casts shadows is multiplied by its visibility (shadow.h: a ray traced
  * against the scene's geometry, or with SCREEN_SHADOWS marched across the frame's depth plane).
  * With LIGHT_GROUPS the lights are summed group by group, and each group's terms also written apart.
@@ -383,17 +383,15 @@ static inline void add_area_light(LightSums* sums, const Surface* surface, const
 }
 
 /* What the environment adds: E(n) / pi to the diffuse sum (kd times it is the light a Lambertian
- * surface reflects), with ENVIRONMENT_SHADOWS times its visible fraction. No specular lobe yet. */
+ * surface reflects), with ENVIRONMENT_SHADOWS from the directions nothing blocks. No specular lobe yet. */
 static inline void add_environment(LightSums* sums, const Surface* surface, const Lights* lights) {
   UNIFORM_SPACE const EnvironmentRecord* environment = lights->environment;
   vec3 light = environment_irradiance(environment, lights->environment_texels, surface->n);
   const intv pending =
       LANE_MASK(surface->material != PHONGCL_BACKGROUND) & LANE_MASK(dot3(surface->n, surface->n) > 0);
-  if (ENVIRONMENT_SHADOWS) {
-    const realv visible = environment_visibility(lights->shadows, surface->p, surface->n, environment->rays,
-                                                 lattice_shift(lights->pixel, ENVIRONMENT_STREAM), pending);
-    light = scale3(light, visible);
-  }
+  if (ENVIRONMENT_SHADOWS)
+    light = environment_visible_light(lights->shadows, environment, lights->environment_texels, light, surface->p, surface->n,
+                                      lattice_shift(lights->pixel, ENVIRONMENT_STREAM), pending);
   const vec3 suns =
       environment_suns(lights->environment_suns, environment->sun_count, lights->shadows, surface->p, surface->n, pending);
   light = add3(light, scale3(suns, (realv)environment->scale));

@@ -45,10 +45,14 @@ std::filesystem::path write_map(const std::filesystem::path& file, int width, in
 
 // A sky: a gradient from a blue zenith to a dark ground, and a sun of one texel 2,000 times brighter
 // (the stability case: a single bright texel carries most of the light).
-glm::dvec3 sky_texel(int x, int y, int width, int height) {
-  if (x == width / 3 && y == height / 4) return {2000.0, 1800.0, 1500.0};
+glm::dvec3 gradient_texel(int y, int height) {
   const double up = 1.0 - (y + 0.5) / height;  // 1 at the top row
   return glm::dvec3(0.2, 0.3, 0.6) * up + glm::dvec3(0.05, 0.04, 0.03) * (1.0 - up);
+}
+
+glm::dvec3 sky_texel(int x, int y, int width, int height) {
+  if (x == width / 3 && y == height / 4) return {2000.0, 1800.0, 1500.0};
+  return gradient_texel(y, height);
 }
 
 Scene scene_with(const std::string& light_json, const std::filesystem::path& source) {
@@ -213,9 +217,6 @@ TEST(EnvironmentShading, TheMiddleColumnLooksAlongPlusX) {
   EXPECT_LT(reference_environment_light(light, map, {0, 1, 0}).x, 0.1 * reference_environment_light(light, map, {0, -1, 0}).x);
 }
 
-// Spheres and a box's lid on a floor under a uniform world: the ratio estimator's visible fraction
-// against the reference's 4,096 cosine-weighted directions per pixel. A fraction from N rays of a
-// 0/1 visibility has a standard deviation of at most 1/(2 sqrt N); the rms over the image is held to it.
 // A floor and a sphere resting on it under a uniform white world.
 Scene sphere_on_floor() {
   Scene scene;
@@ -238,39 +239,57 @@ Scene sphere_on_floor() {
   return scene;
 }
 
+// The kernel's visible light against the reference's, which traces every texel's direction: under
+// a uniform world and under a sky whose zenith is 12 times brighter than its ground, where what a
+// blocked ray takes away depends on where it points. Each blocked ray takes the sky's light in its
+// direction away: a fraction 1/N of the pixel's unoccluded light where the sky is uniform, so that
+// from N rays of a 0/1 visibility the rms over the image is at most 1/(2 sqrt N) of it; the
+// gradient's zenith, brighter than its average, doubles that bound. Unbiased, the error falls as
+// 1/sqrt N: 16 times the rays make it 4 times smaller, held to 3 (a bias leaves a floor: the
+// visible fraction times the unoccluded light stopped at 2.5 under the sky).
 TEST(EnvironmentShading, GeometryVisibilityAgreesWithTheReference) {
   PHONGCL_REQUIRE_DEVICE(shader);
-  const Scene scene = sphere_on_floor();
+  testing::TempDir dir;
+  Scene scene = sphere_on_floor();
   const GBuffer gbuffer = generate_gbuffer(scene);
   const SceneShapes shapes = flatten_objects(scene.objects);
-  SoftVisibility visibility;
-  visibility.environment = [&](const SurfacePoint& point) {
-    return reference_environment_visibility(shapes, point, scene.camera.eye, PHONGCL_SHADOW_OFFSET_FLOAT);
-  };
-  const Image reference = reference_image(scene, gbuffer, {}, visibility);
-  for (int rays : {16, 256}) {
-    ShadeOptions options;
-    options.shadows.mode = ShadowMode::geometry;
-    options.shadows.environment_rays = rays;
-    const ShadeResult result = shader.shade(scene, gbuffer, options);
-    const Image& image = result.image;
-    EXPECT_NE(result.build_options.find("-DENVIRONMENT_SHADOWS=1"), std::string::npos);
-    double sum_sq = 0.0, worst = 0.0;
-    std::size_t count = 0, occluded = 0;
-    for (std::size_t i = 0; i < gbuffer.pixel_count(); ++i) {
-      if (classify_pixel(gbuffer, i) != PixelClass::shaded) continue;
-      const double unoccluded = 0.8;  // kd * C: the fraction's scale
-      const double difference = (image.pixel(i)[0] - reference.pixel(i)[0]) / unoccluded;
-      sum_sq += difference * difference;
-      worst = std::max(worst, std::abs(difference));
-      occluded += reference.pixel(i)[0] < 0.95 * unoccluded;
-      ++count;
+  const int width = 64, height = 32;
+  const auto sky = write_map(dir.path / "sky.exr", width, height, [&](int, int y) { return gradient_texel(y, height); });
+  for (const bool uniform : {true, false}) {
+    if (!uniform) scene.environment->file = sky;
+    const EnvironmentLight& world = *scene.environment;
+    SoftVisibility visibility;
+    visibility.environment = [&](const SurfacePoint& point) {
+      return reference_environment_visible_light(world, reference_map(world), shapes, point, scene.camera.eye,
+                                                 PHONGCL_SHADOW_OFFSET_FLOAT);
+    };
+    const Image reference = reference_image(scene, gbuffer, {}, visibility);
+    std::vector<double> rms_at;
+    for (int rays : {16, 256}) {
+      ShadeOptions options;
+      options.shadows.mode = ShadowMode::geometry;
+      options.shadows.environment_rays = rays;
+      const ShadeResult result = shader.shade(scene, gbuffer, options);
+      EXPECT_NE(result.build_options.find("-DENVIRONMENT_SHADOWS=1"), std::string::npos);
+      double sum_sq = 0.0;
+      std::size_t count = 0, occluded = 0;
+      for (std::size_t i = 0; i < gbuffer.pixel_count(); ++i) {
+        if (classify_pixel(gbuffer, i) != PixelClass::shaded) continue;
+        const SurfacePoint point = reference_surface(scene, gbuffer, i);
+        const double unoccluded = 0.8 * reference_environment_light(world, reference_map(world), point.normal).x;
+        const double difference = (result.image.pixel(i)[0] - reference.pixel(i)[0]) / unoccluded;
+        sum_sq += difference * difference;
+        occluded += reference.pixel(i)[0] < 0.95 * unoccluded;
+        ++count;
+      }
+      const double rms = std::sqrt(sum_sq / static_cast<double>(count));
+      std::cout << "[          ] " << (uniform ? "uniform world, " : "sky, ") << rays << " rays: against the reference over "
+                << count << " pixels (" << occluded << " under 95% of their unoccluded light): rms " << rms << "\n";
+      EXPECT_GT(occluded, count / 10) << "occlusion to get wrong";
+      EXPECT_LE(rms, (uniform ? 1.0 : 2.0) / (2.0 * std::sqrt(static_cast<double>(rays))));
+      rms_at.push_back(rms);
     }
-    const double rms = std::sqrt(sum_sq / static_cast<double>(count));
-    std::cout << "[          ] " << rays << " rays: visible fraction against the reference over " << count
-              << " pixels (" << occluded << " under 95% visible): rms " << rms << ", worst " << worst << "\n";
-    EXPECT_GT(occluded, count / 10) << "occlusion to get wrong";
-    EXPECT_LE(rms, 1.0 / (2.0 * std::sqrt(static_cast<double>(rays))));
+    EXPECT_GE(rms_at[0] / rms_at[1], 3.0) << (uniform ? "uniform world" : "sky") << ": the error stopped falling with rays";
   }
 }
 

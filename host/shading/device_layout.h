@@ -16,7 +16,8 @@ static_assert(offsetof(FrameScalars, background) == 16 && offsetof(FrameScalars,
               offsetof(FrameScalars, shadow_grid) == 180 && offsetof(FrameScalars, shadow) == 200 &&
               offsetof(FrameScalars, first_pixel) == 60 && sizeof(FrameScalars) == 200 + sizeof(ShadowFrame));
 static_assert(sizeof(EnvironmentRecord) == 80 && offsetof(EnvironmentRecord, scale) == 48 &&
-              offsetof(EnvironmentRecord, rays) == 60 && offsetof(EnvironmentRecord, sun_count) == 64);
+              offsetof(EnvironmentRecord, rays) == 60 && offsetof(EnvironmentRecord, sun_count) == 64 &&
+              offsetof(EnvironmentRecord, sky_offset) == 76);
 static_assert(sizeof(EnvironmentSun) == 32 && offsetof(EnvironmentSun, color) == 16);
 static_assert(sizeof(SceneTables) == 48 && sizeof(TileListTables) == 16 && sizeof(ShadowGeometryTables) == 20 &&
               sizeof(ShadowListTables) == 12);

@@ -17,7 +17,11 @@ std::shared_ptr<const IrradianceMap> environment_irradiance(const Scene& scene) 
 
 double brightest_environment(const Scene& scene, const IrradianceMap& irradiance) {
   if (!scene.environment) return 0.0;
+  // A blocked visibility ray subtracts a sky texel: as bright as E / pi at most where the sky is
+  // uniform, brighter where it is not.
   double brightest = irradiance.rgb.empty() ? 0.0 : *std::max_element(irradiance.rgb.begin(), irradiance.rgb.end());
+  if (!irradiance.sky.rgb.empty())
+    brightest = std::max<double>(brightest, *std::max_element(irradiance.sky.rgb.begin(), irradiance.sky.rgb.end()));
   for (const EnvironmentSunCell& sun : irradiance.suns) brightest += std::max({sun.color.x, sun.color.y, sun.color.z});
   return brightest * scene.environment->strength;
 }
@@ -40,8 +44,12 @@ PackedEnvironment pack_environment(const Scene& scene, const IrradianceMap& irra
   record.height = irradiance.height;
   record.rays = static_cast<layout_uint>(rays);
   record.sun_count = static_cast<layout_int>(irradiance.suns.size());
+  record.sky_width = irradiance.sky.width;
+  record.sky_height = irradiance.sky.height;
+  record.sky_offset = static_cast<layout_uint>(irradiance.rgb.size());
   packed.record.push_back(record);
   packed.texels.assign(irradiance.rgb.begin(), irradiance.rgb.end());
+  packed.texels.insert(packed.texels.end(), irradiance.sky.rgb.begin(), irradiance.sky.rgb.end());
   for (const EnvironmentSunCell& sun : irradiance.suns) {
     EnvironmentSun packed_sun{};
     store3(packed_sun.direction, glm::transpose(to_map) * sun.direction);  // to_map is a rotation

@@ -13,8 +13,8 @@ namespace phongcl {
 // uniform colour's; with no environment an empty map. Throws InputError for a bad file.
 std::shared_ptr<const IrradianceMap> environment_irradiance(const Scene& scene);
 
-// The brightest E / pi (bounded: the map's brightest plus every sun's) times the strength, for the
-// radiance scale; 0 without an environment.
+// The brightest E / pi or sky texel (bounded: the larger of the map's and the sky's brightest, plus
+// every sun's) times the strength, for the radiance scale; 0 without an environment.
 double brightest_environment(const Scene& scene, const IrradianceMap& irradiance);
 
 // One record (none without an environment), whose scale is `scale` * strength, and the map's texels.

@@ -439,7 +439,7 @@ void decide_memory(Recipe& recipe, const Scene& scene, const DeviceInfo& device)
                                    scene.area_lights.size() * sizeof(AreaLightRecord) +
                                    2 * lights * sizeof(layout_uint) + kSceneTables * kSceneTableAlignment +
                                    (scene.environment ? sizeof(EnvironmentRecord) + sizeof(layout_uint) +
-                                                            3 * kIrradianceWidth * kIrradianceHeight * sizeof(float) +
+                                                            2 * 3 * kIrradianceWidth * kIrradianceHeight * sizeof(float) +  // E / pi and the sky
                                                             kMaxSunCells * sizeof(EnvironmentSun)
                                                       : 0);
   const bool constant = recipe.specialised && device.max_constant_args >= 1 && bytes <= device.max_constant_buffer;

@@ -35,11 +35,12 @@ using LightReach = std::function<bool(const SurfacePoint& point, const Light& li
 // Soft shadows: the visible fraction of a light's emitter from a point, which its light is multiplied
 // by (reference_soft_shadows.h). Where set, they decide the lights that cast shadows, not LightReach:
 // `area` every area light, `sized` point, spot and directional lights with a size.
-// `environment`: the visible fraction of the environment (reference_environment.h), where it casts shadows.
+// `environment`: the environment's light over the directions nothing blocks, for kd = 1
+// (reference_environment.h), where it casts shadows.
 struct SoftVisibility {
   std::function<double(const SurfacePoint& point, const AreaLight& light)> area;
   std::function<double(const SurfacePoint& point, const Light& light)> sized;
-  std::function<double(const SurfacePoint& point)> environment{};
+  std::function<glm::dvec3(const SurfacePoint& point)> environment{};
 };
 
 // A spot's cone(l) for unit l from the surface towards it: the smoothstep of its penumbra (a step

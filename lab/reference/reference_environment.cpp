@@ -46,14 +46,21 @@ const ReferenceMap& reference_map(const EnvironmentLight& light) {
   return found->second;
 }
 
-glm::dvec3 reference_environment_light(const EnvironmentLight& light, const ReferenceMap& map, const glm::dvec3& n) {
+namespace {
+
+// strength (1/pi) sum L(w) max(0, n.w) dw over the map's texels, turned by the light's rotation
+// about +Z as Blender's Mapping node turns the lookup, over the directions `visible` lets through
+// (given in n's frame).
+template <class Visible>
+glm::dvec3 integrate_map(const EnvironmentLight& light, const ReferenceMap& map, const glm::dvec3& n, Visible visible) {
   const double length = glm::length(n);
   if (!(length > 0.0)) return glm::dvec3(0.0);
   // The lookup direction: into the world, then the Mapping node's rotation about +Z.
-  const glm::dvec3 world = light.to_world * (n / length);
   const double turn = light.rotation_deg * pi / 180.0;
-  const glm::dvec3 m(std::cos(turn) * world.x - std::sin(turn) * world.y,
-                     std::sin(turn) * world.x + std::cos(turn) * world.y, world.z);
+  const glm::dmat3 rotate_z(glm::dvec3(std::cos(turn), std::sin(turn), 0.0), glm::dvec3(-std::sin(turn), std::cos(turn), 0.0),
+                            glm::dvec3(0.0, 0.0, 1.0));  // columns
+  const glm::dmat3 to_map = rotate_z * light.to_world;
+  const glm::dvec3 m = to_map * (n / length);
   // Cells at most 1/256 of the turn wide and 1/128 of the half turn tall.
   const int split_x = (256 + map.width - 1) / map.width, split_y = (128 + map.height - 1) / map.height;
   const int columns = map.width * split_x, rows = map.height * split_y;
@@ -70,10 +77,33 @@ glm::dvec3 reference_environment_light(const EnvironmentLight& light, const Refe
       const double cosine = glm::dot(m, w);
       if (cosine <= 0.0) continue;
       const double* texel = &map.rgb[3 * (static_cast<std::size_t>(y) * map.width + column / split_x)];
+      if (!visible(glm::transpose(to_map) * w)) continue;  // to_map is a rotation
       sum += glm::dvec3(texel[0], texel[1], texel[2]) * (cosine * cell_solid_angle);
     }
   }
   return sum * (light.strength / pi);
+}
+
+}  // namespace
+
+glm::dvec3 reference_environment_light(const EnvironmentLight& light, const ReferenceMap& map, const glm::dvec3& n) {
+  return integrate_map(light, map, n, [](const glm::dvec3&) { return true; });
+}
+
+glm::dvec3 reference_environment_visible_light(const EnvironmentLight& light, const ReferenceMap& map,
+                                               const SceneShapes& shapes, const SurfacePoint& point, const glm::dvec3& eye,
+                                               double offset_scale) {
+  const double length = glm::length(point.normal);
+  if (!(length > 0.0)) return glm::dvec3(0.0);
+  const glm::dvec3 n = point.normal / length;
+  return integrate_map(light, map, n, [&](const glm::dvec3& d) {
+    Light sky;
+    sky.type = LightType::directional;
+    sky.direction = -d;
+    ReferenceShadowRay ray;
+    if (!reference_shadow_ray_from(point.position, n, sky, eye, offset_scale, ray)) return false;
+    return reference_shadow_ray(shapes, ray.origin, ray.direction, ray.t_max) == RayOutcome::free;
+  });
 }
 
 double reference_environment_visibility(const SceneShapes& shapes, const SurfacePoint& point, const glm::dvec3& eye,

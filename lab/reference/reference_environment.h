@@ -29,6 +29,13 @@ const ReferenceMap& reference_map(const EnvironmentLight& light);
 // rotation about +Z as Blender's Mapping node turns the lookup.
 glm::dvec3 reference_environment_light(const EnvironmentLight& light, const ReferenceMap& map, const glm::dvec3& n);
 
+// The same over the directions nothing in `shapes` blocks from the point: every texel's direction
+// traced as a directional light's shadow ray (the kernel's offsets, `offset_scale`), so that what the
+// scene hides is the map's own light there, the sun's included.
+glm::dvec3 reference_environment_visible_light(const EnvironmentLight& light, const ReferenceMap& map,
+                                               const SceneShapes& shapes, const SurfacePoint& point, const glm::dvec3& eye,
+                                               double offset_scale);
+
 // The cosine-weighted fraction of the hemisphere about the point's normal that nothing blocks:
 // grid x 4 grid cells of equal cosine-weighted measure (sin^2 of the polar angle and the azimuth
 // evenly cut), a ray through each cell's middle leaving as a directional light's shadow ray does.

@@ -139,8 +139,8 @@ ShadingTerms reference_shade_point(const Scene& scene, const SurfacePoint& point
   // The environment: its irradiance by brute force over the map (reference_environment.h).
   if (scene.environment && n != glm::dvec3(0.0)) {
     const EnvironmentLight& world = *scene.environment;
-    const double visible = soft.environment && world.shadows ? soft.environment(point) : 1.0;
-    diffuse += reference_environment_light(world, reference_map(world), n) * visible;
+    diffuse += soft.environment && world.shadows ? soft.environment(point)
+                                                 : reference_environment_light(world, reference_map(world), n);
   }
   if (point.specular_model == SpecularModel::principled) {
     // Area lights and the environment: Lambert's irradiance times the diffuse colour, no highlight (as the
