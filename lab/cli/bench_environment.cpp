@@ -10,6 +10,7 @@
 
 #include "cl/compute_context.h"
 #include "cli/bench_arguments.h"
+#include "cli/shadow_image_error.h"
 #include "raycast/raycast.h"
 #include "report/statistics.h"
 #include "shading/phong_shader.h"
@@ -27,28 +28,6 @@ struct EnvironmentVariant {
   ShadeOptions options;
   double agreement = 0.0, mean_abs_error = 0.0;
 };
-
-// The fraction of shaded pixels within kEnvironmentAgreement of `converged` (of the unoccluded pixel's largest
-// channel), and the mean absolute error over R, G, B.
-void compare_environment(const Image& image, const Image& converged, const Image& unoccluded, const GBuffer& gbuffer,
-             EnvironmentVariant& variant) {
-  std::size_t shaded = 0, agree = 0;
-  double error = 0.0;
-  for (std::size_t i = 0; i < gbuffer.pixel_count(); ++i) {
-    if (classify_pixel(gbuffer, i) != PixelClass::shaded) continue;
-    ++shaded;
-    double largest = 0.0, reach = 0.0;
-    for (int c = 0; c < 3; ++c) {
-      const double miss = std::abs(static_cast<double>(image.pixel(i)[c]) - converged.pixel(i)[c]);
-      largest = std::max(largest, miss);
-      reach = std::max(reach, static_cast<double>(unoccluded.pixel(i)[c]));
-      error += miss;
-    }
-    agree += largest <= kEnvironmentAgreement * reach;
-  }
-  variant.agreement = static_cast<double>(agree) / static_cast<double>(std::max<std::size_t>(shaded, 1));
-  variant.mean_abs_error = error / (3.0 * static_cast<double>(std::max<std::size_t>(shaded, 1)));
-}
 
 }  // namespace
 
@@ -79,8 +58,12 @@ void run_environment_bench(const BenchArguments& args) {
 
   std::vector<Image> images;  // the untimed warm-up builds each program
   for (const EnvironmentVariant& variant : variants) images.push_back(shader.shade(scene, gbuffer, variant.options).image);
-  for (std::size_t v = 0; v < variants.size(); ++v)
-    compare_environment(images[v], images[converged_index], images.front(), gbuffer, variants[v]);
+  for (std::size_t v = 0; v < variants.size(); ++v) {
+    const ShadowImageError error =
+        shadow_image_error(images[v], images[converged_index], images.front(), gbuffer, kEnvironmentAgreement);
+    variants[v].agreement = 1.0 - error.beyond;
+    variants[v].mean_abs_error = error.mean_abs_error;
+  }
   std::vector<std::vector<double>> times(variants.size());
   for (int round = 0; round < args.runs; ++round)
     for (std::size_t v = 0; v < variants.size(); ++v)
