@@ -71,44 +71,40 @@ void OpenClShadowRays::set_frame(const PackedFrame& frame, int width, int height
   light_count_ = lights.size();
 }
 
-ShadowRaySet OpenClShadowRays::make_rays() {
+ShadowRaySet OpenClShadowRays::gather_frames(std::size_t frames,
+                                             const std::function<void(std::size_t, const cl::Buffer&)>& launch) {
   const cl::Buffer ray_buffer(compute_.context, CL_MEM_WRITE_ONLY, kRayPlanes * stride_ * sizeof(float));
-  cl::KernelFunctor<cl::Buffer, cl::Buffer, cl_uint, cl::Buffer, cl_uint, cl_float, cl_float, cl::Buffer> make(
-      program_, "make_shadow_rays");
-  ShadowRaySet set;
-  set.size = stride_ * light_count_;
-  AlignedVector<float>* planes[kRayPlanes] = {&set.ox, &set.oy, &set.oz, &set.dx, &set.dy, &set.dz, &set.t_max};
-  for (AlignedVector<float>* plane : planes) plane->resize(set.size);
-  std::vector<float> rays(kRayPlanes * stride_);
-  for (std::size_t k = 0; k < light_count_; ++k) {
-    make(cl::EnqueueArgs(compute_.queue, cl::NDRange(stride_ / lanes_)), pixels_, materials_, static_cast<cl_uint>(stride_),
-         lights_, static_cast<cl_uint>(k), offset_scale_, eye_extent_, ray_buffer);
-    compute_.queue.enqueueReadBuffer(ray_buffer, CL_TRUE, 0, rays.size() * sizeof(float), rays.data());
-    for (int p = 0; p < kRayPlanes; ++p)
-      std::copy_n(rays.begin() + p * stride_, stride_, planes[p]->begin() + k * stride_);
-  }
-  return set;
-}
-
-ShadowRaySet OpenClShadowRays::make_soft_rays(float size, int rays) {
-  const cl::Buffer ray_buffer(compute_.context, CL_MEM_WRITE_ONLY, kRayPlanes * stride_ * sizeof(float));
-  cl::KernelFunctor<cl::Buffer, cl::Buffer, cl_uint, cl::Buffer, cl_uint, cl_float, cl_uint, cl_float, cl_float, cl::Buffer>
-      make(program_, "make_soft_shadow_rays");
-  const std::size_t frames = light_count_ * static_cast<std::size_t>(rays);
   ShadowRaySet set;
   set.size = stride_ * frames;
   AlignedVector<float>* planes[kRayPlanes] = {&set.ox, &set.oy, &set.oz, &set.dx, &set.dy, &set.dz, &set.t_max};
   for (AlignedVector<float>* plane : planes) plane->resize(set.size);
   std::vector<float> frame(kRayPlanes * stride_);
   for (std::size_t f = 0; f < frames; ++f) {
-    const auto light = static_cast<cl_uint>(f / static_cast<std::size_t>(rays));
-    const auto k = static_cast<cl_uint>(f % static_cast<std::size_t>(rays));
-    make(cl::EnqueueArgs(compute_.queue, cl::NDRange(stride_ / lanes_)), pixels_, materials_, static_cast<cl_uint>(stride_),
-         lights_, light, size, k, offset_scale_, eye_extent_, ray_buffer);
+    launch(f, ray_buffer);
     compute_.queue.enqueueReadBuffer(ray_buffer, CL_TRUE, 0, frame.size() * sizeof(float), frame.data());
     for (int p = 0; p < kRayPlanes; ++p) std::copy_n(frame.begin() + p * stride_, stride_, planes[p]->begin() + f * stride_);
   }
   return set;
+}
+
+ShadowRaySet OpenClShadowRays::make_rays() {
+  cl::KernelFunctor<cl::Buffer, cl::Buffer, cl_uint, cl::Buffer, cl_uint, cl_float, cl_float, cl::Buffer> make(
+      program_, "make_shadow_rays");
+  return gather_frames(light_count_, [&](std::size_t k, const cl::Buffer& rays) {
+    make(cl::EnqueueArgs(compute_.queue, cl::NDRange(stride_ / lanes_)), pixels_, materials_, static_cast<cl_uint>(stride_),
+         lights_, static_cast<cl_uint>(k), offset_scale_, eye_extent_, rays);
+  });
+}
+
+ShadowRaySet OpenClShadowRays::make_soft_rays(float size, int rays) {
+  cl::KernelFunctor<cl::Buffer, cl::Buffer, cl_uint, cl::Buffer, cl_uint, cl_float, cl_uint, cl_float, cl_float, cl::Buffer>
+      make(program_, "make_soft_shadow_rays");
+  const auto per_light = static_cast<std::size_t>(rays);
+  return gather_frames(light_count_ * per_light, [&](std::size_t f, const cl::Buffer& buffer) {
+    make(cl::EnqueueArgs(compute_.queue, cl::NDRange(stride_ / lanes_)), pixels_, materials_, static_cast<cl_uint>(stride_),
+         lights_, static_cast<cl_uint>(f / per_light), size, static_cast<cl_uint>(f % per_light), offset_scale_, eye_extent_,
+         buffer);
+  });
 }
 
 std::vector<float> OpenClShadowRays::trace(const ShadowRaySet& rays, double* kernel_ms) {

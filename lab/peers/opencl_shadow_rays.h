@@ -2,6 +2,7 @@
 // kernels/shadow_rays.cl: the shading kernel's shadow rays, BVH traversal and tiled shadow culling
 // (kernels/shadow.h, bvh.h, shadow_cull.cl) on their own, so they can be checked ray by ray against
 // the double reference, timed against the Embree peer on the same rays, and costed per frame.
+#include <functional>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -53,6 +54,10 @@ class OpenClShadowRays {
   int lanes() const { return lanes_; }
 
  private:
+  // `frames` launches of stride_ rays each, one per frame: `launch(f, buffer)` enqueues frame f's ray
+  // kernel writing into `buffer`, whose planes go to the set at f * stride_.
+  ShadowRaySet gather_frames(std::size_t frames, const std::function<void(std::size_t, const cl::Buffer&)>& launch);
+
   ComputeContext compute_;
   int lanes_;
   cl::Program program_;
