@@ -84,6 +84,18 @@ glm::dvec3 integrate_map(const EnvironmentLight& light, const ReferenceMap& map,
   return sum * (light.strength / pi);
 }
 
+// Whether direction d leaves the scene from a point of unit normal n: a directional light's shadow
+// ray, with the kernel's offsets.
+bool sky_is_free(const SceneShapes& shapes, const glm::dvec3& position, const glm::dvec3& n, const glm::dvec3& d,
+                 const glm::dvec3& eye, double offset_scale) {
+  Light sky;
+  sky.type = LightType::directional;
+  sky.direction = -d;
+  ReferenceShadowRay ray;
+  if (!reference_shadow_ray_from(position, n, sky, eye, offset_scale, ray)) return false;
+  return reference_shadow_ray(shapes, ray.origin, ray.direction, ray.t_max) == RayOutcome::free;
+}
+
 }  // namespace
 
 glm::dvec3 reference_environment_light(const EnvironmentLight& light, const ReferenceMap& map, const glm::dvec3& n) {
@@ -96,14 +108,8 @@ glm::dvec3 reference_environment_visible_light(const EnvironmentLight& light, co
   const double length = glm::length(point.normal);
   if (!(length > 0.0)) return glm::dvec3(0.0);
   const glm::dvec3 n = point.normal / length;
-  return integrate_map(light, map, n, [&](const glm::dvec3& d) {
-    Light sky;
-    sky.type = LightType::directional;
-    sky.direction = -d;
-    ReferenceShadowRay ray;
-    if (!reference_shadow_ray_from(point.position, n, sky, eye, offset_scale, ray)) return false;
-    return reference_shadow_ray(shapes, ray.origin, ray.direction, ray.t_max) == RayOutcome::free;
-  });
+  return integrate_map(light, map, n,
+                       [&](const glm::dvec3& d) { return sky_is_free(shapes, point.position, n, d, eye, offset_scale); });
 }
 
 double reference_environment_visibility(const SceneShapes& shapes, const SurfacePoint& point, const glm::dvec3& eye,
@@ -121,12 +127,7 @@ double reference_environment_visibility(const SceneShapes& shapes, const Surface
     for (int j = 0; j < around; ++j) {
       const double azimuth = 2.0 * pi * (j + 0.5) / around;
       const glm::dvec3 d = cosine * n + sine * (std::cos(azimuth) * a + std::sin(azimuth) * b);
-      Light sky;
-      sky.type = LightType::directional;
-      sky.direction = -d;
-      ReferenceShadowRay ray;
-      if (!reference_shadow_ray_from(point.position, n, sky, eye, offset_scale, ray)) continue;
-      free += reference_shadow_ray(shapes, ray.origin, ray.direction, ray.t_max) == RayOutcome::free;
+      free += sky_is_free(shapes, point.position, n, d, eye, offset_scale);
     }
   }
   return static_cast<double>(free) / (grid * around);
