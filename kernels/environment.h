@@ -93,6 +93,9 @@ static inline SHADOW_INLINE vec3 environment_visible_light(const ShadowInputs* s
   ShadowInputs traced = *shadows;
   traced.tiles = 0;
   UNIFORM_SPACE const float* sky = texels + environment->sky_offset;
+  /* A uniform world's sky (one texel) needs no look-up per blocked ray: those
+   * (atan2 and acos lane by lane) made 16 rays 3 times slower than the rays alone. */
+  const bool uniform_sky = environment->sky_width * environment->sky_height == 1;
   const realv zero = 0;
   vec3 taken = make_vec3(zero, zero, zero);
   realv free = 0;
@@ -106,11 +109,15 @@ static inline SHADOW_INLINE vec3 environment_visible_light(const ShadowInputs* s
     const vec3 d = add3(add3(scale3(u, radius * cos(angle)), scale3(v, radius * sin(angle))), scale3(n, height));
     const intv blocked = light_blocked(&traced, p, n, d, 1, SCREEN_SHADOWS, 0, pending);
     free += SELECT(TO_REALV(blocked) != 0, 0, 1);
-    if (any_lane(blocked)) {
+    if (!uniform_sky && any_lane(blocked)) {
       const vec3 radiance = environment_grid(environment, sky, environment->sky_width, environment->sky_height, d);
       const realv weight = SELECT(TO_REALV(blocked) != 0, 1, 0);
       taken = add3(taken, scale3(radiance, weight));
     }
+  }
+  if (uniform_sky) { /* every blocked ray takes the one texel's radiance away */
+    const realv blocked_rays = (real)rays - free, scale = environment->scale;
+    taken = make_vec3(blocked_rays * (scale * sky[0]), blocked_rays * (scale * sky[1]), blocked_rays * (scale * sky[2]));
   }
   const real per_ray = (real)1 / (real)rays;
   const realv open = SELECT(free > 0, 1, 0); /* every ray blocked: none of the light */
