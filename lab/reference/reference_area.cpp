@@ -48,10 +48,10 @@ const GaussRule& gauss_rule(int order) {
 // Integral of f over [a, b]; graded (x = a + (b - a) y^3) where f may peak at a: a peak of width w
 // at a becomes one of width (w / (b - a))^(1/3) in y, which the rule resolves down to w = 1e-6 (b - a).
 template <typename F>
-double integrate(double a, double b, bool graded, int order, F&& f) {
-  if (!(b > a)) return 0.0;
+glm::dvec3 integrate(double a, double b, bool graded, int order, F&& f) {
+  if (!(b > a)) return glm::dvec3(0.0);
   const GaussRule& rule = gauss_rule(order);
-  double sum = 0.0;
+  glm::dvec3 sum(0.0);
   for (std::size_t i = 0; i < rule.nodes.size(); ++i) {
     const double y = rule.nodes[i];
     if (graded) sum += rule.weights[i] * 3.0 * y * y * f(a + (b - a) * y * y * y);
@@ -63,11 +63,11 @@ double integrate(double a, double b, bool graded, int order, F&& f) {
 // Integral over [a, b] cut at the given points (those inside), each piece graded towards `focus`
 // when it ends there.
 template <typename F>
-double integrate_pieces(double a, double b, std::vector<double> cuts, double focus, int order, F&& f) {
+glm::dvec3 integrate_pieces(double a, double b, std::vector<double> cuts, double focus, int order, F&& f) {
   cuts.push_back(a);
   cuts.push_back(b);
   std::sort(cuts.begin(), cuts.end());
-  double sum = 0.0;
+  glm::dvec3 sum(0.0);
   for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
     const double lo = std::clamp(cuts[k], a, b), hi = std::clamp(cuts[k + 1], a, b);
     if (!(hi > lo)) continue;
@@ -107,6 +107,16 @@ bool corner(const HalfPlane& a, const HalfPlane& b, double& s, double& t) {
   return true;
 }
 
+// E and the integral of a coloured lobe (reference_area.h), each over its own pieces.
+struct EmitterIntegrals {
+  double irradiance = 0.0;
+  glm::dvec3 lobe{0.0};
+};
+
+EmitterIntegrals integrate_emitter(const AreaLight& light, const glm::dvec3& position, const glm::dvec3& n,
+                                   const glm::dvec3& eye, const ColouredLobe& lobe, double sharpness, bool reflection_kink,
+                                   int order);
+
 }  // namespace
 
 double area_range_window(const AreaLight& light, const glm::dvec3& position) {
@@ -117,44 +127,59 @@ double area_range_window(const AreaLight& light, const glm::dvec3& position) {
 
 AreaIntegrals reference_area_integrals(const AreaLight& light, const glm::dvec3& position, const glm::dvec3& n,
                                        const glm::dvec3& eye, SpecularModel model, double shininess, int order) {
+  // Phong's lobes have a kink where r.w = 0; Blinn's are smooth above the horizon of a pixel that
+  // faces the eye (n.h > 0 there).
+  const bool reflection = model == SpecularModel::phong || model == SpecularModel::phong_normalized;
+  const EmitterIntegrals integrals = integrate_emitter(
+      light, position, n, eye, [&](const glm::dvec3& w) { return glm::dvec3(reference_specular_lobe(model, n, eye, w, shininess)); },
+      shininess, shininess > 0.0 && reflection, order);
+  AreaIntegrals result;
+  result.irradiance = integrals.irradiance;
+  result.highlight = integrals.lobe.x;
+  return result;
+}
+
+glm::dvec3 reference_area_lobe(const AreaLight& light, const glm::dvec3& position, const glm::dvec3& n,
+                               const glm::dvec3& eye, const ColouredLobe& lobe, double sharpness, bool reflection_kink,
+                               int order) {
+  return integrate_emitter(light, position, n, eye, lobe, sharpness, reflection_kink, order).lobe;
+}
+
+namespace {
+
+EmitterIntegrals integrate_emitter(const AreaLight& light, const glm::dvec3& position, const glm::dvec3& n,
+                                   const glm::dvec3& eye, const ColouredLobe& lobe, double sharpness, bool reflection_kink,
+                                   int order) {
   const glm::dvec3 normal = glm::normalize(light.direction);
   const glm::dvec3 c = light.position - position;
   const double h = -glm::dot(c, normal);  // height above the emitting side
-  AreaIntegrals result;
+  EmitterIntegrals result;
   if (!(h > 0.0)) return result;
   const glm::dvec3 v = light.shape == AreaShape::rect
                            ? glm::normalize(light.up - glm::dot(light.up, normal) * normal)
                            : glm::normalize(glm::cross(std::abs(normal.x) < 0.5 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0), normal));
   const glm::dvec3 u = glm::cross(v, normal);
   // The integrands over the emitter's area: dw = h dA / |x|^3.
-  auto add_point = [&](const glm::dvec3& x, double area_weight, AreaIntegrals& sums) {
+  auto value = [&](const glm::dvec3& x, bool highlight) {
     const double length = glm::length(x);
     const glm::dvec3 w = x / length;
-    const double solid = area_weight * h / (length * length * length);
-    sums.irradiance += solid * std::max(0.0, glm::dot(n, w));
-    if (glm::dot(n, w) > 0.0) sums.highlight += solid * reference_specular_lobe(model, n, eye, w, shininess);
+    const double solid = h / (length * length * length);
+    if (!highlight) return glm::dvec3(solid * std::max(0.0, glm::dot(n, w)));
+    return glm::dot(n, w) > 0.0 ? solid * lobe(w) : glm::dvec3(0.0);
   };
   std::vector<HalfPlane> sides = {{glm::dot(n, c), glm::dot(n, u), glm::dot(n, v)}};
-  // Phong's lobes have a kink where r.w = 0; Blinn's are smooth above the horizon of a pixel that
-  // faces the eye (n.h > 0 there).
   const glm::dvec3 r = 2.0 * glm::dot(n, eye) * n - eye;
-  const bool reflection = model == SpecularModel::phong || model == SpecularModel::phong_normalized;
-  if (shininess > 0.0 && reflection) sides.push_back({glm::dot(r, c), glm::dot(r, u), glm::dot(r, v)});
+  if (reflection_kink) sides.push_back({glm::dot(r, c), glm::dot(r, u), glm::dot(r, v)});
   // The lobe peaks where r meets the emitter's plane (Blinn's too: n.h = 1 where w = r), with a
   // width of about its distance / sqrt(q + 1): cuts there, growing geometrically from a quarter of it.
   std::vector<double> peak_steps;
   glm::dvec3 peak(0.0);
-  if (shininess > 0.0 && glm::dot(r, normal) < 0.0) {
+  if (sharpness > 0.0 && glm::dot(r, normal) < 0.0) {
     const double distance = -h / glm::dot(r, normal);
     peak = distance * r - c;
-    for (double step = distance / std::sqrt(shininess + 1.0) / 4.0; step < 2.0 * (light.size.x + light.size.y); step *= 4.0)
+    for (double step = distance / std::sqrt(sharpness + 1.0) / 4.0; step < 2.0 * (light.size.x + light.size.y); step *= 4.0)
       peak_steps.push_back(step);
   }
-  auto value = [&](const glm::dvec3& x, bool highlight) {
-    AreaIntegrals one;
-    add_point(x, 1.0, one);
-    return highlight ? one.highlight : one.irradiance;
-  };
   if (light.shape == AreaShape::rect) {
     const double half_w = light.size.x / 2.0, half_h = light.size.y / 2.0;
     const double foot_s = -glm::dot(c, u), foot_t = -glm::dot(c, v);  // where the point stands over the plane
@@ -181,14 +206,15 @@ AreaIntegrals reference_area_integrals(const AreaLight& light, const glm::dvec3&
     double s_meet = 0.0, t_meet = 0.0;
     if (sides.size() == 2 && corner(sides[0], sides[1], s_meet, t_meet)) s_cuts.push_back(s_meet);
     for (bool highlight : {false, true}) {
-      const double total = integrate_pieces(-half_w, half_w, s_cuts, foot_s, order, [&](double s) {
+      const glm::dvec3 total = integrate_pieces(-half_w, half_w, s_cuts, foot_s, order, [&](double s) {
         std::vector<std::pair<double, double>> lines;
         for (const HalfPlane& side : sides)
           if (highlight || &side == &sides[0]) lines.push_back({side.base + side.gu * s, side.gv});
         const auto [lo, hi] = upper_side(lines, -half_h, half_h);
         return integrate_pieces(lo, hi, t_cuts, foot_t, order, [&](double t) { return value(c + s * u + t * v, highlight); });
       });
-      (highlight ? result.highlight : result.irradiance) = total;
+      if (highlight) result.lobe = total;
+      else result.irradiance = total.x;
     }
     return result;
   }
@@ -222,7 +248,7 @@ AreaIntegrals reference_area_integrals(const AreaLight& light, const glm::dvec3&
     }
   }
   for (bool highlight : {false, true}) {
-    const double total = integrate_pieces(0.0, 2.0 * pi, phi_cuts, -1.0, order, [&](double phi) {
+    const glm::dvec3 total = integrate_pieces(0.0, 2.0 * pi, phi_cuts, -1.0, order, [&](double phi) {
       const double cosine = std::cos(phi), sine = std::sin(phi);
       std::vector<std::pair<double, double>> lines;
       for (const HalfPlane& side : sides)
@@ -231,10 +257,13 @@ AreaIntegrals reference_area_integrals(const AreaLight& light, const glm::dvec3&
       return integrate_pieces(lo, hi, rho_cuts, 0.0, order,
                               [&](double rho) { return rho * value(c + rho * (cosine * u + sine * v), highlight); });
     });
-    (highlight ? result.highlight : result.irradiance) = total;
+    if (highlight) result.lobe = total;
+    else result.irradiance = total.x;
   }
   return result;
 }
+
+}  // namespace
 
 Light area_shadow_light(const AreaLight& light) {
   Light centre;

@@ -1,6 +1,8 @@
 #pragma once
 // Area lights in the reference: both terms integrated over the emitter by Gauss-Legendre product
 // rules in double, independent of the kernel's Lambert formula (docs/shading.md "Area lights").
+#include <functional>
+
 #include <glm/glm.hpp>
 
 #include "scene/scene.h"
@@ -22,6 +24,14 @@ struct AreaIntegrals {
 // lobe's peak, where r meets the plane, is graded towards too. 0 behind the emitting side.
 AreaIntegrals reference_area_integrals(const AreaLight& light, const glm::dvec3& position, const glm::dvec3& n,
                                        const glm::dvec3& eye, SpecularModel model, double shininess, int order = 48);
+
+// The integral over the emitter's part above the horizon of any coloured lobe towards unit w (dw,
+// no n.w added), by the same rules: `sharpness` (a Phong exponent; GGX's is about 2 / alpha^2) grades
+// the pieces towards the mirror direction's peak; `reflection_kink` where the lobe is 0 past r.w = 0.
+using ColouredLobe = std::function<glm::dvec3(const glm::dvec3& w)>;
+glm::dvec3 reference_area_lobe(const AreaLight& light, const glm::dvec3& position, const glm::dvec3& n,
+                               const glm::dvec3& eye, const ColouredLobe& lobe, double sharpness, bool reflection_kink,
+                               int order = 48);
 
 // The range window of an area light at `position` (1 without a range), as a point light's.
 double area_range_window(const AreaLight& light, const glm::dvec3& position);

@@ -1,7 +1,10 @@
 #include "reference/reference_principled.h"
 
+#include "reference/reference_area.h"
+
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <numbers>
 
 #include <glm/geometric.hpp>
@@ -10,17 +13,13 @@ namespace phongcl {
 
 using std::numbers::pi;
 
-namespace {
-
-// GGX's normal density at cosine c to the normal: its slope distribution
-// P22(t) = 1 / (pi alpha^2 (1 + t^2 / alpha^2)^2) at slope t = tan, over cos^4 (Heitz 2014, eq. 12).
-double ggx_density(double alpha, double c) {
+// GGX's density as its slope distribution P22(t) = 1 / (pi alpha^2 (1 + t^2 / alpha^2)^2) at slope
+// t = tan, over cos^4 (Heitz 2014, eq. 12).
+double reference_ggx_density(double alpha, double c) {
   const double t_sq = (1.0 - c * c) / (c * c);
   const double shape = 1.0 + t_sq / (alpha * alpha);
   return 1.0 / (pi * alpha * alpha * shape * shape * c * c * c * c);
 }
-
-}  // namespace
 
 double reference_smith_masking(double alpha, double mu) {
   // Lambda = (1 / a) int_a^inf (x - a) P2(x) dx, a = cot(theta), P2 the slope distribution's marginal
@@ -51,8 +50,36 @@ double reference_dielectric_fresnel(double c, double eta) {
   return 0.5 * (rs * rs + rp * rp);
 }
 
+namespace {
+constexpr int masking_nodes = 4097;
+}  // namespace
+
+SmithMaskingTable::SmithMaskingTable(double alpha) : nodes_(masking_nodes, 0.0) {
+  for (int k = 1; k < masking_nodes; ++k) nodes_[k] = reference_smith_masking(alpha, double(k) / (masking_nodes - 1));
+}
+
+double SmithMaskingTable::operator()(double mu) const {
+  const double x = std::clamp(mu, 0.0, 1.0) * (masking_nodes - 1);
+  const int k = std::min(int(x), masking_nodes - 2);
+  const double t = x - k;
+  return nodes_[k] * (1.0 - t) + nodes_[k + 1] * t;
+}
+
+const SmithMaskingTable& smith_masking_table(double alpha) {
+  static thread_local std::map<double, SmithMaskingTable> tables;
+  auto found = tables.find(alpha);
+  if (found == tables.end()) found = tables.emplace(alpha, SmithMaskingTable(alpha)).first;
+  return found->second;
+}
+
 PrincipledLight reference_principled(const Material& material, const glm::dvec3& n, const glm::dvec3& v,
                                      const glm::dvec3& l) {
+  const double alpha = material.roughness * material.roughness;
+  return reference_principled(material, n, v, l, [alpha](double mu) { return reference_smith_masking(alpha, mu); });
+}
+
+PrincipledLight reference_principled(const Material& material, const glm::dvec3& n, const glm::dvec3& v,
+                                     const glm::dvec3& l, const std::function<double(double)>& masking) {
   PrincipledLight light;
   const double ndl = glm::dot(n, l), ndv = glm::dot(n, v);
   if (!(ndl > 0.0)) return light;
@@ -68,8 +95,7 @@ PrincipledLight reference_principled(const Material& material, const glm::dvec3&
   const double alpha = material.roughness * material.roughness;
   if (!(ndv > 0.0) || alpha * alpha <= 1e-7) return light;
   // Walter et al. 2007: f = D G F / (4 n.l n.v); pi f n.l.
-  const double brdf_pi = pi * ggx_density(alpha, glm::dot(n, h)) * reference_smith_masking(alpha, ndv) *
-                         reference_smith_masking(alpha, ndl) / (4.0 * ndv);
+  const double brdf_pi = pi * reference_ggx_density(alpha, glm::dot(n, h)) * masking(ndv) * masking(ndl) / (4.0 * ndv);
   // v1's Fresnel: the dielectric's of the index that Specular implies, remapped from [F(1), 1] to
   // [cspec0, 1]; cspec0 mixes 0.08 Specular (tinted) into the base colour by metallic.
   const double eta = 2.0 / (1.0 - std::sqrt(0.08 * material.specular)) - 1.0;
@@ -83,6 +109,18 @@ PrincipledLight reference_principled(const Material& material, const glm::dvec3&
   const glm::dvec3 cspec0 = (1.0 - material.metallic) * dielectric + material.metallic * base;
   light.specular = brdf_pi * (cspec0 * (1.0 - fh) + glm::dvec3(fh));
   return light;
+}
+
+glm::dvec3 reference_principled_area(const Material& material, const AreaLight& light, const glm::dvec3& position,
+                                     const glm::dvec3& n, const glm::dvec3& v) {
+  const double alpha = material.roughness * material.roughness;
+  if (alpha * alpha <= 1e-7) return glm::dvec3(0.0);
+  const SmithMaskingTable& masking = smith_masking_table(alpha);
+  const auto lobe = [&](const glm::dvec3& w) {
+    return reference_principled(material, n, v, w, [&](double mu) { return masking(mu); }).specular;
+  };
+  // GGX's peak is about as wide as Phong's of exponent 2 / alpha^2; it has no kink above the horizon.
+  return reference_area_lobe(light, position, n, v, lobe, 2.0 / (alpha * alpha), false);
 }
 
 }  // namespace phongcl

@@ -135,6 +135,8 @@ ShadingTerms reference_shade_point(const Scene& scene, const SurfacePoint& point
     const double window = area_range_window(light, point.position) * (traced ? soft.area(point, light) : 1.0);
     diffuse += product(light.color, glm::dvec3(integrals.irradiance * window));
     specular += product(light.color, glm::dvec3(integrals.highlight * window));
+    if (point.specular_model == SpecularModel::principled)
+      principled_specular += product(light.color, reference_principled_area(point.principled, light, point.position, n, v) * window);
   }
   // The environment: its irradiance by brute force over the map (reference_environment.h).
   if (scene.environment && n != glm::dvec3(0.0)) {
@@ -143,8 +145,8 @@ ShadingTerms reference_shade_point(const Scene& scene, const SurfacePoint& point
                                                  : reference_environment_light(world, reference_map(world), n);
   }
   if (point.specular_model == SpecularModel::principled) {
-    // Area lights and the environment: Lambert's irradiance times the diffuse colour, no highlight (as the
-    // kernel: docs/shading.md).
+    // Area lights and the environment: Lambert's irradiance times the diffuse colour (as the kernel:
+    // docs/shading.md); the area lights' highlight is in principled_specular.
     const glm::dvec3 weight = point.principled.base_color * (1.0 - point.principled.metallic);
     terms.diffuse = principled_diffuse + product(weight, diffuse);
     terms.specular = principled_specular;
