@@ -17,9 +17,11 @@ if(NOT PHONGCL_PEERS_VECTORISED)
   target_compile_definitions(phongcl_peers PRIVATE PHONGCL_PEERS_SCALAR)
 endif()
 phongcl_lab_room(stability DEPS phongcl_reference phongcl_report)
+# The fits whose tables the kernels read (the LTC table of kernels/ltc_table.h).
+phongcl_lab_room(fit DEPS phongcl_reference)
 
 add_library(phongcl_lab INTERFACE)
-target_link_libraries(phongcl_lab INTERFACE phongcl_reference phongcl_report phongcl_peers phongcl_stability)
+target_link_libraries(phongcl_lab INTERFACE phongcl_reference phongcl_report phongcl_peers phongcl_stability phongcl_fit)
 
 # The Embree peer of the shadow rays (optional, as the Halide peer is: without libembree-dev its rows
 # say SKIP). PHONGCL_HAVE_EMBREE tells the lab's commands and tests it is there.

@@ -4,12 +4,13 @@
 #include "cli/run_app.h"
 
 int main(int argc, char** argv) {
-  CLI::App app{"phongcl-lab: the reference, comparisons, benchmarks and stability catalogue of phongcl", "phongcl"};
+  CLI::App app{"phongcl-lab: the reference, comparisons, benchmarks, stability catalogue and fits of phongcl", "phongcl"};
   app.require_subcommand(1);
   phongcl::cli::add_reference_command(app);
   phongcl::cli::add_compare_command(app);
   phongcl::cli::add_bench_command(app);
   phongcl::cli::add_stability_command(app);
   phongcl::cli::add_agreement_command(app);
+  phongcl::cli::add_fit_ltc_command(app);
   return phongcl::cli::run_app(app, argc, argv);
 }
