@@ -274,6 +274,14 @@ realv area_specular(int shape, vec3 c, vec3 u, vec3 v, vec3 n, vec3 r, const Are
   return s;
 }
 
+/* The light's range window at `distance` from its centre, as a point light's: 1 without a range. */
+realv area_range_window(UNIFORM_SPACE const AreaLightRecord* light, realv distance) {
+  if (!(light->inverse_range > 0)) return 1;
+  const realv t = distance * light->inverse_range, t2 = t * t;
+  const realv falling = fmax(1 - t2 * t2, 0);
+  return falling * falling;
+}
+
 /* E and (where `specular`) S of one area light, times its range window, for pixels at p (relative
  * to the eye) with unit normal n, unit vector to the eye `view`, r the eye vector mirrored about n,
  * and specular model `model` (specular.h's number; read only where lanes may differ). */
@@ -289,12 +297,7 @@ void area_light_terms(UNIFORM_SPACE const AreaLightRecord* light, vec3 p, vec3 n
   const vec3 u = scale3(area_vector(light->axis_u), scale), v = scale3(area_vector(light->axis_v), scale);
   const realv area = light->area * scale * scale;
   const realv h = -dot3(c, normal); /* P's height above the emitting side */
-  realv window = 1;
-  if (light->inverse_range > 0) {
-    const realv t = distance * light->inverse_range, t2 = t * t;
-    const realv falling = fmax(1 - t2 * t2, 0);
-    window = falling * falling;
-  }
+  const realv window = area_range_window(light, distance);
   realv e;
   if (light->shape == AREA_RECT) {
     e = polygon_irradiance(AREA_RECT, c, u, v, n);

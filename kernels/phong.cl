@@ -30,6 +30,7 @@
 #include "shadow.h"
 #include "soft_shadow.h"
 #include "principled.h"
+#include "area_ltc.h"
 #include "specular.h"
 #include "storage.h"
 #include "tiles.h"
@@ -365,17 +366,28 @@ static inline void add_area_light(LightSums* sums, const Surface* surface, const
   const realv two_n_dot_v = 2 * dot3(n, v);
   const vec3 r = make_vec3(fma(two_n_dot_v, n.x, -v.x), fma(two_n_dot_v, n.y, -v.y), fma(two_n_dot_v, n.z, -v.z));
   realv irradiance, highlight;
-  area_light_terms(light, surface->p, n, v, r, surface->shininess, surface->specular_model, SPECULAR, &irradiance,
-                   &highlight);
-  /* Principled lanes take an area light's irradiance, Lambert's, and no highlight yet. */
-  if (PRINCIPLED_LOBES)
-    highlight = ONLY_PRINCIPLED_LOBES ? 0 : SELECT(surface->specular_model == PRINCIPLED_MODEL, 0, highlight);
+  area_light_terms(light, surface->p, n, v, r, surface->shininess, surface->specular_model,
+                   ONLY_PRINCIPLED_LOBES ? 0 : SPECULAR, &irradiance, &highlight);
+  /* Principled lanes take Lambert's irradiance and GGX's highlight by LTC (area_ltc.h), coloured by
+   * its Fresnel: `tint`, 1 in the other lanes. */
+  const realv one = 1;
+  vec3 tint = make_vec3(one, one, one);
+  if (PRINCIPLED_LOBES && SPECULAR) {
+    const LtcHighlight ltc = ltc_area_highlight(light, surface->p, n, v, surface->principled);
+    const realv principled = ONLY_PRINCIPLED_LOBES ? 1 : SELECT(surface->specular_model == PRINCIPLED_MODEL, 1, 0);
+    highlight = SELECT(principled != 0, ltc.highlight, highlight);
+    tint = select3(ltc.tint, tint, principled);
+  }
   if (SHADOWS && lights->area_casters[k])
     shadow_area_light(&irradiance, &highlight, surface, lights, k, lights->area_casters[k]);
   sums->diffuse.x += light->color[0] * irradiance;
   sums->diffuse.y += light->color[1] * irradiance;
   sums->diffuse.z += light->color[2] * irradiance;
-  if (SPECULAR) {
+  if (SPECULAR && PRINCIPLED_LOBES) {
+    sums->specular.x += light->color[0] * highlight * tint.x;
+    sums->specular.y += light->color[1] * highlight * tint.y;
+    sums->specular.z += light->color[2] * highlight * tint.z;
+  } else if (SPECULAR) {
     sums->specular.x += light->color[0] * highlight;
     sums->specular.y += light->color[1] * highlight;
     sums->specular.z += light->color[2] * highlight;

@@ -59,6 +59,13 @@ static inline realv burley_factor(realv roughness, realv n_dot_l, realv n_dot_v,
   return (1 - (real)0.5 * fv) * (1 - (real)0.5 * fl) + rr * (fl + fv + fl * fv * (rr - 1));
 }
 
+/* v1's Fresnel is the dielectric's at l.h remapped from [f0, 1] to [cspec0, 1]: the specular colour
+ * is cspec0 (1 - fh) + fh with this fh. f0 = 1 (index 0: the record of a lane of another model) takes
+ * no Fresnel: its light is 0 there, and 0 * NaN would not be. */
+static inline realv fresnel_blend(PrincipledSurface m, realv l_dot_h) {
+  return SELECT(m.f0 < 1, (dielectric_fresnel(l_dot_h, m.ior) - m.f0) / (1 - m.f0), 0);
+}
+
 /* The diffuse and specular responses to a light from unit l, for unit n and v. */
 static inline PrincipledResponse principled_response(PrincipledSurface m, vec3 n, vec3 v, vec3 l) {
   const realv n_dot_l = dot3(n, l), n_dot_v = dot3(n, v), l_dot_v = dot3(l, v);
@@ -78,10 +85,7 @@ static inline PrincipledResponse principled_response(PrincipledSurface m, vec3 n
   const realv masking = half_smith_masking(n_dot_v, m.alpha_sq) * half_smith_masking(n_dot_l, m.alpha_sq);
   const realv lobe = m.alpha_sq * masking / (n_dot_v * d_root * d_root);
   const realv lit = SELECT(n_dot_l > 0 && n_dot_v > 0 && m.alpha_sq > (real)1e-7f, lobe, 0);
-  /* v1's Fresnel: the dielectric's at l.h remapped from [f0, 1] to [cspec0, 1]. */
-  /* f0 = 1 (index 0: the record of a lane of another model) takes no Fresnel: its light is 0 there, and
-   * 0 * NaN would not be. */
-  const realv fh = SELECT(m.f0 < 1, (dielectric_fresnel(l_dot_h, m.ior) - m.f0) / (1 - m.f0), 0);
+  const realv fh = fresnel_blend(m, l_dot_h);
   const realv tint = lit * (1 - fh), white = lit * fh;
   response.specular = make_vec3(fma(tint, m.specular_color.x, white), fma(tint, m.specular_color.y, white),
                                 fma(tint, m.specular_color.z, white));
