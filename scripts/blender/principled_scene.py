@@ -2,9 +2,11 @@
 (roughness 0.15 to 0.6, a metal, specular 0.5 and 1.0, a tinted specular) on a Principled floor, under a
 point, a spot and a sun light without size and shadows, no bounces, the light threshold at 0, each light rendered alone from pixel centres
 (box filter of 0.01 px: with one light of no size and no bounces the direct light at a pixel centre is
-exact; --seed changes Cycles' seed, so that two renders measure its noise).
+exact; --seed changes Cycles' seed, so that two renders measure its noise). With --area the lights are
+a rect and a disk area light instead (no shadows), which Cycles samples: --samples per pixel.
 
     blender -b --factory-startup --python scripts/blender/principled_scene.py -- --out DIR [--width 160 --height 120] [--seed 0]
+        [--area --samples 256]
 
 writes DIR/scene.json and DIR/gbuffer.exr (export_scene.py), then DIR/light0.exr ... each light alone:
 its DiffDir, DiffCol, GlossDir, GlossCol, IndexOB and Depth passes.
@@ -32,6 +34,9 @@ FLOOR = ("floor", (0.5, 0.5, 0.5), 0.0, 0.4, 0.5, 0.0)
 # name, type, location, watts (W/m^2 for the sun)
 LIGHTS = (("point", "POINT", (2.0, -3.0, 4.0), 800.0), ("spot", "SPOT", (-3.0, -2.5, 3.5), 900.0),
           ("sun", "SUN", (0.0, 3.0, 5.0), 3.0))
+# --area: name, shape, location, size, size_y, watts; each aimed at the spheres' middle
+AREA_LIGHTS = (("rect", "RECTANGLE", (1.5, -2.5, 3.5), 1.5, 0.8, 400.0),
+               ("disk", "DISK", (-2.0, -1.5, 3.0), 1.2, 1.2, 300.0))
 
 
 def principled_material(name, colour, metallic, roughness, specular, tint, pass_index):
@@ -65,7 +70,19 @@ def add_lights():
             light.data.spot_size, light.data.spot_blend = math.radians(80.0), 0.2
 
 
-def build_scene(width, height, seed):
+def add_area_lights():
+    for name, shape, location, size, size_y, energy in AREA_LIGHTS:
+        bpy.ops.object.light_add(type="AREA", location=location)
+        light = bpy.context.object
+        light.name = name
+        light.data.shape = shape
+        light.data.size, light.data.size_y = size, size_y
+        light.data.energy = energy
+        versions.set_casts_shadow(light.data, False)
+        light.rotation_euler = (Vector((0.0, 0.0, 0.5)) - Vector(location)).to_track_quat("-Z", "Y").to_euler()
+
+
+def build_scene(width, height, seed, area=False, samples=1):
     scene = make_fixtures.empty_scene(width, height, strength=0.0)
     bpy.ops.mesh.primitive_plane_add(size=14.0, location=(0.0, 0.0, 0.0))
     objects = [(bpy.context.object, principled_material(*FLOOR, 0))]
@@ -76,10 +93,13 @@ def build_scene(width, height, seed):
     for index, (obj, material) in enumerate(objects, start=1):
         obj.data.materials.append(material)
         obj.pass_index = index
-    add_lights()
+    if area:
+        add_area_lights()
+    else:
+        add_lights()
     make_fixtures.add_camera(scene, location=(0.0, -7.5, 3.2), target=(0.0, 0.0, 0.6), lens=40.0)
     bpy.context.view_layer.update()
-    make_fixtures.cycles(scene, 1)
+    make_fixtures.cycles(scene, samples if area else 1)
     scene.cycles.seed = seed
     scene.cycles.max_bounces = 0
     # Below the threshold Cycles plays Russian roulette with a light's sample: 0 or 0.01, not the light.
@@ -98,10 +118,12 @@ def main():
     parser.add_argument("--width", type=int, default=160)
     parser.add_argument("--height", type=int, default=120)
     parser.add_argument("--seed", type=int, default=0)
+    parser.add_argument("--area", action="store_true", help="a rect and a disk area light instead")
+    parser.add_argument("--samples", type=int, default=256, help="--area: samples per pixel")
     args = parser.parse_args(sys.argv[sys.argv.index("--") + 1:])
     out = os.path.abspath(args.out)
     os.makedirs(out, exist_ok=True)
-    scene = build_scene(args.width, args.height, args.seed)
+    scene = build_scene(args.width, args.height, args.seed, args.area, args.samples)
     export_scene.render_gbuffer(scene, os.path.join(out, "gbuffer.exr"))
     document = export_scene.scene_json(scene, "quadratic", "gbuffer.exr", None)
     export_scene.write_json(document, os.path.join(out, "scene.json"))
