@@ -19,6 +19,13 @@
 #include "sampling.h"
 #include "shadow.h"
 
+/* Adaptive: a light of more rays traces this many first (a stratified prefix of the lattice), and a
+ * lane whose traced rays all agree stops there: where they are all blocked its fraction is 0 and
+ * where all free 1, as the full count would give but for an occluder smaller than the prefix's
+ * spacing. Only lanes in a penumbra trace the rest: a penumbra's noise at the full count, a lit or
+ * hidden pixel's cost at this one (docs/shadows.md "Soft shadows": 16, measured against Cycles). */
+#define SHADOW_PROBE_RAYS 16u
+
 static inline Emitter area_emitter(UNIFORM_SPACE const AreaLightRecord* light) {
   const Emitter emitter = {area_vector(light->center), area_vector(light->normal), area_vector(light->axis_u),
                            area_vector(light->axis_v), light->shape == AREA_DISK, 0};
@@ -30,7 +37,8 @@ static inline Emitter area_emitter(UNIFORM_SPACE const AreaLightRecord* light) {
  * infinity along the directions through its disk and traverse the BVH: tiled shadow culling's hulls
  * are swept along l alone. With `cone` (a spot's shape; 0 for none) each visible point counts times
  * the cone seen from it, the way from that point to P, as Cycles evaluates a spot of some radius:
- * the fraction is then the cone's mean over the visible emitter, its edge blurred by the emitter. */
+ * the fraction is then the cone's mean over the visible emitter, its edge blurred by the emitter; such
+ * a lane stops early only where every ray is blocked (the cone's blur needs every ray). */
 static inline SHADOW_INLINE realv emitter_visibility(const ShadowInputs* shadows, vec3 p, vec3 n, const Emitter* emitter,
                                                      UNIFORM_SPACE const LightShape* cone, uint caster, uint rays,
                                                      LatticeShift shift, intv pending) {
@@ -41,18 +49,24 @@ static inline SHADOW_INLINE realv emitter_visibility(const ShadowInputs* shadows
    * 1e-3 away as for a 100 m one 1e4 away (a common factor cancels in the fraction). */
   const realv inverse_scale =
       1 / (sqrt(dot3(c, c)) + sqrt(dot3(emitter->u, emitter->u) + dot3(emitter->v, emitter->v)));
-  realv seen = 0, total = 0;
-  if (!any_lane(pending)) return total + 1;
+  realv seen = 0, total = 0, traced_rays = 0, blocked_rays = 0;
   for (uint k = 0; k < rays; ++k) {
+    if (k == SHADOW_PROBE_RAYS) {
+      const intv agree = LANE_MASK(blocked_rays == traced_rays) | (cone ? (intv)0 : LANE_MASK(blocked_rays == 0));
+      pending &= ~(LANE_MASK(traced_rays > 0) & agree);
+    }
+    if (!any_lane(pending)) break;
     realv s, t;
     lattice_point(k, shift, &s, &t);
     const vec3 offset = emitter_offset(emitter, s, t);
     const vec3 d = add3(c, offset);
-    const realv weight = emitter_weight(scale3(d, inverse_scale), n, emitter->normal);
+    const realv weight = SELECT(TO_REALV(pending) != 0, emitter_weight(scale3(d, inverse_scale), n, emitter->normal), 0);
     const vec3 where = emitter->directional ? unit_or_zero(d) : add3(emitter->center, offset);
     const intv blocked =
         light_blocked(&traced, p, n, where, emitter->directional, SCREEN_SHADOWS, caster, pending & LANE_MASK(weight > 0));
     total += weight;
+    traced_rays += SELECT(weight > 0, 1, 0);
+    blocked_rays += SELECT(TO_REALV(blocked) != 0, 1, 0);
     const realv counted = cone ? times_cone(cone, d, 1 / sqrt(fmax(dot3(d, d), (real)1e-30)), weight) : weight;
     seen += SELECT(TO_REALV(blocked) != 0, 0, counted);
   }

@@ -22,7 +22,7 @@ struct ShadowSettings {
   ShadowMode mode = ShadowMode::automatic;
   int steps = 32;            // screen: samples along each ray, 1 to 1024
   double thickness = -0.06;  // screen: > 0 world units; < 0 that fraction of the surface's depth
-  int rays = 16;             // geometry: rays per pixel over an area light without its own "shadow_rays",
+  int rays = 64;             // geometry: rays per pixel over an area light without its own "shadow_rays",
                              // 1 to kMaxShadowRays (1: one ray to the centre, a hard shadow)
   int environment_rays = 64; // visibility rays per pixel of an environment light without its own "rays",
                              // 1 to kMaxEnvironmentRays (docs/environment.md "Visibility": error against time)

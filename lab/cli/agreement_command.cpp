@@ -17,6 +17,7 @@ namespace {
 
 struct AgreementArguments {
   std::vector<std::string> cycles, shaded, unshadowed;
+  std::vector<std::string> cycles_unshadowed;  // the renderer's own unshadowed light, instead of --unshadowed
   std::string view_layer = "ViewLayer";
   std::string layer = "diffuse";  // phongcl's AOV layer: diffuse, or group.<name>
   std::string cycles_pass;        // empty: DiffDir x DiffCol; else a Cycles pass (Combined_<light group>)
@@ -106,9 +107,11 @@ void check_relative_errors(const AgreementArguments& args, const std::vector<Lig
 
 void run_agreement(const AgreementArguments& args) {
   const bool relative = args.median_at_most >= 0.0 || args.p99_at_most >= 0.0;
-  if (args.cycles.size() != args.shaded.size() || (!relative && args.cycles.size() != args.unshadowed.size()))
-    throw std::invalid_argument("agreement: give --cycles, --shaded and --unshadowed once per light, in the same order"
-                                " (--unshadowed not with --median-at-most or --p99-at-most)");
+  const std::size_t bases = args.unshadowed.size() + args.cycles_unshadowed.size();
+  if (args.cycles.size() != args.shaded.size() || (!relative && args.cycles.size() != bases) ||
+      (!args.unshadowed.empty() && !args.cycles_unshadowed.empty()))
+    throw std::invalid_argument("agreement: give --cycles, --shaded and --unshadowed (or --cycles-unshadowed) once per"
+                                " light, in the same order (neither with --median-at-most or --p99-at-most)");
   const std::string layer = args.view_layer.empty() ? "" : args.view_layer + ".";
   const std::string shaded_layer = args.layer.empty() ? "" : args.layer + ".";
   const std::vector<std::string> shaded_channels = {shaded_layer + "R", shaded_layer + "G", shaded_layer + "B"};
@@ -125,7 +128,12 @@ void run_agreement(const AgreementArguments& args) {
     LightImages light;
     light.expected = rgb(std::move(cycles), 0);
     light.shaded = rgb(read_planes(args.shaded[k], shaded_channels), 0);
-    light.unshadowed = relative ? light.shaded : rgb(read_planes(args.unshadowed[k], shaded_channels), 0);
+    if (relative)
+      light.unshadowed = light.shaded;
+    else if (!args.cycles_unshadowed.empty())
+      light.unshadowed = rgb(read_cycles(args.cycles_unshadowed[k], layer, args.cycles_pass, args.glossy), 0);
+    else
+      light.unshadowed = rgb(read_planes(args.unshadowed[k], shaded_channels), 0);
     for (const auto* planes : {&light.expected, &light.shaded, &light.unshadowed})
       if ((*planes)[0].size() != mask.size()) throw InputError(args.shaded[k], "not the size of " + args.cycles[0]);
     lights.push_back(std::move(light));
@@ -138,8 +146,9 @@ void run_agreement(const AgreementArguments& args) {
     return;
   }
   const LightAgreement agreement = light_agreement(lights, mask, width, args.tolerance);
-  std::printf("phongcl agreement: %zu lights, %dx%d, tolerance %.3g of each light's unshadowed value\n", lights.size(),
-              width, height, args.tolerance);
+  std::printf("phongcl agreement: %zu lights, %dx%d, tolerance %.3g of each light's unshadowed value (%s)\n",
+              lights.size(), width, height, args.tolerance,
+              args.cycles_unshadowed.empty() ? "phongcl's, --unshadowed" : "Cycles', --cycles-unshadowed");
   for (std::size_t k = 0; k < lights.size(); ++k)
     std::printf("  light %zu    %.2f%% of %zu pixels (%s)\n", k,
                 100.0 * static_cast<double>(agreement.agreeing_per_light[k]) / std::max<double>(agreement.pixels, 1),
@@ -163,6 +172,9 @@ void add_agreement_command(CLI::App& app) {
   command->add_option("--shaded", args->shaded, "phongcl --aov file of the same light (per light)")->required();
   command->add_option("--unshadowed", args->unshadowed,
                       "phongcl --aov file of the same light, shadows off (per light; not with --median-at-most)");
+  command->add_option("--cycles-unshadowed", args->cycles_unshadowed,
+                      "Cycles render of the same light with its shadows off, the tolerance's base instead of "
+                      "--unshadowed (per light; shadow_scene.py --unshadowed)");
   command->add_option("--layer", args->layer, "The --aov files' layer to compare: diffuse (default) or group.<name>; '' the image's own R, G, B "
                       "(a shaded or composited --out)");
   command->add_option("--cycles-pass", args->cycles_pass,

@@ -4,7 +4,9 @@ light of each light alone, rendered from pixel centres (box filter of 0.01 px, o
 point light of radius 0 and no bounces, the direct light at a pixel centre is exact, noiseless).
 With --soft the lights have a size and cast soft shadows: a 2 m square area light, a point and a spot
 light of radius 0.25 m and a sun of 10 degrees, each rendered with --samples samples per pixel (the
-penumbra's light is then an estimate whose noise the comparison's tolerance must hold).
+penumbra's light is then an estimate whose noise the comparison's tolerance must hold). With
+--unshadowed each light is rendered a second time with its shadows off, DIR/light0-unshadowed.exr, ...:
+the renderer's own unshadowed light, the base of the comparison's tolerance.
 
     blender -b --factory-startup --python scripts/blender/shadow_scene.py -- --out DIR [--width 320 --height 240] [--soft --samples 512]
 
@@ -107,7 +109,7 @@ def build_shadow_scene(width, height, add_lights=add_point_lights, samples=1):
     return scene
 
 
-def render_each_light(scene, directory):
+def render_each_light(scene, directory, suffix=""):
     lights = [o for o in scene.objects if o.type == "LIGHT"]
     for k, light in enumerate(lights):
         for other in lights:
@@ -115,10 +117,20 @@ def render_each_light(scene, directory):
         export_scene.enable_passes(bpy.context.view_layer)
         export_scene.multilayer_exr(scene.render.image_settings)
         scene.render.use_file_extension = False
-        scene.render.filepath = os.path.join(directory, "light%d.exr" % k)
+        scene.render.filepath = os.path.join(directory, "light%d%s.exr" % (k, suffix))
         bpy.ops.render.render(write_still=True)
     for light in lights:
         light.hide_render = False
+
+
+def render_each_light_unshadowed(scene, directory):
+    """Each light alone with its shadows off (after the export, which writes the lights' shadows on)."""
+    lights = [o for o in scene.objects if o.type == "LIGHT"]
+    for light in lights:
+        versions.set_casts_shadow(light.data, False)
+    render_each_light(scene, directory, "-unshadowed")
+    for light in lights:
+        versions.set_casts_shadow(light.data, True)
 
 
 def main():
@@ -128,6 +140,8 @@ def main():
     parser.add_argument("--height", type=int, default=240)
     parser.add_argument("--soft", action="store_true", help="lights with a size, casting soft shadows")
     parser.add_argument("--samples", type=int, default=512, help="--soft: samples per pixel")
+    parser.add_argument("--unshadowed", action="store_true",
+                        help="also render each light with its shadows off (lightK-unshadowed.exr)")
     args = parser.parse_args(sys.argv[sys.argv.index("--") + 1:])
     out = os.path.abspath(args.out)
     os.makedirs(out, exist_ok=True)
@@ -141,6 +155,8 @@ def main():
     document = export_scene.scene_json(scene, "quadratic", "gbuffer.exr", objects)
     export_scene.write_json(document, os.path.join(out, "scene.json"))
     render_each_light(scene, out)
+    if args.unshadowed:
+        render_each_light_unshadowed(scene, out)
 
 
 if __name__ == "__main__":

@@ -1,20 +1,22 @@
 #!/usr/bin/env bash
 # Soft shadows against Cycles: renders scripts/blender/shadow_scene.py --soft (the spheres and box
 # under a 2 m area light, a point and a spot light of radius 0.25 m and a 10-degree sun, each alone,
-# 256 samples) at 160x120, shades each light alone with --shadows geometry (the default rays) and
-# screen, and holds each light's `phongcl agreement` (within 5% of its unshadowed value, away from
-# silhouettes) to the level docs/shadows.md measured, less a margin of 0.5 to 1 point for Cycles'
-# noise and the versions: below the issue's 99% and 95%, which these lights do not reach yet (the
-# docs say why). PHONGCL_SHADOW_CHECK_SIZE and PHONGCL_SHADOW_CHECK_KEEP as in 65-blender-shadows.sh.
+# 256 samples, and each again with its shadows off) at 160x120, shades each light alone with
+# --shadows geometry (the default rays) and screen, and holds each light's `phongcl agreement`
+# (within 5% of Cycles' own unshadowed light, away from silhouettes) to the level docs/shadows.md
+# measured, less a margin of about 1 point for Cycles' noise and the versions: below the issue's 99%
+# (and screen space's 95% for the spot), which these lights do not reach yet (the docs say why).
+# PHONGCL_SHADOW_CHECK_SIZE and PHONGCL_SHADOW_CHECK_KEEP as in 65-blender-shadows.sh.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 check=65-blender-soft-shadows
 source scripts/checks/lib/shadow_lights.sh
-render_shadow_scene --soft --samples 256
+render_shadow_scene --soft --samples 256 --unshadowed
 shade_each_light geometry screen
+tolerance_base=cycles
 # Per light, in shadow_scene.py's order: area, point, spot, sun.
-geometry_targets=(95 98 90 96)
-screen_targets=(94.5 98 85.5 96)
+geometry_targets=(97.3 98 94.5 97.7)
+screen_targets=(95.3 97.5 88.5 97.3)
 summary=""
 for ((k = 0; k < lights; ++k)); do
   shadow_agreement off 0 "$k" >/dev/null

@@ -16,7 +16,7 @@ fi
 mkdir -p "$work"
 export POCL_CACHE_DIR="${POCL_CACHE_DIR:-$work/pocl-cache}"
 
-# shadow_scene.py at width x height into $work; arguments go to it (--soft --samples N).
+# shadow_scene.py at width x height into $work; arguments go to it (--soft --samples N --unshadowed).
 render_shadow_scene() {
   "$blender" -b --factory-startup --python-exit-code 1 --python scripts/blender/shadow_scene.py -- --out "$work" \
     --width "$width" --height "$height" "$@" >"$work/blender.log" 2>&1 ||
@@ -46,11 +46,18 @@ PY
 
 # `phongcl agreement` of a mode's images with Cycles', held to --at-least $2 percent: every light's
 # together, or with $3 the one light of that index alone. Its report goes to agreement-$1[-$3].txt.
+# The tolerance's base is phongcl's `off` image, or with tolerance_base=cycles Cycles' render of the
+# light with its shadows off (render_shadow_scene --unshadowed).
 shadow_agreement() {
   local args=() k first=0 last=$((lights - 1)) report="$work/agreement-$1.txt"
   [ $# -ge 3 ] && first=$3 last=$3 report="$work/agreement-$1-$3.txt"
   for ((k = first; k <= last; ++k)); do
-    args+=(--cycles "$work/light$k.exr" --shaded "$work/$1$k.aov.exr" --unshadowed "$work/off$k.aov.exr")
+    args+=(--cycles "$work/light$k.exr" --shaded "$work/$1$k.aov.exr")
+    if [ "${tolerance_base:-phongcl}" = cycles ]; then
+      args+=(--cycles-unshadowed "$work/light$k-unshadowed.exr")
+    else
+      args+=(--unshadowed "$work/off$k.aov.exr")
+    fi
   done
   "$phongcl" agreement "${args[@]}" --at-least "$2" | tee "$report"
 }
