@@ -188,8 +188,8 @@ TEST(AreaLights, DiffuseMatchesTheReference) {
       // Rects: Lambert's sum of O(1) edge terms, each to a few ulp, cancelling to a faint E where the
       // emitter is a sliver over the horizon (2.2e-5 measured in float); in double what remains is
       // the light's geometry rounded to float (4.4e-6). The disk cut by the horizon is the clipped
-      // sum of the area-matched 64-gon, not exact: 1.0e-3 measured (9.2e-3 with 32 sides).
-      const double bound = rect ? (precision == Precision::precise ? 5e-5 : 1e-5) : 2e-3;
+      // sum of the area-matched 64-gon, not exact: 7.3e-5 measured in both precisions.
+      const double bound = rect ? (precision == Precision::precise ? 5e-5 : 1e-5) : 2e-4;
       EXPECT_LE(error.max_rel, bound) << (rect ? "rects" : "disks") << ", " << to_string(precision);
     }
   }
