@@ -22,6 +22,7 @@
 #ifndef PHONGCL_PHONG_POLYGON_H
 #define PHONGCL_PHONG_POLYGON_H
 
+#include "features.h"
 #include "phong_math.h"
 #include "spherical_clip.h"
 
@@ -99,14 +100,15 @@ realv edge_rule_flux(vec3 a, vec3 g, realv theta, vec3 n, vec3 r, realv q, realv
     const real x = i < EDGE_RULE_POINTS / 2 ? edge_rule_half_node(i) : -edge_rule_half_node(EDGE_RULE_POINTS - 1 - i);
     const real weight = edge_rule_half_weight(i < EDGE_RULE_POINTS / 2 ? i : EDGE_RULE_POINTS - 1 - i) / 2;
     const real y = (1 + x) / 2;
-    const realv phi = theta * (y * y * (3 - 2 * y));
-    const realv cosine = cos(phi), sine = sin(phi);
+    realv cosine;
+    const realv sine = sincos(theta * (y * y * (3 - 2 * y)), &cosine);
     const realv t = fmax(t_a * cosine + s_a * sine, 0), s = s_a * cosine - t_a * sine;
     const realv m = s * s + r_g * r_g;                         /* 1 - t^2 */
     const realv e = fmin(m / (1 + t), (real)(1 - 0x1p-24));    /* 1 - t, below 1: log1p stays finite */
     const realv ratio = SELECT(m > PHONG_POLYGON_TINY, -expm1(p * log1p(-e)) / fmax(m, PHONG_POLYGON_TINY), p / 2);
-    const realv power = exp2(q * log2(fmax(t, PHONG_POLYGON_TINY)));
-    sum += (weight * 6 * y * (1 - y)) * (ratio_weight * ratio + power_weight * power);
+    /* t^q only where a normalised lobe needs it (a scene's models are known when it compiles) */
+    const realv power = NORMALIZED_LOBES ? power_weight * exp2(q * log2(fmax(t, PHONG_POLYGON_TINY))) : 0;
+    sum += (weight * 6 * y * (1 - y)) * (ratio_weight * ratio + power);
   }
   return theta * sum;
 }
