@@ -188,8 +188,9 @@ realv numerical_specular(int shape, vec3 c, vec3 u, vec3 v, vec3 n, const AreaLo
 
 /* Phong's I_q or D_q (phong_polygon.h) over the emitter's polygon (a disk's inscribed
  * PHONG_DISK_SIDES-gon) at an integer exponent per lane. */
-realv polygon_moment(int shape, vec3 c, vec3 u, vec3 v, vec3 n, vec3 r, realv exponent, realv normalized, realv lobe_side) {
-  PhongPolygon polygon = start_phong_polygon(n, r, scale3(c, rsqrt(dot3(c, c))), exponent, normalized, lobe_side);
+realv polygon_moment(int shape, vec3 c, vec3 u, vec3 v, vec3 n, vec3 r, realv exponent, realv normalized, realv lobe_side,
+                     realv rule) {
+  PhongPolygon polygon = start_phong_polygon(n, r, scale3(c, rsqrt(dot3(c, c))), exponent, normalized, lobe_side, rule);
   const int sides = shape == AREA_RECT ? 4 : PHONG_DISK_SIDES;
   vec3 previous = emitter_vertex(shape, c, u, v, 0, sides, 1);
   for (int k = 1; k <= sides; ++k) {
@@ -237,18 +238,20 @@ realv disk_rim_specular(vec3 c, vec3 u, vec3 v, vec3 n, vec3 r, const AreaLobe* 
   return sum;
 }
 
-/* Phong's S at any q up to PHONG_POLYGON_MAX_Q over the emitter's polygon: exact at integers;
- * between them the geometric mean of the neighbours weighted by the fraction, an upper bound
- * (phong_polygon.h). */
+/* Phong's S at any q up to PHONG_POLYGON_MAX_Q over the emitter's polygon: exact at integers; a
+ * non-integer q below PHONG_EDGE_RULE_MAX_Q by the edge rule, above it the geometric mean of the
+ * integer neighbours weighted by the fraction, an upper bound (phong_polygon.h). */
 realv phong_polygon_specular(int shape, vec3 c, vec3 u, vec3 v, vec3 n, vec3 r, realv shininess, realv normalized) {
   /* Lanes beyond the closed form's range take none of its steps (area_specular replaces them). */
   const realv q = SELECT(shininess > PHONG_POLYGON_MAX_Q, 0, shininess), low = floor(q), fraction = q - low;
   const realv lobe_side = SELECT(q > 0, 1, 0);
-  const realv at_low = polygon_moment(shape, c, u, v, n, r, low, normalized, lobe_side);
-  if (!ANY_LANE(fraction > 0)) return at_low;
-  const realv at_high = polygon_moment(shape, c, u, v, n, r, low + 1, normalized, lobe_side);
+  const realv rule = SELECT(fraction > 0 && q < PHONG_EDGE_RULE_MAX_Q, 1, 0);
+  const realv at_low = polygon_moment(shape, c, u, v, n, r, SELECT(rule != 0, q, low), normalized, lobe_side, rule);
+  const realv interpolated = SELECT(fraction > 0 && rule == 0, 1, 0);
+  if (!ANY_LANE(interpolated != 0)) return at_low;
+  const realv at_high = polygon_moment(shape, c, u, v, n, r, low + 1, normalized, lobe_side, 0);
   const realv between = at_low * exp2(fraction * log2(fmax(at_high / fmax(at_low, PHONG_POLYGON_TINY), PHONG_POLYGON_TINY)));
-  return SELECT(fraction > 0 && at_low > 0, between, at_low);
+  return SELECT(interpolated != 0 && at_low > 0, between, at_low);
 }
 
 /* S in each lane's model: Phong's lobes in closed form (a disk's as its inscribed polygon's plus

@@ -11,12 +11,18 @@
  *   k J^k = t_a^(k-1) s_a - t_b^(k-1) s_b + (k-1) (1 - (r.g)^2) J^(k-2),  J^0 = theta,  J^1 = s_a - s_b
  * with t = r.w and s = r.(g x w) at the edge's ends a and b, Omega the solid angle. Every step of
  * either recurrence multiplies the error it inherits by less than 1, so rounding does not grow with
- * q; the cost does: q/2 steps per edge. A non-integer q takes I (or D) at floor(q) and floor(q) + 1
- * and interpolates their logarithms: both are log-convex in q (Hoelder), so this is an upper bound,
- * within 1/8 of the variance of log(r.w) under the lobe-weighted measure (about 1/(8 q^2)). */
+ * q; the cost does: q/2 steps per edge. A non-integer q below PHONG_EDGE_RULE_MAX_Q takes the
+ * edge rule (edge_rule_flux): the same theorem with a field whose divergence is (r.w)^q for real q,
+ *   (q+1) I_q = -sum_edges (r.g) integral of (1 - t^(q+1)) / (1 - t^2)
+ *   (q+2) D_q = -sum_edges integral of (n.r) (r.g) (1 - t^(q+2)) / (1 - t^2) + (n.g - (n.r)(r.g)) t^q
+ * (no Omega: the fields are smooth on the lobe's side), each edge's integral by a graded Gauss rule.
+ * A larger non-integer q takes I (or D) at floor(q) and floor(q) + 1 and interpolates their
+ * logarithms: both are log-convex in q (Hoelder), so this is an upper bound, within 1/8 of the
+ * variance of log(r.w) under the lobe-weighted measure (about 1/(8 q^2), 5e-4 at q = 16). */
 #ifndef PHONGCL_PHONG_POLYGON_H
 #define PHONGCL_PHONG_POLYGON_H
 
+#include "features.h"
 #include "phong_math.h"
 #include "spherical_clip.h"
 
@@ -24,6 +30,8 @@
 #define PHONG_POLYGON_MAX_Q 1024
 /* Where a length or a logarithm's argument would be 0: a normal float far below any value kept. */
 #define PHONG_POLYGON_TINY ((real)0x1p-120)
+/* Non-integer exponents below this take the edge rule; from it on, the log-interpolation. */
+#define PHONG_EDGE_RULE_MAX_Q 16
 
 /* The polygon's sums so far, per lane: `top` is the highest power of the edge recurrence (q - 1
  * for I, q for D; -1: none), `normalized` 1 where D is wanted. */
@@ -32,9 +40,11 @@ typedef struct {
   vec3 apex;       /* a unit vector near the polygon, from which the solid angle is summed */
   realv lobe_side; /* 1 where the polygon is clipped to r.w >= 0 too */
   realv top, normalized;
+  realv rule, exponent; /* rule: 1 in lanes that take the edge rule at the real exponent q */
   realv solid_angle; /* -Omega: Van Oosterom and Strackee's triangles from the apex */
   realv lobe_sum;    /* sum (r.g) (the J^k the formula sums) */
   realv cosine_sum;  /* sum (n.g) J^top, for D */
+  realv rule_sum;    /* sum of edge_rule_flux */
   realv highest;     /* the largest r.w on the polygon's boundary */
   realv r_inside;    /* 1 while r.g <= 0 on every edge: r within the (convex) polygon */
   PlaneCrossings horizon, lobe_side_crossings;
@@ -63,6 +73,46 @@ void edge_powers(vec3 a, vec3 b, vec3 g, realv theta, vec3 r, realv top, realv* 
   *last = SELECT(top >= 0, j, 0);
 }
 
+/* Gauss-Legendre's 12 points on [0, 1] (nodes 1/2 + x/2, weights halved from [-1, 1]). */
+#define EDGE_RULE_POINTS 12
+static inline real edge_rule_half_node(int i) { /* x of node i for i < 6; the rest mirror them */
+  return i == 0 ? (real)0.98156063424671924 : i == 1 ? (real)0.90411725637047480 : i == 2 ? (real)0.76990267419430469
+       : i == 3 ? (real)0.58731795428661748 : i == 4 ? (real)0.36783149899818018 : (real)0.12523340851146894;
+}
+static inline real edge_rule_half_weight(int i) {
+  return i == 0 ? (real)0.04717533638651183 : i == 1 ? (real)0.10693932599531818 : i == 2 ? (real)0.16007832854334633
+       : i == 3 ? (real)0.20316742672306584 : i == 4 ? (real)0.23349253653835478 : (real)0.24914704581340288;
+}
+
+/* The edge rule's integral along the arc from unit vector a through angle theta in the plane of
+ * unit normal g, at real exponent q (the (q+1) I_q or (q+2) D_q formula's term, unsigned): at angle
+ * phi, t = r.w = t_a cos + s_a sin and 1 - t^2 = s^2 + (r.g)^2 with s = r.(g x w), without
+ * cancellation, and 1 - t^p = -expm1(p log1p(-(1 - t))). The integrand is analytic except t^p
+ * where an end lies on r.w = 0 (clipped to the lobe's side); phi = theta (3y^2 - 2y^3) turns that
+ * into y^(2p+1), which 12 Gauss points in y integrate to 1e-7 below q = 16 (docs/shading.md). */
+realv edge_rule_flux(vec3 a, vec3 g, realv theta, vec3 n, vec3 r, realv q, realv normalized) {
+  const realv t_a = dot3(r, a), s_a = dot3(r, cross3(g, a)), r_g = dot3(r, g), r_n = dot3(r, n);
+  const realv p = q + 1 + normalized;
+  const realv ratio_weight = r_g * SELECT(normalized != 0, r_n, 1);
+  const realv power_weight = SELECT(normalized != 0, dot3(n, g) - r_n * r_g, 0);
+  realv sum = 0;
+  for (int i = 0; i < EDGE_RULE_POINTS; ++i) {
+    const real x = i < EDGE_RULE_POINTS / 2 ? edge_rule_half_node(i) : -edge_rule_half_node(EDGE_RULE_POINTS - 1 - i);
+    const real weight = edge_rule_half_weight(i < EDGE_RULE_POINTS / 2 ? i : EDGE_RULE_POINTS - 1 - i) / 2;
+    const real y = (1 + x) / 2;
+    realv cosine;
+    const realv sine = sincos(theta * (y * y * (3 - 2 * y)), &cosine);
+    const realv t = fmax(t_a * cosine + s_a * sine, 0), s = s_a * cosine - t_a * sine;
+    const realv m = s * s + r_g * r_g;                         /* 1 - t^2 */
+    const realv e = fmin(m / (1 + t), (real)(1 - 0x1p-24));    /* 1 - t, below 1: log1p stays finite */
+    const realv ratio = SELECT(m > PHONG_POLYGON_TINY, -expm1(p * log1p(-e)) / fmax(m, PHONG_POLYGON_TINY), p / 2);
+    /* t^q only where a normalised lobe needs it (a scene's models are known when it compiles) */
+    const realv power = NORMALIZED_LOBES ? power_weight * exp2(q * log2(fmax(t, PHONG_POLYGON_TINY))) : 0;
+    sum += (weight * 6 * y * (1 - y)) * (ratio_weight * ratio + power);
+  }
+  return theta * sum;
+}
+
 /* Adds arc a -> b, already clipped to both planes, in the lanes where `kept` (it may have shrunk
  * to a point: its terms are then 0). */
 void add_clipped_arc(PhongPolygon* p, vec3 a_scaled, vec3 b_scaled, realv kept) {
@@ -74,8 +124,11 @@ void add_clipped_arc(PhongPolygon* p, vec3 a_scaled, vec3 b_scaled, realv kept) 
   const vec3 normal = cross3(a, b), n = p->n, apex = p->apex;
   const realv sine = sqrt(dot3(normal, normal)), cosine = dot3(a, b);
   const vec3 g = scale3(normal, SELECT(sine > 0, 1 / fmax(sine, PHONG_POLYGON_TINY), 0));
+  const realv theta = atan2(sine, cosine);
   realv sum, last;
-  edge_powers(a, b, g, atan2(sine, cosine), p->r, p->top, &sum, &last);
+  edge_powers(a, b, g, theta, p->r, p->top, &sum, &last);
+  if (ANY_LANE(p->rule != 0 && kept != 0))
+    p->rule_sum += SELECT(p->rule != 0 && kept != 0, edge_rule_flux(a, g, theta, n, p->r, p->exponent, p->normalized), 0);
   const realv triangle = 2 * atan2(dot3(apex, normal), 1 + dot3(apex, a) + dot3(apex, b) + cosine);
   p->solid_angle += SELECT(kept != 0, triangle, 0);
   p->lobe_sum += SELECT(kept != 0, dot3(p->r, g) * SELECT(p->normalized != 0, sum - last, sum), 0);
@@ -105,16 +158,17 @@ void add_polygon_edge(PhongPolygon* p, vec3 a, vec3 b) {
   add_arc_on_lobe_side(p, above.a, above.b, edge_kept(&above));
 }
 
-/* A polygon for lanes with integer exponent q, normal n and lobe axis r, clipped to the lobe's
- * side where `lobe_side`. `apex`, a unit vector towards the polygon, keeps the solid angle's
+/* A polygon for lanes with exponent q (integer, or real where `rule`), normal n and lobe axis r,
+ * clipped to the lobe's side where `lobe_side`. `apex`, a unit vector towards the polygon, keeps the solid angle's
  * triangles as small as the polygon (from a far apex they would be large and cancel). Where q = 0 the lobe is 1 everywhere; where r is within 2^-17 of n the
  * horizon's side is the lobe's, up to a lune of width |r - n| < 0.004 in which |r.w|^q < 0.004^q,
  * and clipping to two planes that near each other would be ill-conditioned. */
-PhongPolygon start_phong_polygon(vec3 n, vec3 r, vec3 apex, realv q, realv normalized, realv lobe_side) {
+PhongPolygon start_phong_polygon(vec3 n, vec3 r, vec3 apex, realv q, realv normalized, realv lobe_side, realv rule) {
   const realv zero = 0;
   const realv distinct = SELECT(lobe_side != 0 && dot3(n, r) < 1 - (real)0x1p-17, 1, 0);
-  PhongPolygon p = {n, r, apex, distinct, SELECT(normalized != 0, q, q - 1), normalized,
-                    zero, zero, zero, zero, (realv)1, no_crossings(), no_crossings()};
+  const realv top = SELECT(rule != 0, -1, SELECT(normalized != 0, q, q - 1)); /* the rule's lanes take no steps */
+  PhongPolygon p = {n, r, apex, distinct, top, normalized, rule, q,
+                    zero, zero, zero, zero, zero, (realv)1, no_crossings(), no_crossings()};
   return p;
 }
 
@@ -128,7 +182,8 @@ realv phong_polygon_moment(PhongPolygon* p, realv q) {
   const realv needed = SELECT(p->normalized != 0, q - 1, q);
   const realv omega = -p->solid_angle;
   const realv power_sum = SELECT(is_odd(needed) != 0, 0, omega) - p->lobe_sum; /* (q+1) I_q, or q I_{q-1} */
-  const realv moment = SELECT(p->normalized != 0, (dot3(p->r, p->n) * power_sum - p->cosine_sum) / (q + 2), power_sum / (q + 1));
+  const realv recurrence = SELECT(p->normalized != 0, (dot3(p->r, p->n) * power_sum - p->cosine_sum) / (q + 2), power_sum / (q + 1));
+  const realv moment = SELECT(p->rule != 0, -p->rule_sum / (q + 1 + p->normalized), recurrence);
   /* The formula cancels O(Omega) terms down to the moment, which leaves float an absolute error of
    * a few ulp of Omega. Where r lies outside the polygon the moment is at most Omega times the
    * largest r.w there to the power q, which bounds that error where the lobe barely reaches
