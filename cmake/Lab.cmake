@@ -17,9 +17,11 @@ if(NOT PHONGCL_PEERS_VECTORISED)
   target_compile_definitions(phongcl_peers PRIVATE PHONGCL_PEERS_SCALAR)
 endif()
 phongcl_lab_room(stability DEPS phongcl_reference phongcl_report)
+# The integrals behind the Principled BSDF v2's tables (phongcl-lab principled-tables).
+phongcl_lab_room(albedo DEPS OpenMP::OpenMP_CXX)
 
 add_library(phongcl_lab INTERFACE)
-target_link_libraries(phongcl_lab INTERFACE phongcl_reference phongcl_report phongcl_peers phongcl_stability)
+target_link_libraries(phongcl_lab INTERFACE phongcl_reference phongcl_report phongcl_peers phongcl_stability phongcl_albedo)
 
 # The Embree peer of the shadow rays (optional, as the Halide peer is: without libembree-dev its rows
 # say SKIP). PHONGCL_HAVE_EMBREE tells the lab's commands and tests it is there.
