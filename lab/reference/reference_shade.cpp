@@ -6,6 +6,7 @@
 #include "reference/reference_area.h"
 #include "reference/reference_environment.h"
 #include "reference/reference_principled.h"
+#include "reference/reference_principled_v2.h"
 #include "reference/reference_soft_shadows.h"
 
 namespace phongcl {
@@ -117,7 +118,8 @@ ShadingTerms reference_shade_point(const Scene& scene, const SurfacePoint& point
     if (factor == 0.0) continue;
 
     if (point.specular_model == SpecularModel::principled) {
-      const PrincipledLight lobes = reference_principled(point.principled, n, v, l);
+      const PrincipledLight lobes = point.principled.version == 2 ? reference_principled_v2(point.principled, n, v, l)
+                                                                  : reference_principled(point.principled, n, v, l);
       principled_diffuse += product(light.color, lobes.diffuse * factor);
       principled_specular += product(light.color, lobes.specular * factor);
       continue;
@@ -145,7 +147,10 @@ ShadingTerms reference_shade_point(const Scene& scene, const SurfacePoint& point
   if (point.specular_model == SpecularModel::principled) {
     // Area lights and the environment: Lambert's irradiance times the diffuse colour, no highlight (as the
     // kernel: docs/shading.md).
-    const glm::dvec3 weight = point.principled.base_color * (1.0 - point.principled.metallic);
+    const glm::dvec3 weight =
+        point.principled.version == 2
+            ? reference_principled_v2_lambert(point.principled, std::clamp(glm::dot(n, v), 0.0, 1.0))
+            : point.principled.base_color * (1.0 - point.principled.metallic);
     terms.diffuse = principled_diffuse + product(weight, diffuse);
     terms.specular = principled_specular;
     return terms;
