@@ -17,8 +17,9 @@ if(NOT PHONGCL_PEERS_VECTORISED)
   target_compile_definitions(phongcl_peers PRIVATE PHONGCL_PEERS_SCALAR)
 endif()
 phongcl_lab_room(stability DEPS phongcl_reference phongcl_report)
-# The fits whose tables the kernels read (the LTC table of kernels/ltc_table.h).
-phongcl_lab_room(fit DEPS phongcl_reference)
+# The fits and integrals whose tables the kernels read: the LTC table of kernels/ltc_table.h and the
+# Principled BSDF v2's GGX tables of kernels/principled_tables.h.
+phongcl_lab_room(fit DEPS phongcl_reference OpenMP::OpenMP_CXX)
 
 add_library(phongcl_lab INTERFACE)
 target_link_libraries(phongcl_lab INTERFACE phongcl_reference phongcl_report phongcl_peers phongcl_stability phongcl_fit)

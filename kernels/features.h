@@ -9,8 +9,8 @@
  *   POINT_COUNT=n, DIRECTIONAL_COUNT=n     light counts in the code (loops unroll); 0: read at run time
  *   SPECULAR, AMBIENT                      terms present
  *   SPECULAR_MODELS=m                      the specular models the materials use, a mask of bit 1 << model
- *                                          (specular.h); 1: Phong's alone, the default lobe; 16:
- *                                          Cycles' Principled BSDF (principled.h)
+ *                                          (specular.h); 1: Phong's alone, the default lobe; 16, 32:
+ *                                          Cycles' Principled BSDF v1, v2 (principled.h)
  *   SINGLE_MATERIAL                        every shaded pixel uses materials[0]: no per-pixel fetch
  *   MATERIAL_COUNT=n                       a table of n <= PHONGCL_LANES materials: selects, no gather;
  *                                          0: gathered per lane
@@ -60,8 +60,11 @@
 #define HALF_VECTOR_LOBES ((SPECULAR_MODELS & 12) != 0)
 #define NORMALIZED_LOBES ((SPECULAR_MODELS & 10) != 0)
 #define MIXED_SPECULAR_MODELS ((SPECULAR_MODELS & (SPECULAR_MODELS - 1)) != 0)
-/* Cycles' Principled BSDF (principled.h), model 4: in some lanes, or in every one. */
-#define PRINCIPLED_LOBES ((SPECULAR_MODELS & 16) != 0)
-#define ONLY_PRINCIPLED_LOBES (SPECULAR_MODELS == 16)
+/* Cycles' Principled BSDF (principled.h), models 4 (v1) and 5 (v2): in some lanes, or in every one. */
+#define PRINCIPLED_LOBES ((SPECULAR_MODELS & 48) != 0)
+#define ONLY_PRINCIPLED_LOBES ((SPECULAR_MODELS & ~48) == 0)
+#define PRINCIPLED_V1 ((SPECULAR_MODELS & 16) != 0)
+#define PRINCIPLED_V2 ((SPECULAR_MODELS & 32) != 0)
+#define ONLY_PRINCIPLED_V2 (SPECULAR_MODELS == 32)
 
 #endif

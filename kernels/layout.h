@@ -228,12 +228,18 @@ typedef struct {
   layout_float shininess;
   layout_float specular_model; /* the model's number (specular.h), a float so the lanes' selects read it as the others */
   layout_float roughness, ior; /* the Principled model's (principled.h); 0 for the others */
+  /* The Principled v2 model's (principled.h), 0 for the others: */
+  layout_float metal_f0[4];       /* the F82-tint metal's F0 (rgb), a: metallic */
+  layout_float metal_b[4];        /* its B term (rgb), a: 1 where the dielectric layer is (its index is not 1) */
+  layout_float fresnel_average;   /* the dielectric lobe's hemispherical mean Fresnel factor (fresnel_dielectric_Fss) */
+  layout_float unused[3];
 } MaterialRecord;
 
 /* Float offsets of MaterialRecord's fields, for the kernel's per-lane gathers. */
 enum {
   MATERIAL_KA = 0, MATERIAL_KD = 4, MATERIAL_KS = 8, MATERIAL_SHININESS = 12, MATERIAL_SPECULAR_MODEL = 13,
-  MATERIAL_ROUGHNESS = 14, MATERIAL_IOR = 15
+  MATERIAL_ROUGHNESS = 14, MATERIAL_IOR = 15, MATERIAL_METAL_F0 = 16, MATERIAL_METALLIC = 19, MATERIAL_METAL_B = 20,
+  MATERIAL_DIELECTRIC_LAYER = 23, MATERIAL_FRESNEL_AVERAGE = 24
 };
 
 /* The G-buffer lives in one device buffer of planes (structure of arrays: kernels over plain float

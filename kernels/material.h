@@ -48,7 +48,10 @@ real material_scalar(UNIFORM_SPACE const MaterialRecord* record, int field) {
          : field == MATERIAL_SHININESS ? record->shininess
          : field == MATERIAL_SPECULAR_MODEL ? record->specular_model
          : field == MATERIAL_ROUGHNESS ? record->roughness
-                                       : record->ior;
+         : field == MATERIAL_IOR ? record->ior
+         : field < MATERIAL_METAL_B ? record->metal_f0[field - MATERIAL_METAL_F0]
+         : field < MATERIAL_FRESNEL_AVERAGE ? record->metal_b[field - MATERIAL_METAL_B]
+                                            : record->fresnel_average;
 }
 
 /* `value`, or entry m's field in the lanes whose index is m. */

@@ -43,7 +43,8 @@ typedef struct {
   realv shininess; /* q */
   realv highlight_cutoff; /* with SPECULAR, highlight_cutoff(q) */
   realv specular_model; /* the lane's model number (specular.h); read only where lanes may differ */
-  PrincipledSurface principled; /* with PRINCIPLED_LOBES, the lane's Principled parameters */
+  PrincipledSurface principled; /* with PRINCIPLED_V1, the lane's Principled parameters */
+  PrincipledV2Surface principled_v2; /* with PRINCIPLED_V2, the lane's version 2 parameters */
   intv material;   /* material index, PHONGCL_BACKGROUND in background lanes */
 } Surface;
 
@@ -188,10 +189,31 @@ void light_contribution(LightSums* sums, PendingLobes* pending, vec3 n, vec3 v, 
   }
 }
 
+/* The share of Lambert's light (area lights', the environment's) a lane's diffuse takes: a Principled v2
+ * lane's under its dielectric layer, all of it in the others. */
+static inline realv lambert_share(const Surface* surface) {
+  if (!PRINCIPLED_V2) return 1;
+  if (ONLY_PRINCIPLED_V2) return surface->principled_v2.diffuse_scale;
+  return SELECT(surface->specular_model == PRINCIPLED_V2_MODEL, surface->principled_v2.diffuse_scale, 1);
+}
+
+/* A Principled lane's responses (principled.h) in its version; where lanes mix the versions, both. */
+static inline PrincipledResponse principled_lanes_response(const Surface* surface, vec3 l) {
+  if (!PRINCIPLED_V2) return principled_response(surface->principled, surface->n, surface->v, l);
+  const PrincipledResponse v2 = principled_v2_response(surface->principled_v2, surface->n, surface->v, l);
+  if (!PRINCIPLED_V1) return v2;
+  const PrincipledResponse v1 = principled_response(surface->principled, surface->n, surface->v, l);
+  const realv is_v2 = SELECT(surface->specular_model == PRINCIPLED_V2_MODEL, 1, 0);
+  PrincipledResponse response;
+  response.diffuse = SELECT(is_v2 != 0, v2.diffuse, v1.diffuse);
+  response.specular = select3(v2.specular, v1.specular, is_v2);
+  return response;
+}
+
 /* What a Principled lane adds (principled.h): Li F times its responses, the specular one coloured. */
-void principled_light(LightSums* sums, vec3 n, vec3 v, PrincipledSurface material, vec3 toward, realv inverse,
-                      UNIFORM_SPACE const float* color, realv weight) {
-  const PrincipledResponse response = principled_response(material, n, v, scale3(toward, inverse));
+void principled_light(LightSums* sums, const Surface* surface, vec3 toward, realv inverse, UNIFORM_SPACE const float* color,
+                      realv weight) {
+  const PrincipledResponse response = principled_lanes_response(surface, scale3(toward, inverse));
   const realv lit = NONNEGATIVE_TIMES(weight, response.diffuse);
   sums->diffuse.x += NONNEGATIVE_TIMES(color[0], lit);
   sums->diffuse.y += NONNEGATIVE_TIMES(color[1], lit);
@@ -211,9 +233,8 @@ static inline void surface_light(LightSums* sums, PendingLobes* pending, const S
                        surface->specular_model, toward, inverse, color, weight);
     return;
   }
-  const realv principled = ONLY_PRINCIPLED_LOBES ? 1 : SELECT(surface->specular_model == PRINCIPLED_MODEL, 1, 0);
-  principled_light(sums, surface->n, surface->v, surface->principled, toward, inverse, color,
-                   SELECT(principled != 0, weight, 0));
+  const realv principled = ONLY_PRINCIPLED_LOBES ? 1 : SELECT(surface->specular_model >= PRINCIPLED_MODEL, 1, 0);
+  principled_light(sums, surface, toward, inverse, color, SELECT(principled != 0, weight, 0));
   if (!ONLY_PRINCIPLED_LOBES)
     light_contribution(sums, pending, surface->n, surface->v, surface->shininess, surface->highlight_cutoff,
                        surface->specular_model, toward, inverse, color, SELECT(principled != 0, 0, weight));
@@ -368,16 +389,20 @@ static inline void add_area_light(LightSums* sums, const Surface* surface, const
   realv irradiance, highlight;
   area_light_terms(light, surface->p, n, v, r, surface->shininess, surface->specular_model,
                    ONLY_PRINCIPLED_LOBES ? 0 : SPECULAR, &irradiance, &highlight);
-  /* Principled lanes take Lambert's irradiance and GGX's highlight by LTC (area_ltc.h), coloured by
-   * its Fresnel: `tint`, 1 in the other lanes. */
+  /* Principled lanes take Lambert's irradiance (v2's under its dielectric layer); v1's highlight is
+   * GGX's by LTC (area_ltc.h), coloured by its Fresnel: `tint`, 1 in the other lanes. v2 has no
+   * highlight from an area light yet. */
   const realv one = 1;
   vec3 tint = make_vec3(one, one, one);
-  if (PRINCIPLED_LOBES && SPECULAR) {
+  if (PRINCIPLED_LOBES)
+    highlight = ONLY_PRINCIPLED_LOBES ? 0 : SELECT(surface->specular_model >= PRINCIPLED_MODEL, 0, highlight);
+  if (PRINCIPLED_V1 && SPECULAR) {
     const LtcHighlight ltc = ltc_area_highlight(light, surface->p, n, v, surface->principled);
-    const realv principled = ONLY_PRINCIPLED_LOBES ? 1 : SELECT(surface->specular_model == PRINCIPLED_MODEL, 1, 0);
+    const realv principled = SPECULAR_MODELS == 16 ? 1 : SELECT(surface->specular_model == PRINCIPLED_MODEL, 1, 0);
     highlight = SELECT(principled != 0, ltc.highlight, highlight);
     tint = select3(ltc.tint, tint, principled);
   }
+  if (PRINCIPLED_V2) irradiance *= lambert_share(surface);
   if (SHADOWS && lights->area_casters[k])
     shadow_area_light(&irradiance, &highlight, surface, lights, k, lights->area_casters[k]);
   sums->diffuse.x += light->color[0] * irradiance;
@@ -407,6 +432,7 @@ static inline void add_environment(LightSums* sums, const Surface* surface, cons
   const vec3 suns =
       environment_suns(lights->environment_suns, environment->sun_count, lights->shadows, surface->p, surface->n, pending);
   light = add3(light, scale3(suns, (realv)environment->scale));
+  if (PRINCIPLED_V2) light = scale3(light, lambert_share(surface));
   sums->diffuse = add3(sums->diffuse, light);
 }
 
@@ -550,7 +576,7 @@ static inline vec3 specular_coefficient(vec3 ks, realv model) {
   if (!PRINCIPLED_LOBES) return ks;
   const realv one = 1;
   if (ONLY_PRINCIPLED_LOBES) return make_vec3(one, one, one);
-  return select3(make_vec3(one, one, one), ks, SELECT(model == PRINCIPLED_MODEL, 1, 0));
+  return select3(make_vec3(one, one, one), ks, SELECT(model >= PRINCIPLED_MODEL, 1, 0));
 }
 
 /* L_o's terms for one vector of pixels: ambient ka*La, diffuse kd*D, specular ks*S. */
@@ -561,7 +587,7 @@ static inline void shade_pixel(Terms* terms, const PixelPlanes* pixels, const Ma
   surface.shininess = PER_PIXEL_Q ? pixel_plane(pixels, PLANE_Q) : material_field(materials, MATERIAL_SHININESS);
   surface.highlight_cutoff = SPECULAR ? highlight_cutoff(surface.shininess) : 0;
   surface.specular_model = MIXED_SPECULAR_MODELS ? material_field(materials, MATERIAL_SPECULAR_MODEL) : 0;
-  if (PRINCIPLED_LOBES) {
+  if (PRINCIPLED_V1) {
     surface.principled.specular_color = MATERIAL_FIELD3(materials, MATERIAL_KS);
     surface.principled.roughness = material_field(materials, MATERIAL_ROUGHNESS);
     surface.principled.alpha_sq = surface.principled.roughness * surface.principled.roughness;
@@ -574,6 +600,13 @@ static inline void shade_pixel(Terms* terms, const PixelPlanes* pixels, const Ma
   surface.p_rest = POSITION_REST ? PIXEL_PLANE3(pixels, PLANE_REST) : make_vec3(zero, zero, zero);
   surface.n = unit_or_zero(PIXEL_PLANE3(pixels, PLANE_NX));
   surface.v = unit_or_zero(make_vec3(-surface.p.x, -surface.p.y, -surface.p.z)); /* v = normalize(E - P), E = 0 */
+  if (PRINCIPLED_V2)
+    surface.principled_v2 = principled_v2_surface(
+        MATERIAL_FIELD3(materials, MATERIAL_METAL_F0), MATERIAL_FIELD3(materials, MATERIAL_METAL_B),
+        material_field(materials, MATERIAL_METALLIC), MATERIAL_FIELD3(materials, MATERIAL_KS),
+        material_field(materials, MATERIAL_DIELECTRIC_LAYER), material_field(materials, MATERIAL_ROUGHNESS),
+        material_field(materials, MATERIAL_IOR), material_field(materials, MATERIAL_FRESNEL_AVERAGE),
+        clamp(dot3(surface.n, surface.v), (realv)0, (realv)1));
 
   /* D = sum_i Li F_i max(0, n.l_i), S = sum_i Li F_i max(0, v.r_i)^q (or the material's lobe) */
   LightSums sums;

@@ -1,5 +1,6 @@
-/* Cycles' Principled BSDF, version 1 (Blender 2.8 to 3.6, distribution GGX), under one light from
- * direction l: specular model 4 (specular.h numbers the others). Every formula, with the Cycles
+/* Cycles' Principled BSDF under one light from direction l: version 1 (Blender 2.8 to 3.6, distribution
+ * GGX) is specular model 4, version 2 (Blender 4.0 on, distribution multiscatter GGX) model 5
+ * (specular.h numbers the others). Every formula, with the Cycles
  * file and function it matches, is in docs/shading.md "Principled". As the other lobes, the
  * responses are BRDF * pi * n.l (the Lambert 1/pi is folded into Li): the diffuse one is a factor
  * kd multiplies (kd = base colour * (1 - metallic), the host packs it), the specular one a colour
@@ -9,8 +10,10 @@
 
 #include "features.h"
 #include "phong_math.h"
+#include "principled_tables.h"
 
 #define PRINCIPLED_MODEL 4
+#define PRINCIPLED_V2_MODEL 5
 
 /* A lane's Principled parameters as the lights need them (read once per pixel). */
 typedef struct {
@@ -89,6 +92,146 @@ static inline PrincipledResponse principled_response(PrincipledSurface m, vec3 n
   const realv tint = lit * (1 - fh), white = lit * fh;
   response.specular = make_vec3(fma(tint, m.specular_color.x, white), fma(tint, m.specular_color.y, white),
                                 fma(tint, m.specular_color.z, white));
+  return response;
+}
+
+/* ---- Version 2 (Blender 4.0 on): Cycles' svm/closure.h, CLOSURE_BSDF_PRINCIPLED_ID, without coat,
+ * sheen, transmission, subsurface, thin film and anisotropy. A metal lobe (F82-tint Fresnel) of weight
+ * metallic, over it a dielectric lobe (the real Fresnel remapped to [f0 tint, 1]) of weight 1 - metallic,
+ * both GGX with height-correlated masking and multiscatter energy compensation, and Lambert's diffuse
+ * beneath, attenuated by the dielectric layer's albedo. ---- */
+
+/* A lane's version 2 parameters, read once per pixel (principled_v2_surface). */
+typedef struct {
+  vec3 metal_f0, metal_b;      /* F82 tint: the base colour (at most 1) and its B term */
+  vec3 metal_scale;            /* metallic times the energy compensation, per channel */
+  vec3 dielectric_f0;          /* F0(ior) 2 specular_ior_level times the specular tint, saturated */
+  vec3 dielectric_scale;       /* 1 - metallic times the energy compensation (0 without the layer) */
+  realv alpha_sq;              /* GGX's alpha^2, alpha = roughness^2 */
+  realv ior, ior_f0;           /* the dielectric's index (after the level) and its F0 */
+  realv diffuse_scale;         /* what the dielectric layer leaves the diffuse beneath, at this view */
+} PrincipledV2Surface;
+
+/* Cycles' lookup_table_read: linear between the two entries about x in [0, 1] of a row of `size`. */
+static inline real table_row(__constant const float* row, real x, int size) {
+  const real at = clamp(x, (real)0, (real)1) * (size - 1);
+  const int index = min((int)at, size - 1), next = min(index + 1, size - 1);
+  const real t = at - index;
+  return fma(t, (real)row[next], (1 - t) * (real)row[index]);
+}
+
+/* lookup_table_read_2D: rows of nx along y in [0, 1], linear between the two rows about y. */
+static inline real table_plane(__constant const float* plane, real x, real y, int nx, int ny) {
+  const real at = clamp(y, (real)0, (real)1) * (ny - 1);
+  const int index = min((int)at, ny - 1), next = min(index + 1, ny - 1);
+  const real t = at - index;
+  return fma(t, table_row(plane + next * nx, x, nx), (1 - t) * table_row(plane + index * nx, x, nx));
+}
+
+/* GGX's tables at each lane's roughness, view cosine mu and index axis z (principled_tables.h): the
+ * directional albedo E, its average E_avg, and the dielectric Fresnel's mean interpolation factor s
+ * (lookup_table_read_3D: linear between the two planes about z). */
+static inline void ggx_table_lanes(realv roughness, realv mu, realv z, realv* albedo, realv* average,
+                                   realv* interpolation) {
+  real r[PHONGCL_LANES], m[PHONGCL_LANES], zs[PHONGCL_LANES], e[PHONGCL_LANES], a[PHONGCL_LANES], s[PHONGCL_LANES];
+  VSTORE(roughness, 0, r);
+  VSTORE(mu, 0, m);
+  VSTORE(z, 0, zs);
+  const int n = GGX_INTERPOLATION_SIZE;
+  for (int k = 0; k < PHONGCL_LANES; ++k) {
+    e[k] = table_plane(ggx_albedo_table, r[k], m[k], GGX_ALBEDO_SIZE, GGX_ALBEDO_SIZE);
+    a[k] = table_row(ggx_average_albedo_table, r[k], GGX_ALBEDO_SIZE);
+    const real at = clamp(zs[k], (real)0, (real)1) * (n - 1);
+    const int index = min((int)at, n - 1), next = min(index + 1, n - 1);
+    const real t = at - index;
+    s[k] = fma(t, table_plane(ggx_fresnel_interpolation_table + next * n * n, r[k], m[k], n, n),
+               (1 - t) * table_plane(ggx_fresnel_interpolation_table + index * n * n, r[k], m[k], n, n));
+  }
+  *albedo = VLOAD(0, e);
+  *average = VLOAD(0, a);
+  *interpolation = VLOAD(0, s);
+}
+
+/* microfacet_ggx_preserve_energy's factor on a lobe of mean single-scattering Fresnel fss:
+ * 1 + Fms (1 - E) / E, Fms = fss E_avg / (1 - fss (1 - E_avg)) (Kulla and Conty 2017). */
+static inline realv ggx_energy_compensation(realv fss, realv missing, realv average) {
+  return fma(fss * average / (1 - fss * (1 - average)), missing, 1);
+}
+
+/* The F82-tint Fresnel at cosine c (Kutz et al., "Novel aspects of the Adobe Standard Material"):
+ * Schlick's mix(f0, 1, (1 - c)^5) less b c (1 - c)^6, saturated (bsdf_util.h, fresnel_f82). */
+static inline realv f82_tint_fresnel(realv c, realv f0, realv b) {
+  const realv m = clamp(1 - c, (real)0, (real)1);
+  const realv m5 = m * m * m * m * m;
+  return clamp(fma(1 - f0, m5, f0) - b * c * m5 * m, (real)0, (real)1);
+}
+
+/* The dielectric's Fresnel at cosine c remapped from [F0(ior), 1] to [f0, 1] (microfacet_fresnel, the
+ * generalised Schlick's case exponent < 0). t is the remap's factor, shared by the three channels. */
+static inline realv remapped_fresnel(realv t, realv f0) { return fma(1 - f0, t, f0); }
+
+/* A lane's version 2 parameters at view cosine mu: the record's fields, E, E_avg and s from the
+ * tables, the lobes' energy compensation and the diffuse's share under the dielectric layer
+ * (closure_layering_weight: 1 - the largest channel of the layer's albedo, its weight divided out). */
+static inline PrincipledV2Surface principled_v2_surface(vec3 metal_f0, vec3 metal_b, realv metallic, vec3 dielectric_f0,
+                                                        realv dielectric_layer, realv roughness, realv ior,
+                                                        realv fresnel_average, realv mu) {
+  PrincipledV2Surface m;
+  m.metal_f0 = metal_f0, m.metal_b = metal_b, m.dielectric_f0 = dielectric_f0, m.ior = ior;
+  m.alpha_sq = roughness * roughness * roughness * roughness;
+  const realv ratio = (ior - 1) / (ior + 1);
+  m.ior_f0 = ratio * ratio;
+  realv albedo, average, interpolation;
+  ggx_table_lanes(roughness, mu, sqrt(fabs(ratio)), &albedo, &average, &interpolation);
+  const realv missing = (1 - albedo) / albedo;
+  /* fresnel_f82_Fss: the F82 lobe's hemispherical mean, mix(f0, 1, 1/21) - b/126. */
+  const realv per_21 = (real)1 / 21, per_126 = (real)1 / 126;
+  m.metal_scale = make_vec3(
+      metallic * ggx_energy_compensation(fma(1 - metal_f0.x, per_21, metal_f0.x) - metal_b.x * per_126, missing, average),
+      metallic * ggx_energy_compensation(fma(1 - metal_f0.y, per_21, metal_f0.y) - metal_b.y * per_126, missing, average),
+      metallic * ggx_energy_compensation(fma(1 - metal_f0.z, per_21, metal_f0.z) - metal_b.z * per_126, missing, average));
+  const vec3 boost = make_vec3(ggx_energy_compensation(remapped_fresnel(fresnel_average, dielectric_f0.x), missing, average),
+                               ggx_energy_compensation(remapped_fresnel(fresnel_average, dielectric_f0.y), missing, average),
+                               ggx_energy_compensation(remapped_fresnel(fresnel_average, dielectric_f0.z), missing, average));
+  const realv weight = (1 - metallic) * dielectric_layer;
+  m.dielectric_scale = scale3(boost, weight);
+  /* bsdf_microfacet_estimate_albedo: mix(f0, 1, s) times the compensation's darkening, boost / (1 + missing). */
+  const realv darkening = 1 / (1 + missing);
+  const realv layer_albedo = max(max(remapped_fresnel(interpolation, dielectric_f0.x) * boost.x,
+                                     remapped_fresnel(interpolation, dielectric_f0.y) * boost.y),
+                                 remapped_fresnel(interpolation, dielectric_f0.z) * boost.z) * darkening;
+  m.diffuse_scale = SELECT(dielectric_layer > 0, clamp(1 - layer_albedo, (real)0, (real)1), 1);
+  return m;
+}
+
+/* Version 2's diffuse and specular responses to a light from unit l, for unit n and v. */
+static inline PrincipledResponse principled_v2_response(PrincipledV2Surface m, vec3 n, vec3 v, vec3 l) {
+  const realv n_dot_l = dot3(n, l), n_dot_v = dot3(n, v);
+  PrincipledResponse response;
+  response.diffuse = SELECT(n_dot_l > 0, n_dot_l * m.diffuse_scale, 0);
+  const vec3 s = add3(l, v);
+  const realv inverse_s = rsqrt(max(dot3(s, s), (real)1e-30f));
+  const realv n_dot_h = dot3(n, s) * inverse_s, l_dot_h = dot3(l, s) * inverse_s;
+  const vec3 n_cross_s = cross3(n, s);
+  const realv sin_sq = dot3(n_cross_s, n_cross_s) * (inverse_s * inverse_s);
+  const realv d_root = fma(n_dot_h * n_dot_h, m.alpha_sq, sin_sq);
+  /* pi D G2 / (4 n.v), D = alpha^2 / (pi d_root^2), height-correlated G2 = 1 / (1 + Lambda_v + Lambda_l),
+   * 1 + Lambda(c) = (1 + root(c) / c) / 2 with root(c) = sqrt(c^2 + alpha^2 (1 - c^2)). */
+  const realv root_v = sqrt(fma(m.alpha_sq, 1 - n_dot_v * n_dot_v, n_dot_v * n_dot_v));
+  const realv root_l = sqrt(fma(m.alpha_sq, 1 - n_dot_l * n_dot_l, n_dot_l * n_dot_l));
+  const realv lobe = m.alpha_sq * n_dot_l / (2 * d_root * d_root * fma(root_v, n_dot_l, root_l * n_dot_v));
+  /* BSDF_ROUGHNESS_SQ_THRESH: alpha^2 <= 2e-10 is a mirror (no highlight from a point). */
+  const realv lit = SELECT(n_dot_l > 0 && n_dot_v > 0 && m.alpha_sq > (real)2e-10f, lobe, 0);
+  /* ior_f0 = 1 is the record of a lane of another model (index 0): no Fresnel, and no 0 * NaN. */
+  const realv t = SELECT(m.ior_f0 < 1,
+                         clamp((dielectric_fresnel(l_dot_h, m.ior) - m.ior_f0) / (1 - m.ior_f0), (real)0, (real)1), 0);
+  response.specular = make_vec3(
+      lit * fma(m.metal_scale.x, f82_tint_fresnel(l_dot_h, m.metal_f0.x, m.metal_b.x),
+                m.dielectric_scale.x * remapped_fresnel(t, m.dielectric_f0.x)),
+      lit * fma(m.metal_scale.y, f82_tint_fresnel(l_dot_h, m.metal_f0.y, m.metal_b.y),
+                m.dielectric_scale.y * remapped_fresnel(t, m.dielectric_f0.y)),
+      lit * fma(m.metal_scale.z, f82_tint_fresnel(l_dot_h, m.metal_f0.z, m.metal_b.z),
+                m.dielectric_scale.z * remapped_fresnel(t, m.dielectric_f0.z)));
   return response;
 }
 

@@ -178,8 +178,13 @@ void bind_scene(py::module_& module) {
   material.def_readwrite("metallic", &Material::metallic, "principled: metallic, [0, 1].")
       .def_readwrite("roughness", &Material::roughness, "principled: roughness, [0, 1].")
       .def_readwrite("specular", &Material::specular, "principled: specular, [0, 12] (F0 = 0.08 specular).")
-      .def_readwrite("specular_tint", &Material::specular_tint, "principled: specular tint, [0, 1].")
-      .def_readwrite("version", &Material::version, "principled: the node's version, 1 (Blender 2.8 to 3.6).");
+      .def_readwrite("specular_tint", &Material::specular_tint, "principled version 1: specular tint, [0, 1].")
+      .def_readwrite("version", &Material::version, "principled: the node's version, 1 (Blender 2.8 to 3.6) or 2 (4.0 on).")
+      .def_readwrite("ior", &Material::ior, "principled version 2: the dielectric's index, [1, 1000].")
+      .def_readwrite("specular_ior_level", &Material::specular_ior_level,
+                     "principled version 2: Specular IOR Level, >= 0 (F0 times twice it).");
+  vec3_property(material, "specular_tint_color", &Material::specular_tint_color,
+                "principled version 2: the Specular Tint colour (the JSON's specular_tint).");
 
   py::class_<Scene> scene(module, "Scene",
                           "A scene: camera, ambient, background, lights, area lights, materials. Lists come out as copies: "

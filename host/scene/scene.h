@@ -59,9 +59,14 @@ struct Light {
 // that takes the cosine n.l and reflects at most what it receives: (q+2)/2 (v.r)^q (Lafortune and
 // Willems 1994), (q+8)/8 (n.h)^q (Akenine-Moller et al., Real-Time Rendering). The enum value is
 // the kernel's model number (kernels/specular.h).
-// kSpecularModels are the Phong family; `principled` is none of them: Cycles' Principled BSDF, version 1 (docs/shading.md "Principled"),
-// from the material's base_color ... version fields instead of kd, ks and shininess.
+// kSpecularModels are the Phong family; `principled` is none of them: Cycles' Principled BSDF, version 1 or 2
+// (docs/shading.md "Principled", "Principled v2"), from the material's base_color ... version fields instead of kd,
+// ks and shininess. Its version 2 is the kernel's model 5 (kernel_specular_model).
 enum class SpecularModel { phong = 0, phong_normalized = 1, blinn_phong = 2, blinn_phong_normalized = 3, principled = 4 };
+// The kernel's model number (kernels/specular.h, principled.h): the enum's, 5 for Principled v2.
+inline int kernel_specular_model(SpecularModel model, int version) {
+  return model == SpecularModel::principled && version == 2 ? 5 : static_cast<int>(model);
+}
 inline constexpr SpecularModel kSpecularModels[] = {SpecularModel::phong, SpecularModel::phong_normalized,
                                                     SpecularModel::blinn_phong, SpecularModel::blinn_phong_normalized};
 
@@ -123,7 +128,11 @@ struct Material {
   double roughness = 0.5;      // [0, 1]; GGX's alpha is its square
   double specular = 0.5;       // [0, 12]: F0 = 0.08 specular for a dielectric
   double specular_tint = 0.0;  // [0, 1]: towards the base colour's hue
-  int version = 1;             // the node's version: 1 (Blender 2.8 to 3.6) is the one implemented
+  int version = 1;             // the node's version: 1 (Blender 2.8 to 3.6) or 2 (Blender 4.0 on)
+  // Version 2's own inputs (specular and specular_tint above are version 1's):
+  double ior = 1.5;                    // [1, 1000]: the dielectric's index
+  double specular_ior_level = 0.5;     // >= 0: scales F0(ior) by twice itself
+  glm::dvec3 specular_tint_color{1.0}; // >= 0: tints the dielectric's F0 and the metal's F82 edge
 
   bool operator==(const Material&) const = default;
 };

@@ -75,7 +75,11 @@ void check_material_table(const std::vector<Material>& materials) {
     require(within(m.roughness, 1.0), entry + ".roughness", "must be in [0, 1]");
     require(within(m.specular, 12.0), entry + ".specular", "must be in [0, 12]");
     require(within(m.specular_tint, 1.0), entry + ".specular_tint", "must be in [0, 1]");
-    require(m.version == 1, entry + ".version", "must be 1 (the Principled BSDF of Blender 2.8 to 3.6)");
+    require(m.version == 1 || m.version == 2, entry + ".version", "must be 1 (Blender 2.8 to 3.6) or 2 (Blender 4.0 on)");
+    require(m.ior >= 1.0 && m.ior <= 1000.0, entry + ".ior", "must be in [1, 1000]");
+    require(std::isfinite(m.specular_ior_level) && m.specular_ior_level >= 0.0, entry + ".specular_ior_level",
+            "must be finite and >= 0");
+    require(non_negative(m.specular_tint_color), entry + ".specular_tint", "must be finite and >= 0 (version 2's colour)");
   }
 }
 

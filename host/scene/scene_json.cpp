@@ -161,29 +161,44 @@ double read_number_in(const JsonValue& value, double low, double high) {
   return number;
 }
 
-// The Principled model's fields, refused on other models; its Phong coefficients refused on it.
+// The Principled model's fields, refused on other models; its Phong coefficients refused on it; each
+// version's own inputs refused on the other (specular_tint is a number in version 1, a colour in 2).
 void read_principled_fields(const JsonObject& object, Material& material) {
   const bool principled = material.specular_model == SpecularModel::principled;
-  for (const char* key : {"base_color", "metallic", "roughness", "specular", "specular_tint", "version"})
+  for (const char* key : {"base_color", "metallic", "roughness", "specular", "specular_tint", "version", "ior",
+                          "specular_ior_level", "diffuse_roughness"})
     if (!principled && object.has(key)) object.at(key).fail("is used only by specular_model \"principled\"");
   for (const char* key : {"kd", "ks", "shininess"})
     if (principled && object.has(key)) object.at(key).fail("is not used by specular_model \"principled\" (base_color, metallic, specular are)");
   if (!principled) return;
+  if (auto version = object.find("version")) {
+    if (version->number() != 1.0 && version->number() != 2.0)
+      version->fail("must be 1 (the Principled BSDF of Blender 2.8 to 3.6) or 2 (Blender 4.0 on)");
+    material.version = static_cast<int>(version->number());
+  }
+  const bool v2 = material.version == 2;
+  if (v2 && object.has("specular")) object.at("specular").fail("is version 1's input (version 2 has ior and specular_ior_level)");
+  for (const char* key : {"ior", "specular_ior_level", "diffuse_roughness"})
+    if (!v2 && object.has(key)) object.at(key).fail("is version 2's input (set \"version\": 2)");
   if (auto color = object.find("base_color")) material.base_color = read_non_negative_vec3(*color);
   if (auto metallic = object.find("metallic")) material.metallic = read_number_in(*metallic, 0.0, 1.0);
   if (auto roughness = object.find("roughness")) material.roughness = read_number_in(*roughness, 0.0, 1.0);
   if (auto specular = object.find("specular")) material.specular = read_number_in(*specular, 0.0, 12.0);
-  if (auto tint = object.find("specular_tint")) material.specular_tint = read_number_in(*tint, 0.0, 1.0);
-  if (auto version = object.find("version")) {
-    if (version->number() != 1.0) version->fail("must be 1: the Principled BSDF of Blender 2.8 to 3.6 is the version implemented");
-    material.version = 1;
+  if (auto tint = object.find("specular_tint")) {
+    if (v2) material.specular_tint_color = read_non_negative_vec3(*tint);
+    else material.specular_tint = read_number_in(*tint, 0.0, 1.0);
   }
+  if (auto ior = object.find("ior")) material.ior = read_number_in(*ior, 1.0, 1000.0);
+  if (auto level = object.find("specular_ior_level")) material.specular_ior_level = read_number_in(*level, 0.0, 1000.0);
+  // Cycles' Oren-Nayar (Diffuse Roughness > 0) is not implemented: Lambert's diffuse is version 2's here.
+  if (auto roughness = object.find("diffuse_roughness"))
+    if (read_number_in(*roughness, 0.0, 1.0) != 0.0) roughness->fail("must be 0: Oren-Nayar's diffuse is not implemented");
 }
 
 Material read_material(const JsonValue& value) {
   const JsonObject object = value.object();
   object.expect_keys({"name", "ka", "kd", "ks", "shininess", "specular_model", "base_color", "metallic", "roughness",
-                      "specular", "specular_tint", "version"});
+                      "specular", "specular_tint", "version", "ior", "specular_ior_level", "diffuse_roughness"});
   Material material;
   if (auto name = object.find("name")) material.name = name->string();
   if (auto ka = object.find("ka")) material.ka = read_non_negative_vec3(*ka);

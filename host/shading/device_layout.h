@@ -24,7 +24,7 @@ static_assert(sizeof(SceneTables) == 48 && sizeof(TileListTables) == 16 && sizeo
 static_assert(PHONGCL_UNROLL_LIGHT_LIMIT <= PHONGCL_LIGHT_BLOCK, "an unrolled light loop is one compensated block");
 static_assert(sizeof(PointLight) == 48 && offsetof(PointLight, color) == 16 && offsetof(PointLight, position_rest) == 32);
 static_assert(sizeof(DirectionalLight) == 32 && offsetof(DirectionalLight, color) == 16);
-static_assert(sizeof(MaterialRecord) == 64 && sizeof(SoftLight) == 8);
+static_assert(sizeof(MaterialRecord) == 112 && sizeof(SoftLight) == 8);
 static_assert(offsetof(FrameScalars, area_count) == 52);
 static_assert(sizeof(AreaLightRecord) == 96 && offsetof(AreaLightRecord, color) == 64 && offsetof(AreaLightRecord, shape) == 80);
 static_assert(offsetof(MaterialRecord, ka) == MATERIAL_KA * sizeof(float) &&
@@ -33,7 +33,12 @@ static_assert(offsetof(MaterialRecord, ka) == MATERIAL_KA * sizeof(float) &&
               offsetof(MaterialRecord, shininess) == MATERIAL_SHININESS * sizeof(float) &&
               offsetof(MaterialRecord, specular_model) == MATERIAL_SPECULAR_MODEL * sizeof(float) &&
               offsetof(MaterialRecord, roughness) == MATERIAL_ROUGHNESS * sizeof(float) &&
-              offsetof(MaterialRecord, ior) == MATERIAL_IOR * sizeof(float));
+              offsetof(MaterialRecord, ior) == MATERIAL_IOR * sizeof(float) &&
+              offsetof(MaterialRecord, metal_f0) == MATERIAL_METAL_F0 * sizeof(float) &&
+              offsetof(MaterialRecord, metal_f0[3]) == MATERIAL_METALLIC * sizeof(float) &&
+              offsetof(MaterialRecord, metal_b) == MATERIAL_METAL_B * sizeof(float) &&
+              offsetof(MaterialRecord, metal_b[3]) == MATERIAL_DIELECTRIC_LAYER * sizeof(float) &&
+              offsetof(MaterialRecord, fresnel_average) == MATERIAL_FRESNEL_AVERAGE * sizeof(float));
 static_assert(sizeof(LightShape) == 48 && offsetof(LightShape, inverse_range) == 16 && offsetof(LightShape, falloff) == 32 &&
               offsetof(LightShape, cosine_power) == 36);
 static_assert(sizeof(LightBounds) == 64 && offsetof(LightBounds, apex) == 16 && offsetof(LightBounds, distance_bins) == 48 &&

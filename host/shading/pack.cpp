@@ -16,6 +16,7 @@
 #include "common/host_threads.h"
 #include "shading/light_order.h"
 #include "shading/pack_area.h"
+#include "shading/pack_principled_v2.h"
 #include "shading/store3.h"
 
 namespace phongcl {
@@ -124,8 +125,9 @@ UniformData pack_uniforms(const Scene& scene, const Recipe& recipe) {
     store3(record.kd, material.kd);
     store3(record.ks, material.ks);
     record.shininess = static_cast<float>(material.shininess);
-    record.specular_model = static_cast<float>(static_cast<int>(material.specular_model));
-    if (material.specular_model == SpecularModel::principled) store_principled(record, material);
+    record.specular_model = static_cast<float>(kernel_specular_model(material.specular_model, material.version));
+    if (material.specular_model == SpecularModel::principled)
+      material.version == 2 ? store_principled_v2(record, material) : store_principled(record, material);
     data.materials.push_back(record);
   }
   for (int c = 0; c < 3; ++c) {

@@ -216,13 +216,17 @@ void decide_specular_models(Recipe& recipe, const Scene& scene, const GBuffer& g
                                  gbuffer.has_per_pixel_shininess());
   unsigned mask = 0;
   if (table_consulted)
-    for (const Material& material : scene.materials) mask |= 1u << static_cast<int>(material.specular_model);
+    for (const Material& material : scene.materials)
+      mask |= 1u << kernel_specular_model(material.specular_model, material.version);
   if (!specular || mask == 0) mask = 1u << static_cast<int>(SpecularModel::phong);
   std::string names;
   for (SpecularModel model : kSpecularModels)
     if (mask & (1u << static_cast<int>(model))) names += (names.empty() ? "" : ", ") + std::string(to_string(model));
   if (mask & (1u << static_cast<int>(SpecularModel::principled)))
     names += (names.empty() ? "" : ", ") + std::string("principled (Cycles' Principled BSDF v1: GGX, Fresnel, Burley)");
+  if (mask & (1u << kernel_specular_model(SpecularModel::principled, 2)))
+    names += (names.empty() ? "" : ", ") +
+             std::string("principled v2 (Cycles' Principled BSDF v2: multiscatter GGX, F82 tint, layered Lambert)");
   const bool phong_only = mask == 1u << static_cast<int>(SpecularModel::phong);
   const bool mixed = (mask & (mask - 1)) != 0;
   add_count(recipe, "SPECULAR_MODELS", static_cast<int>(mask),

@@ -6,6 +6,7 @@
 #include "reference/reference_area.h"
 #include "reference/reference_environment.h"
 #include "reference/reference_principled.h"
+#include "reference/reference_principled_v2.h"
 #include "reference/reference_soft_shadows.h"
 
 namespace phongcl {
@@ -117,7 +118,8 @@ ShadingTerms reference_shade_point(const Scene& scene, const SurfacePoint& point
     if (factor == 0.0) continue;
 
     if (point.specular_model == SpecularModel::principled) {
-      const PrincipledLight lobes = reference_principled(point.principled, n, v, l);
+      const PrincipledLight lobes = point.principled.version == 2 ? reference_principled_v2(point.principled, n, v, l)
+                                                                  : reference_principled(point.principled, n, v, l);
       principled_diffuse += product(light.color, lobes.diffuse * factor);
       principled_specular += product(light.color, lobes.specular * factor);
       continue;
@@ -135,7 +137,7 @@ ShadingTerms reference_shade_point(const Scene& scene, const SurfacePoint& point
     const double window = area_range_window(light, point.position) * (traced ? soft.area(point, light) : 1.0);
     diffuse += product(light.color, glm::dvec3(integrals.irradiance * window));
     specular += product(light.color, glm::dvec3(integrals.highlight * window));
-    if (point.specular_model == SpecularModel::principled)
+    if (point.specular_model == SpecularModel::principled && point.principled.version == 1)
       principled_specular += product(light.color, reference_principled_area(point.principled, light, point.position, n, v) * window);
   }
   // The environment: its irradiance by brute force over the map (reference_environment.h).
@@ -145,9 +147,13 @@ ShadingTerms reference_shade_point(const Scene& scene, const SurfacePoint& point
                                                  : reference_environment_light(world, reference_map(world), n);
   }
   if (point.specular_model == SpecularModel::principled) {
-    // Area lights and the environment: Lambert's irradiance times the diffuse colour (as the kernel:
-    // docs/shading.md); the area lights' highlight is in principled_specular.
-    const glm::dvec3 weight = point.principled.base_color * (1.0 - point.principled.metallic);
+    // Area lights and the environment: Lambert's irradiance times the diffuse colour (v2's under its
+    // dielectric layer), as the kernel (docs/shading.md); v1's highlight from area lights is in
+    // principled_specular.
+    const glm::dvec3 weight =
+        point.principled.version == 2
+            ? reference_principled_v2_lambert(point.principled, std::clamp(glm::dot(n, v), 0.0, 1.0))
+            : point.principled.base_color * (1.0 - point.principled.metallic);
     terms.diffuse = principled_diffuse + product(weight, diffuse);
     terms.specular = principled_specular;
     return terms;

@@ -244,6 +244,16 @@ def test_a_principled_materials_inputs_are_settable():
     assert tuple(material.base_color) == pytest.approx((0.1, 0.2, 0.3))
 
 
+def test_a_principled_version_2_materials_inputs_are_settable():
+    scene = phongcl.Scene.from_dict({"materials": [{"specular_model": "principled", "version": 2, "ior": 1.45,
+                                                    "specular_tint": [1, 0.5, 0.25]}]})
+    material = scene.materials[0]
+    assert (material.version, material.ior, material.specular_ior_level) == (2, 1.45, 0.5)
+    assert tuple(material.specular_tint_color) == pytest.approx((1, 0.5, 0.25))
+    material.ior, material.specular_ior_level = 3.0, 0.25
+    assert (material.ior, material.specular_ior_level) == (3.0, 0.25)
+
+
 @needs_device
 def test_shadows_are_a_relighter_option(scene, gbuffer):
     casting = phongcl.load_scene(str(DEFAULT))

@@ -31,29 +31,12 @@ def set_casts_shadow(light_data, value):
         light_data.cycles.cast_shadow = value
 
 
-# Principled BSDF v1 (3.x) and v2 (4.0+; release notes 4.0, Cycles "Principled BSDF"). The normal-incidence
-# reflectance F0 of the dielectric layer:
-#   3.x  F0 = 0.08 x Specular (the "Specular" socket, 0.5 by default: F0 = 0.04)
-#   4.x  F0 = ((IOR - 1) / (IOR + 1))^2 x 2 x Specular IOR Level, times the Specular Tint colour
-#        (intern/cycles/kernel/svm/closure.h, svm_node_closure_bsdf(), Principled: "Apply IOR adjustment",
-#        f0 = F0_from_ior(ior) * 2 * specular_ior_level; read in 4.3.2's source); IOR 1.5 and level 0.5
-#        give 0.04, as 3.x's default does. Capped at 1 here (Cycles' IOR is then infinite).
-#        4.x also layers the diffuse under the specular lobe (closure_layering_weight(): the diffuse weight
-#        times 1 - the specular layer's albedo), which 3.x did not; the exporter's kd, base x (1 - metallic),
-#        does not take that off (a few percent at a dielectric's F0).
+# Principled BSDF v1 (3.x) and v2 (4.0+; release notes 4.0, Cycles "Principled BSDF"): the exporter maps
+# each to phongcl's principled material of that version, whose inputs differ (3.x's Specular and scalar
+# Specular Tint; 4.x's IOR, Specular IOR Level and Specular Tint colour; docs/shading.md "Principled v2"
+# reads 4.x's svm_node_closure_bsdf()).
 # 4.0 also renamed "Emission" to "Emission Color" and "Subsurface" to "Subsurface Weight".
 PRINCIPLED_EMISSION = "Emission Color" if at_least(4) else "Emission"
-
-
-def principled_f0(node):
-    """The Principled BSDF's dielectric normal-incidence reflectance, as an RGB triple."""
-    inputs = node.inputs
-    if not at_least(4):
-        return (0.08 * inputs["Specular"].default_value,) * 3
-    ior = max(inputs["IOR"].default_value, 0.0)
-    f0 = min(((ior - 1.0) / (ior + 1.0)) ** 2 * 2.0 * inputs["Specular IOR Level"].default_value, 1.0)
-    tint = inputs["Specular Tint"].default_value[:3]
-    return tuple(f0 * t for t in tint)
 
 
 def principled_emits(node):

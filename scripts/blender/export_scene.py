@@ -38,14 +38,10 @@ name those cases.
 - Materials by pass index (Material.pass_index): a Principled BSDF of Blender 2.8 to 3.6 becomes
   phongcl's "principled" material, version 1, with its base colour, metallic, roughness, specular and
   specular tint (docs/shading.md "Principled"; subsurface, sheen, clearcoat, transmission and
-  anisotropy left out with a note where set). One of 4.0+ (version 2, not implemented) becomes "blinn-phong-normalized"
-  (phongcl's ks (q+8)/8 (n.h)^q n.l, a BRDF) with kd = base colour * (1 - metallic),
-  ks = mix(F0, base colour, metallic) (the BSDF's normal-incidence reflectance; F0 = 0.08 * Specular
-  in 3.x, ((IOR - 1)/(IOR + 1))^2 * 2 * Specular IOR Level * Specular Tint in 4.0+) and
-  q = 2 / alpha^2 - 2 with alpha = roughness^2 (Disney's and Cycles' remapping, Burley 2012 and
-  Karis 2013, "Specular BRDF Reference"; 2 / alpha^2 - 2 is the Blinn-Phong exponent matching a
-  Beckmann lobe of roughness alpha, Walter et al. 2007, eq. 30), capped at 1e6. A Diffuse BSDF
-  gives kd = its colour and a material without nodes its viewport colour, both with ks = 0: no
+  anisotropy left out with a note where set). One of 4.0+ becomes version 2 (IOR, Specular IOR Level, the
+  Specular Tint colour; coat, sheen, transmission, subsurface, anisotropy, thin film and diffuse roughness left
+  out with a note where set; docs/shading.md "Principled v2").
+  A Diffuse BSDF gives kd = its colour and a material without nodes its viewport colour, both with ks = 0: no
   specular lobe. ka = kd. Indices no material uses get a grey material. The shader is the one
   linked to the active Material Output's Surface; any other shader, a socket fed by a node (a
   texture), and emission are not mapped: a note names the material, the node and the value exported
@@ -262,6 +258,30 @@ def principled_v1_json(name, owner, node, base, metallic, roughness):
             "specular": round(clamp(specular, 12.0), 6), "specular_tint": round(clamp(tint), 6)}
 
 
+def principled_v2_json(name, owner, node, base, metallic, roughness):
+    """A 4.0+ Principled BSDF as phongcl's principled material, version 2 (docs/shading.md "Principled v2"), with
+    a note naming the inputs it leaves out where they are set (subsurface, coat, sheen, transmission, anisotropy,
+    thin film, diffuse roughness), and for the GGX distribution, shaded as Multiscatter GGX (the default)."""
+    for socket in ("Subsurface Weight", "Coat Weight", "Sheen Weight", "Transmission Weight", "Anisotropic",
+                   "Thin Film Thickness", "Diffuse Roughness"):
+        if socket in node.inputs and node.inputs[socket].default_value != 0.0:
+            note("%s: the Principled BSDF's %s is %.3g, which phongcl's principled material has not: left out"
+                 % (owner, socket, node.inputs[socket].default_value))
+    if node.distribution != "MULTI_GGX":
+        note("%s: the Principled BSDF's distribution is %s: shaded as Multiscatter GGX (with its energy compensation)"
+             % (owner, node.distribution))
+    ior = unlinked_value(owner, node, "IOR", "value")
+    if ior < 1.0:
+        note("%s: the Principled BSDF's IOR is %.3g: exported as 1 (phongcl's index is at least 1)" % (owner, ior))
+    level = unlinked_value(owner, node, "Specular IOR Level", "value")
+    tint = Vector(unlinked_value(owner, node, "Specular Tint", "colour")[:3])
+    clamp = lambda x, low=0.0, high=1.0: min(max(float(x), low), high)  # noqa: E731
+    return {"name": name, "ka": rounded(base * (1.0 - metallic)), "specular_model": "principled", "version": 2,
+            "base_color": rounded(base), "metallic": round(clamp(metallic), 6), "roughness": round(clamp(roughness), 6),
+            "ior": round(clamp(ior, 1.0, 1000.0), 6), "specular_ior_level": round(max(float(level), 0.0), 6),
+            "specular_tint": rounded(Vector([max(c, 0.0) for c in tint]))}
+
+
 def material_json(material):
     owner = "material '%s'" % material.name
     node = surface_shader(material)
@@ -281,14 +301,7 @@ def material_json(material):
         note("%s: the Principled BSDF emits light, which phongcl's materials do not: emission left out" % owner)
     if not versions.at_least(4):
         return principled_v1_json(material.name, owner, node, base, metallic, roughness)
-    note("%s: phongcl's principled material is the Principled BSDF of Blender 2.8 to 3.6; this one (4.0+) is "
-         "exported as normalised Blinn-Phong" % owner)
-    kd = base * (1.0 - metallic)
-    ks = Vector(versions.principled_f0(node)).lerp(base, metallic)
-    alpha = max(roughness, 1e-3) ** 2
-    shininess = min(max(2.0 / alpha ** 2 - 2.0, 0.0), 1e6)
-    return {"name": material.name, "ka": rounded(kd), "kd": rounded(kd), "ks": rounded(ks), "shininess": round(shininess, 4),
-            "specular_model": "blinn-phong-normalized"}
+    return principled_v2_json(material.name, owner, node, base, metallic, roughness)
 
 
 def materials_json(scene):

@@ -1,5 +1,5 @@
 """A scene holding what export_scene.py cannot map, for scripts/checks/61-blender-notes.sh: a world lit by
-a Sky Texture, an ellipse area light, a Principled BSDF that emits and whose Base Color
+a Sky Texture, an ellipse area light, a Principled BSDF that emits, transmits and whose Base Color
 is fed by a texture, a Glass BSDF, and a spot light of a non-zero radius (exported as its "radius"). Writes the scene JSON;
 the exporter's notes go to standard output. No render. With --hdri the world is instead a generated 4x2 float image
 (HDRI_PIXELS, which no file holds: the exporter writes its EXR copy) through a Mapping of type Texture turned by
@@ -58,6 +58,8 @@ def build_unmappable_scene(hdri):
     principled = red.nodes["Principled BSDF"]
     principled.inputs[versions.PRINCIPLED_EMISSION].default_value = (1.0, 1.0, 1.0, 1.0)
     principled.inputs["Emission Strength"].default_value = 2.0
+    # Transmission, which neither version of phongcl's principled material has (4.0 renamed the socket).
+    principled.inputs["Transmission Weight" if versions.at_least(4) else "Transmission"].default_value = 0.5
     noise = red.nodes.new("ShaderNodeTexNoise")
     red.links.new(noise.outputs["Color"], principled.inputs["Base Color"])
 

@@ -1,0 +1,31 @@
+// The double reference of the Principled BSDF v2 (kernels/principled.h; docs/shading.md "Principled
+// v2"), derived apart from the kernel: GGX's density from its slopes, height-correlated masking from
+// Smith's Lambda integrated over the slopes, the dielectric Fresnel from Snell's law, and the albedos
+// the energy compensation and the layering need integrated over GGX's normal distribution (the lab's
+// tables integrate over its visible normals) at the points Cycles tabulates them, interpolated as
+// Cycles reads its tables.
+#pragma once
+
+#include <glm/vec3.hpp>
+
+#include "reference/reference_principled.h"
+#include "scene/scene.h"
+
+namespace phongcl {
+
+// A light's diffuse and specular light on a version 2 surface, per unit Li: pi BRDF n.l for unit n, v, l.
+PrincipledLight reference_principled_v2(const Material& material, const glm::dvec3& n, const glm::dvec3& v,
+                                        const glm::dvec3& l);
+
+// The share of Lambert's light (area lights', the environment's) the diffuse beneath the dielectric
+// layer takes at view cosine mu, times base colour and 1 - metallic.
+glm::dvec3 reference_principled_v2_lambert(const Material& material, double mu);
+
+// GGX's albedos at alpha = roughness^2 and view cosine mu: single scattering without Fresnel (E), and the
+// mean of the dielectric Fresnel's [F0, 1] factor over the reflected light (s) for index eta.
+struct GgxAlbedos {
+  double albedo = 0.0, fresnel_factor = 0.0;
+};
+GgxAlbedos reference_ggx_albedos(double alpha, double mu, double eta);
+
+}  // namespace phongcl
