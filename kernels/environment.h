@@ -4,8 +4,8 @@
  * mapping (Cycles' direction_to_equirectangular: u = 1/2 - atan2(y, x) / 2pi, the image's top row
  * at +Z). With ENVIRONMENT_SHADOWS each of `rays` cosine-distributed directions that something
  * blocks takes the sky's radiance in its direction away from that light (exact where every ray is
- * free or every ray blocked), traced against the BVH, or with SCREEN_SHADOWS marched across the
- * depth plane, as a directional light's shadow ray is. The map's
+ * free or every ray blocked), traced against the BVH as a directional light's shadow ray is (with
+ * SCREEN_SHADOWS the horizons of environment_horizons.h take their place). The map's
  * brightest cells (a sun) are taken out of the irradiance map by the host and come as directional
  * lights: E bends at their horizon faster than the bilinear lookup follows, and each casts a sharp
  * shadow from one ray, as the sun does in Cycles. */
@@ -107,7 +107,7 @@ static inline SHADOW_INLINE vec3 environment_visible_light(const ShadowInputs* s
     const realv radius = sqrt(s), angle = (real)(2 * ENVIRONMENT_PI) * t;
     const realv height = sqrt(fmax(1 - s, (realv)0));
     const vec3 d = add3(add3(scale3(u, radius * cos(angle)), scale3(v, radius * sin(angle))), scale3(n, height));
-    const intv blocked = light_blocked(&traced, p, n, d, 1, SCREEN_SHADOWS, 0, pending);
+    const intv blocked = light_blocked(&traced, p, n, d, 1, 0, 0, pending);
     free += SELECT(TO_REALV(blocked) != 0, 0, 1);
     if (!uniform_sky && any_lane(blocked)) {
       const vec3 radiance = environment_grid(environment, sky, environment->sky_width, environment->sky_height, d);

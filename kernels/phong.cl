@@ -11,7 +11,8 @@
  * specular one by quadrature), looped over untiled; their shadows are one ray to the centre, or
  * with SOFT_SHADOWS the visible fraction of the emitter from several (soft_shadow.h).
  * With ENVIRONMENT the world's light adds its irradiance from a precomputed map to the diffuse sum,
- * with ENVIRONMENT_SHADOWS less the sky its blocked visibility rays point at (environment.h).
+ * with ENVIRONMENT_SHADOWS less the sky its blocked visibility rays point at (environment.h), or with
+ * SCREEN_SHADOWS the sky below the depth plane's horizons (environment_horizons.h).
  * With SHADOWS a light that casts shadows is multiplied by its visibility (shadow.h: a ray traced
  * against the scene's geometry, or with SCREEN_SHADOWS marched across the frame's depth plane).
  * With LIGHT_GROUPS the lights are summed group by group, and each group's terms also written apart.
@@ -22,6 +23,7 @@
  */
 #include "area_light.h"
 #include "environment.h"
+#include "environment_horizons.h"
 #include "features.h"
 #include "layout.h"
 #include "light_shape.h"
@@ -426,9 +428,13 @@ static inline void add_environment(LightSums* sums, const Surface* surface, cons
   vec3 light = environment_irradiance(environment, lights->environment_texels, surface->n);
   const intv pending =
       LANE_MASK(surface->material != PHONGCL_BACKGROUND) & LANE_MASK(dot3(surface->n, surface->n) > 0);
-  if (ENVIRONMENT_SHADOWS)
+  const LatticeShift shift = lattice_shift(lights->pixel, ENVIRONMENT_STREAM);
+  if (ENVIRONMENT_SHADOWS && SCREEN_SHADOWS)
+    light = environment_horizon_light(lights->shadows, environment, lights->environment_texels, light, surface->p, surface->n,
+                                      shift, pending);
+  else if (ENVIRONMENT_SHADOWS)
     light = environment_visible_light(lights->shadows, environment, lights->environment_texels, light, surface->p, surface->n,
-                                      lattice_shift(lights->pixel, ENVIRONMENT_STREAM), pending);
+                                      shift, pending);
   const vec3 suns =
       environment_suns(lights->environment_suns, environment->sun_count, lights->shadows, surface->p, surface->n, pending);
   light = add3(light, scale3(suns, (realv)environment->scale));

@@ -3,6 +3,7 @@
 // (lab/reference/reference_environment.h), unoccluded and with geometry visibility.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -111,6 +112,33 @@ TEST(EnvironmentMap, RefusesInfiniteAndNaNTexelsNamingThem) {
 // A 1 x 1 map is a uniform world: E / pi is its colour for every normal. The grid's midpoint rule
 // over 256 x 128 cells integrates the clamped cosine to 1.3e-5 (measured; the kink at the horizon
 // cuts cells, an error of order the cell's width squared).
+// A map is read 256 rows at a time (a 16k map's memory, scripts/checks/69-environment-memory.sh): the
+// grid is the one its whole planes give, and read_rows() of blocks that cut across the ZIP file's
+// 16-row chunks gives the rows read() gives.
+TEST(EnvironmentMap, ABlockOfRowsAtATimeReadsTheWholeMap) {
+  testing::TempDir dir;
+  const int width = 300, height = 600;
+  const auto texel = [&](int x, int y) { return sky_texel(x, y, width, height) * (1.0 + 0.001 * (x % 7)); };
+  const auto file = write_map(dir.path / "tall.exr", width, height, texel);
+  std::vector<float> planes[3];
+  exr::InputExr exr(file);
+  for (int c = 0; c < 3; ++c) {
+    planes[c].resize(static_cast<std::size_t>(width) * height);
+    exr.read({{std::string(1, "RGB"[c]), planes[c].data()}});
+  }
+  EXPECT_EQ(load_radiance_grid(file).rgb,
+            radiance_grid_from_planes(file, width, height, {planes[0].data(), planes[1].data(), planes[2].data()}).rgb);
+  const int block = 7;  // across the chunks' boundaries
+  std::vector<float> rows(static_cast<std::size_t>(width) * block);
+  for (int first = 0; first < height; first += block) {
+    const int count = std::min(block, height - first);
+    exr.read_rows({{"G", rows.data()}}, first, count);
+    ASSERT_TRUE(std::equal(rows.begin(), rows.begin() + static_cast<std::ptrdiff_t>(count) * width,
+                           planes[1].begin() + static_cast<std::ptrdiff_t>(first) * width))
+        << "rows " << first << " to " << first + count - 1;
+  }
+}
+
 TEST(EnvironmentMap, AOneTexelMapIsAUniformWorld) {
   const float texel[3] = {0.25f, 0.5f, 1.0f};
   const RadianceGrid grid = radiance_grid_from_planes("one", 1, 1, {&texel[0], &texel[1], &texel[2]});
@@ -239,6 +267,17 @@ Scene sphere_on_floor() {
   return scene;
 }
 
+// The reference's image of the scene's environment light, every texel's direction traced from each pixel.
+Image reference_visible_image(const Scene& scene, const GBuffer& gbuffer, const SceneShapes& shapes) {
+  const EnvironmentLight& world = *scene.environment;
+  SoftVisibility visibility;
+  visibility.environment = [&](const SurfacePoint& point) {
+    return reference_environment_visible_light(world, reference_map(world), shapes, point, scene.camera.eye,
+                                               PHONGCL_SHADOW_OFFSET_FLOAT);
+  };
+  return reference_image(scene, gbuffer, {}, visibility);
+}
+
 // The kernel's visible light against the reference's, which traces every texel's direction: under
 // a uniform world and under a sky whose zenith is 12 times brighter than its ground, where what a
 // blocked ray takes away depends on where it points. Each blocked ray takes the sky's light in its
@@ -258,12 +297,7 @@ TEST(EnvironmentShading, GeometryVisibilityAgreesWithTheReference) {
   for (const bool uniform : {true, false}) {
     if (!uniform) scene.environment->file = sky;
     const EnvironmentLight& world = *scene.environment;
-    SoftVisibility visibility;
-    visibility.environment = [&](const SurfacePoint& point) {
-      return reference_environment_visible_light(world, reference_map(world), shapes, point, scene.camera.eye,
-                                                 PHONGCL_SHADOW_OFFSET_FLOAT);
-    };
-    const Image reference = reference_image(scene, gbuffer, {}, visibility);
+    const Image reference = reference_visible_image(scene, gbuffer, shapes);
     std::vector<double> rms_at;
     for (int rays : {16, 256}) {
       ShadeOptions options;
@@ -293,32 +327,68 @@ TEST(EnvironmentShading, GeometryVisibilityAgreesWithTheReference) {
   }
 }
 
-// Screen space marches the same rays across the depth plane: it sees what the camera sees, so it
-// is held to darkening the pixels the reference finds mostly hidden (under 70% visible: the floor
-// at the sphere's contact), not to the reference's values (docs/environment.md gives its agreement).
-TEST(EnvironmentShading, ScreenSpaceVisibilityDarkensContactPixels) {
+// Screen space (kernels/environment_horizons.h) sees only what the camera sees, each surface 6% of
+// its depth deep: the ground far behind the sphere takes the sphere's samples for a slab reaching
+// towards it (4% to 6% too dark in the top rows), and the 40 x 30 image gives each slice few pixels.
+// Held to the reference's visible light at its measured level less a margin: within 5% of the
+// pixels' unoccluded light on 88.4% of them under the uniform world (held to 85%) and 94.1% under
+// the sky (90%), rms 0.041 and 0.036 (held to 0.05). A floor alone blocks nothing: its own samples
+// lie in its tangent plane, so every pixel gets its unoccluded light but for rounding.
+TEST(EnvironmentShading, ScreenSpaceVisibilityAgreesWithTheReference) {
   PHONGCL_REQUIRE_DEVICE(shader);
-  const Scene scene = sphere_on_floor();
-  const GBuffer gbuffer = generate_gbuffer(scene);
-  const SceneShapes shapes = flatten_objects(scene.objects);
+  testing::TempDir dir;
+  Scene scene = sphere_on_floor();
+  const int width = 64, height = 32;
+  const auto sky = write_map(dir.path / "sky.exr", width, height, [&](int, int y) { return gradient_texel(y, height); });
   ShadeOptions options;
   options.shadows.mode = ShadowMode::screen;
   options.shadows.environment_rays = 64;
-  const ShadeResult result = shader.shade(scene, gbuffer, options);
-  EXPECT_NE(result.build_options.find("-DSCREEN_SHADOWS=1"), std::string::npos);
-  double hidden_sum = 0.0;
-  std::size_t hidden = 0;
+  for (const bool uniform : {true, false}) {
+    if (!uniform) scene.environment->file = sky;
+    const GBuffer gbuffer = generate_gbuffer(scene);
+    const SceneShapes shapes = flatten_objects(scene.objects);
+    const EnvironmentLight& world = *scene.environment;
+    const Image reference = reference_visible_image(scene, gbuffer, shapes);
+    const ShadeResult result = shader.shade(scene, gbuffer, options);
+    EXPECT_NE(result.build_options.find("-DSCREEN_SHADOWS=1"), std::string::npos);
+    double sum_sq = 0.0;
+    std::size_t count = 0, within = 0;
+    for (std::size_t i = 0; i < gbuffer.pixel_count(); ++i) {
+      if (classify_pixel(gbuffer, i) != PixelClass::shaded) continue;
+      const SurfacePoint point = reference_surface(scene, gbuffer, i);
+      const double unoccluded = 0.8 * reference_environment_light(world, reference_map(world), point.normal).x;
+      const double difference = (result.image.pixel(i)[0] - reference.pixel(i)[0]) / unoccluded;
+      sum_sq += difference * difference;
+      within += std::abs(difference) <= 0.05;
+      ++count;
+    }
+    const double rms = std::sqrt(sum_sq / static_cast<double>(count));
+    const double agreement = static_cast<double>(within) / static_cast<double>(count);
+    std::cout << "[          ] screen space, " << (uniform ? "uniform world" : "sky") << ", 64 slices: against the reference over "
+              << count << " pixels: " << 100.0 * agreement << "% within 5%, rms " << rms << "\n";
+    EXPECT_GE(agreement, uniform ? 0.85 : 0.90);
+    EXPECT_LE(rms, 0.05);
+  }
+
+  scene.objects.pop_back();  // the floor alone
+  const GBuffer gbuffer = generate_gbuffer(scene);
+  const Image open = shader.shade(scene, gbuffer, options).image;
+  options.shadows.mode = ShadowMode::off;
+  const Image unoccluded = shader.shade(scene, gbuffer, options).image;
+  double worst = 0.0, sum = 0.0;
+  std::size_t worst_pixel = 0, shaded = 0;
   for (std::size_t i = 0; i < gbuffer.pixel_count(); ++i) {
     if (classify_pixel(gbuffer, i) != PixelClass::shaded) continue;
-    const SurfacePoint point = reference_surface(scene, gbuffer, i);
-    if (reference_environment_visibility(shapes, point, scene.camera.eye, PHONGCL_SHADOW_OFFSET_FLOAT, 8) >= 0.7) continue;
-    hidden_sum += result.image.pixel(i)[0] / 0.8;  // kd * C: the visible fraction's scale
-    ++hidden;
+    const double off = 1.0 - open.pixel(i)[0] / unoccluded.pixel(i)[0];
+    if (std::abs(off) > worst) worst = std::abs(off), worst_pixel = i;
+    sum += off;
+    ++shaded;
   }
-  ASSERT_GT(hidden, 10u);
-  std::cout << "[          ] screen space, 64 rays: " << hidden << " pixels under 70% visible average "
-            << hidden_sum / static_cast<double>(hidden) << " visible\n";
-  EXPECT_LT(hidden_sum / static_cast<double>(hidden), 0.85);
+  const double mean = sum / static_cast<double>(shaded);
+  std::cout << "[          ] screen space, the floor alone: " << 100.0 * mean << "% of its light taken on average; worst pixel ("
+            << worst_pixel % gbuffer.width << ", " << worst_pixel / gbuffer.width << ") " << worst << " off it\n";
+  EXPECT_LE(mean, 0.03);
+  EXPECT_LE(worst, 0.06);
 }
 
 TEST(EnvironmentShading, CompiledOutWithoutAnEnvironment) {

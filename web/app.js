@@ -361,19 +361,19 @@ function genericField(object, key, onChange) {
 
 // The light model's fields (scene/scene.h) with their own controls; any other gets genericField.
 const lightKnownKeys = new Set(['type', 'position', 'direction', 'color', 'falloff', 'range', 'cone_angle_deg',
-                                'penumbra_angle_deg', 'materials']);
+                                'penumbra_angle_deg', 'materials', 'rotation', 'strength']);
 const falloffs = ['none', 'linear', 'quadratic', 'cubic'];
 const defaultRange = 10;
 
 // A slider with its value beside it; `bounds()` gives [min, max] as the other fields allow now.
-function slider(label, role, value, bounds, step, onChange) {
+function slider(label, role, value, bounds, step, onChange, unit = '°') {
   const input = el('input', { type: 'range', step, value });
-  const shown = el('output', { textContent: `${value}°` });
+  const shown = el('output', { textContent: `${value}${unit}` });
   input.dataset.role = role;
   const limit = () => { [input.min, input.max] = bounds(); };
   limit();
   input.value = value;
-  input.addEventListener('input', () => { shown.textContent = `${input.value}°`; onChange(Number(input.value)); });
+  input.addEventListener('input', () => { shown.textContent = `${input.value}${unit}`; onChange(Number(input.value)); });
   return { node: el('label', {}, [label, input, shown]), input, limit, shown };
 }
 
@@ -422,6 +422,17 @@ function coneControls(light) {
   return el('div', {}, [cone.node, penumbra.node]);
 }
 
+// The environment light's turn about Z and its strength (the scene file's bounds: any finite angle,
+// a strength from 0 to 1e6; the slider offers 0 to 20, the JSON editor the rest).
+function environmentControls(light) {
+  return el('div', { className: 'environment' }, [
+    slider('rotation', 'environment-rotation', light.rotation ?? 0, () => [-180, 180], 1,
+           (r) => { light.rotation = r; edited(); }).node,
+    slider('strength', 'environment-strength', light.strength ?? 1, () => [0, 20], 0.05,
+           (s) => { light.strength = s; edited(); }, '').node,
+  ]);
+}
+
 // Light linking: the materials a light reaches ("all" = no list in the scene file).
 function linkControls(light) {
   const materials = state.scene.materials || [];
@@ -466,14 +477,17 @@ function renderLights() {
       renderLights();
       edited();
     });
-    const vectors = light.type === 'directional' ? ['direction'] : light.type === 'spot' ? ['position', 'direction'] : ['position'];
+    const environment = light.type === 'environment';
+    const vectors = environment ? [] : light.type === 'directional' ? ['direction'] : light.type === 'spot' ? ['position', 'direction'] : ['position'];
     const item = el('li', { className: index === state.selectedLight ? 'selected' : '' }, [
       el('div', { className: 'head' }, [enabled, el('span', { className: 'grow', textContent: `${index}: ${light.type}` }), remove]),
-      colorInput(light.color || [1, 1, 1], (c) => { light.color = c; edited(); }, 'light'),
+      // A map's world has no colour of its own: its image is the light.
+      ...(environment && light.file !== undefined ? [] : [colorInput(light.color || [1, 1, 1], (c) => { light.color = c; edited(); }, 'light')]),
       ...vectors.map((key) => el('div', {}, [vectorInput(light[key] || [0, 0, 0], (v) => { light[key] = v; edited(); }, key)])),
-      ...(light.type === 'directional' ? [] : [attenuationControls(light)]),
+      ...(environment ? [environmentControls(light)] : []),
+      ...(light.type === 'directional' || environment ? [] : [attenuationControls(light)]),
       ...(light.type === 'spot' ? [coneControls(light)] : []),
-      linkControls(light),
+      ...(environment ? [] : [linkControls(light)]),
       ...Object.keys(light).filter((k) => !lightKnownKeys.has(k)).map((k) => genericField(light, k, edited)),
     ]);
     item.dataset.light = index;

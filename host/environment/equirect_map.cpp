@@ -1,5 +1,6 @@
 #include "environment/equirect_map.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <string>
@@ -12,6 +13,9 @@ namespace phongcl {
 namespace {
 
 const char* const kChannels[3] = {"R", "G", "B"};
+// Rows read at a time: a multiple of every scanline compression's rows per chunk (1, 16, 32 and
+// DWAB's 256), so that no chunk is decoded twice.
+constexpr int kRowsPerBlock = 256;
 
 // Where the map is larger than the grid: texel (x, y) goes to the cell holding its centre, weighted
 // by its solid angle; the cells are divided by their summed weight at the end. Smaller: each cell
@@ -29,11 +33,12 @@ class GridFolder {
     }
   }
 
-  void add_channel(const std::filesystem::path& name, int channel, const float* plane) {
-    for (int y = 0; y < height_; ++y) {
+  // Rows [first_row, first_row + rows) of one channel, `block` holding them from its start.
+  void add_rows(const std::filesystem::path& name, int channel, const float* block, int first_row, int rows) {
+    for (int y = first_row; y < first_row + rows; ++y) {
       const double weight = texel_solid_angle(y, width_, height_);
       for (int x = 0; x < width_; ++x) {
-        const float value = plane[static_cast<std::size_t>(y) * width_ + x];
+        const float value = block[static_cast<std::size_t>(y - first_row) * width_ + x];
         if (!std::isfinite(value) || value < 0.0f) {
           const std::string what = std::isnan(value) ? "NaN" : std::isinf(value) ? "inf" : "negative";
           throw InputError(name, "texel (" + std::to_string(x) + ", " + std::to_string(y) + ") channel " +
@@ -81,7 +86,7 @@ double texel_solid_angle(int row, int width, int height) {
 RadianceGrid radiance_grid_from_planes(const std::filesystem::path& name, int width, int height,
                                        const std::vector<const float*>& planes) {
   GridFolder folder(width, height);
-  for (int c = 0; c < 3; ++c) folder.add_channel(name, c, planes[static_cast<std::size_t>(c)]);
+  for (int c = 0; c < 3; ++c) folder.add_rows(name, c, planes[static_cast<std::size_t>(c)], 0, height);
   return folder.finish();
 }
 
@@ -93,10 +98,16 @@ RadianceGrid load_radiance_grid(const std::filesystem::path& file) {
       throw InputError(file, std::string("has no channel ") + channel + ": an environment map needs R, G and B");
   const int width = window.width(), height = window.height();
   GridFolder folder(width, height);
-  std::vector<float> plane(static_cast<std::size_t>(width) * height);
-  for (int c = 0; c < 3; ++c) {
-    exr.read({exr::ReadSlice{kChannels[c], plane.data(), 1}});
-    folder.add_channel(file, c, plane.data());
+  // A block of rows of the three channels at a time: 48 MiB for a 16384-wide map, whatever its height.
+  const int block_rows = std::min(height, kRowsPerBlock);
+  std::vector<float> block(3 * static_cast<std::size_t>(width) * block_rows);
+  const std::size_t plane = static_cast<std::size_t>(width) * block_rows;
+  for (int first = 0; first < height; first += block_rows) {
+    const int rows = std::min(block_rows, height - first);
+    exr.read_rows({exr::ReadSlice{kChannels[0], block.data(), 1}, exr::ReadSlice{kChannels[1], block.data() + plane, 1},
+                   exr::ReadSlice{kChannels[2], block.data() + 2 * plane, 1}},
+                  first, rows);
+    for (int c = 0; c < 3; ++c) folder.add_rows(file, c, block.data() + c * plane, first, rows);
   }
   return folder.finish();
 }

@@ -1,7 +1,7 @@
 #pragma once
 // An equirectangular float EXR as the environment light reads it (docs/environment.md): its R, G, B
 // channels, validated, reduced to an integration grid of bounded size. The full-resolution map is
-// never held: one channel at a time is read and folded into the grid.
+// never held: a block of rows at a time is read and folded into the grid.
 #include <cstdint>
 #include <filesystem>
 #include <vector>
@@ -25,8 +25,8 @@ double texel_solid_angle(int row, int width, int height);
 
 // Reads `file`'s R, G and B channels (A and others ignored) into the grid. Throws InputError naming
 // the file for a missing channel, and for an infinite, NaN or negative texel naming it: "texel (x, y)
-// channel G is inf". Peak memory: one channel of the map as floats (512 MiB for 16384 x 8192) plus
-// the grid.
+// channel G is inf". Peak memory: 256 rows of the three channels as floats (48 MiB for a map 16384
+// wide) plus the grid.
 RadianceGrid load_radiance_grid(const std::filesystem::path& file);
 
 // The same from channels in memory (planes of width x height floats, rows from the top), for maps

@@ -146,8 +146,12 @@ class InputExr::Reader {
   }
   bool has_channel(const std::string& name) const { return find(name) != nullptr; }
 
-  void read(const std::vector<ReadSlice>& slices) {
+  // Rows [first_row, first_row + row_count) of the data window (row_count < 0: to its end).
+  void read(const std::vector<ReadSlice>& slices, int first_row, int row_count) {
     const Imath::Box2i window = input_->header(0).dataWindow();
+    Imath::Box2i rows = window;
+    rows.min.y = window.min.y + first_row;
+    if (row_count >= 0) rows.max.y = std::min(window.max.y, rows.min.y + row_count - 1);
     std::vector<std::vector<NamedSlice>> by_part(static_cast<std::size_t>(input_->parts()));
     for (const auto& slice : slices) {
       const PartChannel* found = find(slice.name);
@@ -165,9 +169,9 @@ class InputExr::Reader {
       const Imf::Compression compression = input_->header(static_cast<int>(part)).compression();
       if (compression == Imf::B44_COMPRESSION || compression == Imf::B44A_COMPRESSION ||
           compression == Imf::DWAA_COMPRESSION || compression == Imf::DWAB_COMPRESSION)
-        read_part_with_cpp_library(static_cast<int>(part), by_part[part], window);
+        read_part_with_cpp_library(static_cast<int>(part), by_part[part], window, rows);
       else
-        read_part(static_cast<int>(part), by_part[part], window);
+        read_part(static_cast<int>(part), by_part[part], window, rows);
     }
   }
 
@@ -304,10 +308,11 @@ class InputExr::Reader {
                                   " chunks, more than " + std::to_string(bytes) + " bytes can hold");
   }
 
-  // Calls visit(chunk, x, y) for every level-0 chunk of the part, (x, y) being its first pixel,
-  // after the core library has checked its offset and leader against the file.
+  // Calls visit(chunk, x, y) for every level-0 chunk of the part holding one of `rows` (a box of the
+  // data window's rows), (x, y) being its first pixel, after the core library has checked its
+  // offset and leader against the file.
   template <class Visit>
-  void for_each_chunk(int part, const Imath::Box2i& window, Visit&& visit) const {
+  void for_each_chunk(int part, const Imath::Box2i& window, const Imath::Box2i& rows, Visit&& visit) const {
     const std::string what = "truncated or corrupt EXR";
     const std::int64_t width = std::int64_t{window.max.x} - window.min.x + 1;
     const auto checked_visit = [&](const exr_chunk_info_t& chunk, std::int64_t x, std::int64_t y) {
@@ -320,8 +325,8 @@ class InputExr::Reader {
       std::int32_t tile_width = 0, tile_height = 0;
       check_core(exr_get_tile_sizes(core_, part, 0, 0, &tile_width, &tile_height), what);
       if (tile_width <= 0 || tile_height <= 0) throw InputError(file_, what + " (empty tiles)");
-      const std::int64_t height = std::int64_t{window.max.y} - window.min.y + 1;
-      for (std::int64_t ty = 0; ty * tile_height < height; ++ty)
+      for (std::int64_t ty = (std::int64_t{rows.min.y} - window.min.y) / tile_height;
+           ty * tile_height <= std::int64_t{rows.max.y} - window.min.y; ++ty)
         for (std::int64_t tx = 0; tx * tile_width < width; ++tx) {
           check_core(exr_read_tile_chunk_info(core_, part, static_cast<int>(tx), static_cast<int>(ty), 0, 0, &chunk), what);
           checked_visit(chunk, window.min.x + tx * tile_width, window.min.y + ty * tile_height);
@@ -331,7 +336,7 @@ class InputExr::Reader {
     std::int32_t lines = 0;
     check_core(exr_get_scanlines_per_chunk(core_, part, &lines), what);
     if (lines <= 0) throw InputError(file_, what + " (no scanlines per chunk)");
-    for (std::int64_t y = window.min.y; y <= window.max.y; y += lines) {
+    for (std::int64_t y = rows.min.y; y <= rows.max.y; y = std::int64_t{chunk.start_y} + lines) {
       check_core(exr_read_scanline_chunk_info(core_, part, static_cast<int>(y), &chunk), what);
       checked_visit(chunk, window.min.x, chunk.start_y);
     }
@@ -339,21 +344,22 @@ class InputExr::Reader {
   // The core library of OpenEXR 3.1 fails on valid B44A and DWA chunks, so these parts are decoded
   // by the C++ reader, after the core has checked every chunk's offset and leader against the file.
   // Its B44 and DWA decoders check their input sizes block by block and section by section.
-  void read_part_with_cpp_library(int part, const std::vector<NamedSlice>& slices, const Imath::Box2i& window) {
-    for_each_chunk(part, window, [](const exr_chunk_info_t&, std::int64_t, std::int64_t) {});
+  void read_part_with_cpp_library(int part, const std::vector<NamedSlice>& slices, const Imath::Box2i& window,
+                                  const Imath::Box2i& rows) {
+    for_each_chunk(part, window, rows, [](const exr_chunk_info_t&, std::int64_t, std::int64_t) {});
     Imf::FrameBuffer frame_buffer;
     for (const auto& [name, slice] : slices)
-      frame_buffer.insert(name, Imf::Slice::Make(Imf::FLOAT, slice.first, window, slice.stride * sizeof(float)));
+      frame_buffer.insert(name, Imf::Slice::Make(Imf::FLOAT, slice.first, rows, slice.stride * sizeof(float)));
     translate_errors(file_, "truncated or corrupt EXR", [&] {
       Imf::InputPart input(*input_, part);
       input.setFrameBuffer(frame_buffer);
-      input.readPixels(window.min.y, window.max.y);
+      input.readPixels(rows.min.y, rows.max.y);
     });
   }
 
   // Decodes every level-0 chunk of the part into the slices; a chunk that is missing, short or
   // does not decode to its declared size fails the whole read.
-  void read_part(int part, const std::vector<NamedSlice>& slices, const Imath::Box2i& window) {
+  void read_part(int part, const std::vector<NamedSlice>& slices, const Imath::Box2i& window, const Imath::Box2i& rows) {
     const std::string what = "truncated or corrupt EXR";
     Decoder decoder;
     decoder.core = core_;
@@ -386,14 +392,16 @@ class InputExr::Reader {
       check_core(exr_decoding_run(core_, part, &pipeline), what);
       for (std::size_t s = 0; s < slices.size(); ++s) {
         const ReadSlice& slice = slices[s].slice;
-        for (std::int32_t row = 0; row < chunk.height; ++row) {
+        // A chunk may reach beyond the rows asked for: those rows are left out.
+        const std::int64_t first = std::max<std::int64_t>(0, rows.min.y - y), last = std::min<std::int64_t>(chunk.height, rows.max.y - y + 1);
+        for (std::int64_t row = first; row < last; ++row) {
           const float* from = scratch[s].data() + static_cast<std::size_t>(row) * chunk.width;
-          float* to = slice.first + static_cast<std::size_t>((y + row - window.min.y) * width + (x - window.min.x)) * slice.stride;
+          float* to = slice.first + static_cast<std::size_t>((y + row - rows.min.y) * width + (x - window.min.x)) * slice.stride;
           for (std::int32_t i = 0; i < chunk.width; ++i) to[i * slice.stride] = from[i];
         }
       }
     };
-    for_each_chunk(part, window, decode);
+    for_each_chunk(part, window, rows, decode);
   }
 
   void add_channel(const std::string& name, int part, const std::string& name_in_part) {
@@ -426,7 +434,10 @@ ExrCompression InputExr::compression() const { return from_imf(reader_->input().
 const Imf::Header& InputExr::header(int part) const { return reader_->input().header(part); }
 std::vector<std::string> InputExr::channel_names() const { return reader_->channel_names(); }
 bool InputExr::has_channel(const std::string& name) const { return reader_->has_channel(name); }
-void InputExr::read(const std::vector<ReadSlice>& slices) { reader_->read(slices); }
+void InputExr::read(const std::vector<ReadSlice>& slices) { reader_->read(slices, 0, -1); }
+void InputExr::read_rows(const std::vector<ReadSlice>& slices, int first_row, int row_count) {
+  reader_->read(slices, first_row, row_count);
+}
 
 namespace {
 

@@ -73,6 +73,9 @@ class InputExr {
   // Reads the named channels (which must exist, at full resolution) as float, converting half and
   // uint. A chunk that is missing, short or does not decode to its declared size fails the read.
   void read(const std::vector<ReadSlice>& slices);
+  // The same for rows [first_row, first_row + row_count) of the data window only (0 is its top
+  // row), into slices of row_count x width pixels: a large image a block of rows at a time.
+  void read_rows(const std::vector<ReadSlice>& slices, int first_row, int row_count);
 
  private:
   class Reader;  // exr_channels.cpp: the C++ and core libraries' views of the file

@@ -41,7 +41,7 @@ struct Recipe {
   int spot_lights = 0;
   int area_lights = 0;   // rects and disks (their own table, untiled)
   bool environment = false;          // the scene's environment light
-  bool environment_shadows = false;  // its visibility rays traced (geometry) or marched (screen)
+  bool environment_shadows = false;  // its visibility: rays traced (geometry) or horizons (screen)
   int environment_rays = 0;          // rays per pixel with environment_shadows
   int link_words = 0;    // light linking: mask words per light; 0: every light lights every material
   bool tiled = false;    // tiled light culling (host/shading/tile_culling.h)

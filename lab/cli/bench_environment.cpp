@@ -1,12 +1,13 @@
 // phongcl bench --environment: scenes/large at 480x270 lit by a uniform white world alone, its
 // visibility traced with 1, 4, 16, 64 and 256 cosine-distributed rays per pixel and with 4096, the
 // converged estimate each image is compared with (its error at most 1/(2 sqrt 4096) = 0.8% of the
-// light); then the same in screen space (rays marched across the depth plane) against the geometry's
-// 4096. Timed round-robin, medians of the kernel's profiling events (the kernel's build and the
+// light); then screen space (horizons of slices x steps a side found in the depth plane) against the
+// geometry's 4096. Timed round-robin, medians of the kernel's profiling events (the kernel's build and the
 // transfers not included).
 #include <cstdio>
 #include <iostream>
 #include <sstream>
+#include <utility>
 
 #include "cl/compute_context.h"
 #include "cli/bench_arguments.h"
@@ -43,16 +44,18 @@ void run_environment_bench(const BenchArguments& args) {
   const GBuffer gbuffer = generate_gbuffer(scene);
 
   std::vector<EnvironmentVariant> variants;
-  auto add = [&](const std::string& label, ShadowMode mode, int rays) {
+  auto add = [&](const std::string& label, ShadowMode mode, int rays, int steps = ShadowSettings{}.steps) {
     EnvironmentVariant variant{label, {}};
     variant.options.shadows.mode = mode;
     variant.options.shadows.environment_rays = rays;
+    variant.options.shadows.steps = steps;
     variants.push_back(variant);
   };
   add("unoccluded", ShadowMode::off, 1);
   for (int rays : {1, 4, 16, 64, 256}) add("geometry, " + std::to_string(rays) + (rays == 1 ? " ray" : " rays"), ShadowMode::geometry, rays);
   add("geometry, " + std::to_string(kEnvironmentConvergedRays) + " rays", ShadowMode::geometry, kEnvironmentConvergedRays);
-  for (int rays : {4, 16, 64}) add("screen, " + std::to_string(rays) + " rays", ShadowMode::screen, rays);
+  for (auto [slices, steps] : {std::pair{4, 8}, {8, 16}, {16, 32}, {64, 32}})
+    add("screen, " + std::to_string(slices) + " slices x " + std::to_string(steps) + " steps", ShadowMode::screen, slices, steps);
   const std::size_t converged_index = 6;
   std::cout << "\nEnvironment: scenes/large, 480x270, a uniform white world alone\n" << std::flush;
 

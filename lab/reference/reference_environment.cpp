@@ -112,25 +112,4 @@ glm::dvec3 reference_environment_visible_light(const EnvironmentLight& light, co
                        [&](const glm::dvec3& d) { return sky_is_free(shapes, point.position, n, d, eye, offset_scale); });
 }
 
-double reference_environment_visibility(const SceneShapes& shapes, const SurfacePoint& point, const glm::dvec3& eye,
-                                        double offset_scale, int grid) {
-  const double length = glm::length(point.normal);
-  if (!(length > 0.0)) return 1.0;
-  const glm::dvec3 n = point.normal / length;
-  const glm::dvec3 helper = std::abs(n.x) < 0.6 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
-  const glm::dvec3 a = glm::normalize(glm::cross(helper, n)), b = glm::cross(n, a);
-  const int around = 4 * grid;
-  int free = 0;
-  for (int i = 0; i < grid; ++i) {
-    const double sine_sq = (i + 0.5) / grid;  // equal steps of sin^2: equal cosine-weighted measure
-    const double sine = std::sqrt(sine_sq), cosine = std::sqrt(1.0 - sine_sq);
-    for (int j = 0; j < around; ++j) {
-      const double azimuth = 2.0 * pi * (j + 0.5) / around;
-      const glm::dvec3 d = cosine * n + sine * (std::cos(azimuth) * a + std::sin(azimuth) * b);
-      free += sky_is_free(shapes, point.position, n, d, eye, offset_scale);
-    }
-  }
-  return static_cast<double>(free) / (grid * around);
-}
-
 }  // namespace phongcl

@@ -36,10 +36,4 @@ glm::dvec3 reference_environment_visible_light(const EnvironmentLight& light, co
                                                const SceneShapes& shapes, const SurfacePoint& point, const glm::dvec3& eye,
                                                double offset_scale);
 
-// The cosine-weighted fraction of the hemisphere about the point's normal that nothing blocks:
-// grid x 4 grid cells of equal cosine-weighted measure (sin^2 of the polar angle and the azimuth
-// evenly cut), a ray through each cell's middle leaving as a directional light's shadow ray does.
-double reference_environment_visibility(const SceneShapes& shapes, const SurfacePoint& point, const glm::dvec3& eye,
-                                        double offset_scale, int grid = 32);
-
 }  // namespace phongcl

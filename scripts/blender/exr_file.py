@@ -20,6 +20,13 @@ def _attribute(name, kind, value):
 def write(path, rows):
     """rows: height lists of width (r, g, b) floats, top row first."""
     height, width = len(rows), len(rows[0])
+    write_lines(path, width, height,
+                lambda y: b"".join(struct.pack("<%df" % width, *(pixel[c] for pixel in rows[y])) for c in (2, 1, 0)))
+
+
+def write_lines(path, width, height, line):
+    """line(y): row y's B, G and R floats packed ("<f", width each), top row first; one row in memory
+    at a time, for maps larger than a list of rows can hold."""
     channels = b"".join(name + b"\0" + struct.pack("<iB3xii", FLOAT, 0, 1, 1) for name in (b"B", b"G", b"R")) + b"\0"
     window = struct.pack("<iiii", 0, 0, width - 1, height - 1)
     header = (struct.pack("<ii", MAGIC, 2) + _attribute("channels", "chlist", channels)
@@ -28,17 +35,14 @@ def write(path, rows):
               + _attribute("lineOrder", "lineOrder", b"\0") + _attribute("pixelAspectRatio", "float", struct.pack("<f", 1.0))
               + _attribute("screenWindowCenter", "v2f", struct.pack("<ff", 0.0, 0.0))
               + _attribute("screenWindowWidth", "float", struct.pack("<f", 1.0)) + b"\0")
-    lines = []
-    for y, row in enumerate(rows):
-        data = b"".join(struct.pack("<%df" % width, *(pixel[c] for pixel in row)) for c in (2, 1, 0))
-        lines.append(struct.pack("<ii", y, len(data)) + data)
-    offset = len(header) + 8 * height
-    table = []
-    for line in lines:
-        table.append(offset)
-        offset += len(line)
+    line_size = 8 + 3 * 4 * width
+    first = len(header) + 8 * height
     with open(path, "wb") as out:
-        out.write(header + struct.pack("<%dQ" % height, *table) + b"".join(lines))
+        out.write(header + struct.pack("<%dQ" % height, *(first + y * line_size for y in range(height))))
+        for y in range(height):
+            data = line(y)
+            assert len(data) == line_size - 8, "row %d: %d bytes, expected %d" % (y, len(data), line_size - 8)
+            out.write(struct.pack("<ii", y, len(data)) + data)
 
 
 def _headers(data):

@@ -301,6 +301,66 @@ def spot_and_split(driver, url, args, work):
     return left_count, right_count
 
 
+def environment_controls(driver, args, work, processes):
+    """scenes/default lit by an environment map as well: its rotation and strength set through the
+    page's sliders, the served image against `phongcl shade` of the held scene; then the server
+    refuses bad values (4xx) and keeps the scene it held."""
+    sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "blender"))
+    import exr_file
+    width, height = 64, 32  # a sky gradient with a bright column: the rotation turns where it lights from
+    exr_file.write(os.path.join(work, "sky.exr"),
+                   [[(4.0, 3.0, 2.0) if x == 20 else (0.2 * (1 - y / height), 0.3 * (1 - y / height), 0.5) for x in range(width)]
+                    for y in range(height)])
+    scene = json.load(open("scenes/default/scene.json"))
+    scene["gbuffer"] = os.path.abspath("scenes/default/gbuffer.exr")
+    # Unshadowed: the reference integrates the map exactly, where the kernel's visibility rays are an estimate.
+    scene["lights"].append({"type": "environment", "file": "sky.exr", "shadows": False})
+    path = os.path.join(work, "environment-scene.json")
+    json.dump(scene, open(path, "w"))
+    log = open(os.path.join(work, "serve-environment.log"), "w")
+    server, url = start_server(args.phongcl, ["--scene", path], log)
+    processes.append(server)
+    driver.call("POST", "/url", {"url": url})
+    driver.wait("return window.phongclState.imageSize[0] === 640 && window.phongclMetrics.displayed.length > 0",
+                "the environment scene's first frame")
+    light = f'li[data-light="{len(scene["lights"]) - 1}"] '
+    set_control(driver, light + 'input[data-role="environment-rotation"]', "-75")
+    set_control(driver, light + 'input[data-role="environment-strength"]', "2.5")
+    settle(driver, url)
+    held = held_scene(url)
+    environment = held["lights"][-1]
+    if environment.get("rotation") != -75 or environment.get("strength") != 2.5:
+        fail(f"the environment light as held {environment}, expected rotation -75 and strength 2.5")
+    # Against `phongcl shade` of the held scene, not the scalar reference: that integrates every
+    # texel of the map for each of 307,200 pixels (minutes here).
+    json.dump(held, open(os.path.join(work, "environment.json"), "w"))
+    _, exr, _ = http("GET", url + "api/image?format=exr")
+    open(os.path.join(work, "environment-served.exr"), "wb").write(exr)
+    shade = subprocess.run([args.phongcl, "shade", "--scene", os.path.join(work, "environment.json"), "--gbuffer",
+                            "scenes/default/gbuffer.exr", "--out", os.path.join(work, "environment-shaded.exr")],
+                           capture_output=True, text=True)
+    if shade.returncode != 0:
+        fail(f"phongcl shade of the held environment scene: {shade.stderr}")
+    compare = subprocess.run([args.phongcl, "compare", os.path.join(work, "environment-served.exr"),
+                              os.path.join(work, "environment-shaded.exr"), "--tolerance", str(RELATIVE_BOUND),
+                              "--abs-floor", str(ERROR_FLOOR)], capture_output=True, text=True)
+    if compare.returncode != 0:
+        fail(f"the served environment image against phongcl shade's: {compare.stdout}{compare.stderr}")
+    refused = []
+    for field, value in (("strength", -1), ("strength", "bright"), ("rotation", None)):
+        bad = json.loads(json.dumps(held_scene(url)))
+        bad["lights"][-1][field] = value
+        status, body, _ = http("PUT", url + "api/scene", bad)
+        if not 400 <= status < 500:
+            fail(f"an environment {field} of {value!r} was answered {status}, not refused: {body[:200]!r}")
+        refused.append(f"{field} {json.dumps(value)}: {status}")
+    if held_scene(url)["lights"][-1] != environment:
+        fail("a refused scene changed the held environment light")
+    server.terminate()
+    server.wait(timeout=30)
+    return refused
+
+
 def write_grouped_render(args, work):
     """scenes/large with its lights in three groups (key, fill, sun), shaded by phongcl and written as
     a render with a Combined_<group> pass per group; returns the scene file and the render."""
@@ -454,6 +514,9 @@ def main():
         split_left, split_right = spot_and_split(driver, url, args, work)
         server.terminate()
         server.wait(timeout=30)
+
+        # 8. An environment light's rotation and strength through the page; bad values refused.
+        refused = environment_controls(driver, args, work, processes)
         large_log = open(os.path.join(work, "serve-large.log"), "w")
         # Blender's OCIO config where Blender is installed: the 1080p drags are measured through its
         # Filmic view as well as the built-in default (a 3D LUT per pixel against a table per channel).
@@ -488,6 +551,8 @@ def main():
               f"range, light linking), a light switched off, served EXR within {RELATIVE_BOUND:g} of the reference; split within "
               f"1/255 of the relit reference on {split_left} pixels and of the beauty pass on {split_right}")
         print("70-browser: over a render, the page lists " + "; ".join(over_groups))
+        print("70-browser: environment light's rotation and strength set through the page's sliders, served EXR within "
+              f"{RELATIVE_BOUND:g} of phongcl shade's; refused: " + ", ".join(refused))
     finally:
         # The session first: chromedriver leaves its Chromium running when it is terminated.
         if driver is not None:
