@@ -9,5 +9,6 @@ void add_compare_command(CLI::App& app);
 void add_bench_command(CLI::App& app);
 void add_stability_command(CLI::App& app);
 void add_agreement_command(CLI::App& app);
+void add_environment_brdf_command(CLI::App& app);
 
 }  // namespace phongcl::cli

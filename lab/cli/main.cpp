@@ -11,5 +11,6 @@ int main(int argc, char** argv) {
   phongcl::cli::add_bench_command(app);
   phongcl::cli::add_stability_command(app);
   phongcl::cli::add_agreement_command(app);
+  phongcl::cli::add_environment_brdf_command(app);
   return phongcl::cli::run_app(app, argc, argv);
 }
