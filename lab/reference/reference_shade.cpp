@@ -5,6 +5,7 @@
 #include "reference/reference.h"
 #include "reference/reference_area.h"
 #include "reference/reference_environment.h"
+#include "reference/reference_environment_specular.h"
 #include "reference/reference_principled.h"
 #include "reference/reference_soft_shadows.h"
 
@@ -141,10 +142,18 @@ ShadingTerms reference_shade_point(const Scene& scene, const SurfacePoint& point
     const EnvironmentLight& world = *scene.environment;
     diffuse += soft.environment && world.shadows ? soft.environment(point)
                                                  : reference_environment_light(world, reference_map(world), n);
+    // Its specular: the material's own lobe against every texel (nothing for a Phong-family ks of 0).
+    const bool principled = point.specular_model == SpecularModel::principled;
+    if (principled || point.ks != glm::dvec3(0.0)) {
+      const glm::dvec3 reflected = soft.environment_specular && world.shadows
+                                       ? soft.environment_specular(point)
+                                       : reference_environment_specular(world, reference_map(world), point, v);
+      (principled ? principled_specular : specular) += reflected;
+    }
   }
   if (point.specular_model == SpecularModel::principled) {
-    // Area lights and the environment: Lambert's irradiance times the diffuse colour, no highlight (as the
-    // kernel: docs/shading.md).
+    // Area lights and the environment: Lambert's irradiance times the diffuse colour (as the kernel:
+    // docs/shading.md); the environment's highlight is in principled_specular.
     const glm::dvec3 weight = point.principled.base_color * (1.0 - point.principled.metallic);
     terms.diffuse = principled_diffuse + product(weight, diffuse);
     terms.specular = principled_specular;
