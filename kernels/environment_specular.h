@@ -101,10 +101,12 @@ static inline vec3 environment_specular(UNIFORM_SPACE const EnvironmentRecord* e
 #endif
 }
 
-/* The free fraction of `rays` directions spread about each lane's r = 2(n.v)n - v by its lobe's
- * width (EnvironmentLobe.spread, s): at angle s sqrt(-2 ln(1 - a)) from r (a Gaussian's radius, over
- * the shifted R2 lattice), a direction below the surface counting as blocked, as the horizon cuts
- * the lobe. The rays are directional lights' (to infinity). In the lanes of `pending`; 1 elsewhere.
+/* The free fraction of the directions above the surface among `rays` spread about each lane's r =
+ * 2(n.v)n - v by its lobe's width (EnvironmentLobe.spread, s): at angle s sqrt(-2 ln(1 - a)) from r
+ * (a Gaussian's radius, over the shifted R2 lattice). Those below the surface are left out, not
+ * counted blocked: the split sum's table holds the horizon's cut already (counted blocked, the HDRI's
+ * glossy median was 6.0% off Cycles, 12% dark on the ground). The rays are directional lights' (to
+ * infinity). In the lanes of `pending`, and where some ray is above the surface; 1 elsewhere.
  * Measured against the diffuse light's visible fraction with Lagarde's formula (docs/environment.md):
  * that takes the ground away from a face whose reflection looks up, and leaves the sky to one whose
  * reflection looks down into the ground. */
@@ -127,7 +129,7 @@ static inline SHADOW_INLINE realv environment_specular_visibility(const ShadowIn
 #endif
   vec3 a, b;
   orthonormal_basis(r, &a, &b);
-  realv free = 0;
+  realv free = 0, seen = 0;
   for (uint k = 0; k < rays; ++k) {
     realv s, t;
     lattice_point(k, shift, &s, &t);
@@ -138,8 +140,9 @@ static inline SHADOW_INLINE realv environment_specular_visibility(const ShadowIn
     const intv above = LANE_MASK(dot3(n, d) > 0);
     const intv blocked = light_blocked(&traced, p, n, d, 1, SCREEN_SHADOWS, 0, pending & above);
     free += SELECT(TO_REALV(above) != 0 && TO_REALV(blocked) == 0, 1, 0);
+    seen += SELECT(TO_REALV(above) != 0, 1, 0);
   }
-  return SELECT(TO_REALV(pending) != 0, free / (real)rays, 1);
+  return SELECT(TO_REALV(pending) != 0 && seen > 0, free / fmax(seen, (realv)1), 1);
 }
 
 #endif
