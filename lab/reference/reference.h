@@ -41,9 +41,6 @@ struct SoftVisibility {
   std::function<double(const SurfacePoint& point, const AreaLight& light)> area;
   std::function<double(const SurfacePoint& point, const Light& light)> sized;
   std::function<glm::dvec3(const SurfacePoint& point)> environment{};
-  // `environment_specular`: its specular light over the directions nothing blocks
-  // (reference_environment_specular.h), where it casts shadows.
-  std::function<glm::dvec3(const SurfacePoint& point)> environment_specular{};
 };
 
 // A spot's cone(l) for unit l from the surface towards it: the smoothstep of its penumbra (a step

@@ -5,7 +5,7 @@
 namespace phongcl {
 
 glm::dvec3 reference_environment_specular(const EnvironmentLight& light, const ReferenceMap& map, const SurfacePoint& point,
-                                          const glm::dvec3& v, const std::function<bool(const glm::dvec3&)>& visible) {
+                                          const glm::dvec3& v) {
   const double length = glm::length(point.normal);
   if (!(length > 0.0) || !(glm::dot(point.normal, v) > 0.0)) return glm::dvec3(0.0);
   const glm::dvec3 n = point.normal / length;
@@ -14,7 +14,6 @@ glm::dvec3 reference_environment_specular(const EnvironmentLight& light, const R
     const glm::dvec3 lobe = point.specular_model == SpecularModel::principled
                                 ? reference_principled(point.principled, n, v, w).specular
                                 : glm::dvec3(reference_specular_lobe(point.specular_model, n, v, w, point.shininess));
-    if (lobe == glm::dvec3(0.0) || (visible && !visible(w))) return glm::dvec3(0.0);
     return lobe;
   });
 }

@@ -142,14 +142,11 @@ ShadingTerms reference_shade_point(const Scene& scene, const SurfacePoint& point
     const EnvironmentLight& world = *scene.environment;
     diffuse += soft.environment && world.shadows ? soft.environment(point)
                                                  : reference_environment_light(world, reference_map(world), n);
-    // Its specular: the material's own lobe against every texel (nothing for a Phong-family ks of 0).
+    // Its specular: the material's own lobe against every texel, unoccluded (nothing for a
+    // Phong-family ks of 0).
     const bool principled = point.specular_model == SpecularModel::principled;
-    if (principled || point.ks != glm::dvec3(0.0)) {
-      const glm::dvec3 reflected = soft.environment_specular && world.shadows
-                                       ? soft.environment_specular(point)
-                                       : reference_environment_specular(world, reference_map(world), point, v);
-      (principled ? principled_specular : specular) += reflected;
-    }
+    if (principled || point.ks != glm::dvec3(0.0))
+      (principled ? principled_specular : specular) += reference_environment_specular(world, reference_map(world), point, v);
   }
   if (point.specular_model == SpecularModel::principled) {
     // Area lights and the environment: Lambert's irradiance times the diffuse colour (as the kernel:
