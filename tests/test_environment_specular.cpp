@@ -231,7 +231,7 @@ void expect_specular_agrees(PhongShader& shader, const std::filesystem::path& sk
   std::cout << "[          ] " << model.name << ": " << error.count << " values, median relative " << error.median
             << ", worst " << error.worst << " at pixel " << error.worst_pixel << " (kernel "
             << result.image.pixel(error.worst_pixel)[0] << ", reference " << reference.pixel(error.worst_pixel)[0] << ")\n";
-  EXPECT_GE(error.count, 10u);
+  EXPECT_GE(error.count, 6u);  // some shaded pixels above the floor: no vacuous pass
   EXPECT_LE(error.median, model.median) << model.name;
   EXPECT_LE(error.worst, model.worst) << model.name;
 }
@@ -262,14 +262,13 @@ TEST(EnvironmentShading, PhongFamilySpecularAgreesWithTheBruteForceReference) {
 }
 
 // Principled's split sum (GGX with n = v = r, times the BRDF table) against the reference BSDF
-// over every texel. Few pixels: the reference integrates Smith's masking numerically per direction
-// (about 2 s a pixel here).
+// over every texel: a metal of roughness 0.3 (the Fresnel's colour and bias both count). Few
+// pixels: the reference integrates Smith's masking numerically per direction (seconds a pixel).
 TEST(EnvironmentShading, PrincipledSplitSumAgreesWithTheBruteForceReference) {
   PHONGCL_REQUIRE_DEVICE(shader);
   testing::TempDir dir;
   const auto sky = write_sky(dir);
-  expect_specular_agrees(shader, sky, {"principled roughness 0.5", principled(0.5, 0.0), 0.02, 0.3}, 4, 3);
-  expect_specular_agrees(shader, sky, {"principled roughness 0.3 metallic", principled(0.3, 1.0), 0.02, 0.3}, 4, 3);
+  expect_specular_agrees(shader, sky, {"principled roughness 0.3 metallic", principled(0.3, 1.0), 0.02, 0.3}, 3, 2);
 }
 
 }  // namespace
