@@ -127,6 +127,19 @@ static inline SHADOW_INLINE vec3 environment_visible_light(const ShadowInputs* s
   return add3(scale3(visible, traced_lane), scale3(light, 1 - traced_lane));
 }
 
+static inline vec3 environment_sun_direction(UNIFORM_SPACE const EnvironmentSun* sun) {
+  return make_vec3((realv)sun->direction[0], (realv)sun->direction[1], (realv)sun->direction[2]);
+}
+
+/* 1 in the lanes that see a sun in unit direction d, 0 where n.d <= 0 or, with ENVIRONMENT_SHADOWS,
+ * where its ray is blocked (traced in the lanes of `pending`; `traced` without tiled lists). */
+static inline SHADOW_INLINE realv environment_sun_visible(const ShadowInputs* traced, vec3 d, vec3 p, vec3 n, intv pending) {
+  const realv facing = dot3(n, d);
+  if (!ENVIRONMENT_SHADOWS) return SELECT(facing > 0, 1, 0);
+  const intv blocked = light_blocked(traced, p, n, d, 1, SCREEN_SHADOWS, 0, pending & LANE_MASK(facing > 0));
+  return SELECT(facing > 0 && TO_REALV(blocked) == 0, 1, 0);
+}
+
 /* The suns' E / pi, each color max(0, n.d), with ENVIRONMENT_SHADOWS 0 in the lanes where its ray is
  * blocked; `pending`: the lanes that trace. */
 static inline SHADOW_INLINE vec3 environment_suns(UNIFORM_SPACE const EnvironmentSun* suns, int count,
@@ -137,12 +150,8 @@ static inline SHADOW_INLINE vec3 environment_suns(UNIFORM_SPACE const Environmen
   traced.tiles = 0;
   for (int k = 0; k < count; ++k) {
     UNIFORM_SPACE const EnvironmentSun* sun = &suns[k];
-    const vec3 d = make_vec3((realv)sun->direction[0], (realv)sun->direction[1], (realv)sun->direction[2]);
-    realv lit = fmax(dot3(n, d), (realv)0);
-    if (ENVIRONMENT_SHADOWS) {
-      const intv blocked = light_blocked(&traced, p, n, d, 1, SCREEN_SHADOWS, 0, pending & LANE_MASK(lit > 0));
-      lit = SELECT(TO_REALV(blocked) != 0, 0, lit);
-    }
+    const vec3 d = environment_sun_direction(sun);
+    const realv lit = fmax(dot3(n, d), (realv)0) * environment_sun_visible(&traced, d, p, n, pending);
     sum = add3(sum, make_vec3(lit * sun->color[0], lit * sun->color[1], lit * sun->color[2]));
   }
   return sum;

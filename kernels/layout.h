@@ -52,6 +52,7 @@ typedef struct {
   layout_uint environment;        /* ENVIRONMENT: one EnvironmentRecord */
   layout_uint environment_texels; /* ENVIRONMENT: its irradiance map, RGB floats row by row from the top */
   layout_uint environment_suns;   /* ENVIRONMENT: EnvironmentSun per bright cell taken out of the map */
+  layout_uint environment_lobes;  /* ENVIRONMENT and SPECULAR: EnvironmentLobe per material */
 } SceneTables;
 
 /* Tiled culling's block (cull.cl): tile t's point lights are lights[offsets[t] ...], counts[t] of
@@ -221,6 +222,23 @@ typedef struct {
   layout_float direction[4]; /* xyz, w unused */
   layout_float color[4];     /* rgb, a unused */
 } EnvironmentSun;
+
+/* A material's specular lobe under the environment (kernels/environment_specular.h): its prefiltered
+ * map, width x height RGB texels at float `offset` of the environment's texels, the lobe-weighted
+ * mean radiance about r = 2(n.v)n - v. The Phong family multiplies it by `amplitude` (the classic
+ * lobe's integral over pi, 2 / (p + 1) for the Phong exponent p), and by max(0, n.r) where
+ * `takes_cosine` (the normalised models' n.l); a `split_sum` lobe (Principled) by the BRDF table's
+ * cspec0 A + B instead (kernels/environment_brdf.h). With ENVIRONMENT_SHADOWS it is multiplied by the
+ * free fraction of rays spread about r by `spread`, the lobe's angular width (radians). A Blinn-Phong lobe (`half_vector`) is also multiplied by n.v: its integral over
+ * w is 4 v.h times that over h, v.h = n.v at its peak. */
+typedef struct {
+  layout_uint offset;
+  layout_int width, height;
+  layout_float amplitude;
+  layout_int takes_cosine, split_sum;
+  layout_float spread;
+  layout_int half_vector;
+} EnvironmentLobe;
 
 /* One entry of the scene's material table. */
 typedef struct {

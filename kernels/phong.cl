@@ -24,6 +24,7 @@
 #include "area_light.h"
 #include "environment.h"
 #include "environment_horizons.h"
+#include "environment_specular.h"
 #include "features.h"
 #include "layout.h"
 #include "light_shape.h"
@@ -89,6 +90,7 @@ typedef struct {
   UNIFORM_SPACE const EnvironmentRecord* environment; /* ENVIRONMENT: the world's light */
   UNIFORM_SPACE const float* environment_texels;     /* ENVIRONMENT: its irradiance map */
   UNIFORM_SPACE const EnvironmentSun* environment_suns; /* ENVIRONMENT: its brightest cells as directional lights */
+  UNIFORM_SPACE const EnvironmentLobe* environment_lobes; /* ENVIRONMENT and SPECULAR: each material's prefiltered lobe */
   uint environment_group;                            /* LIGHT_GROUPS: its group, LIGHT_GROUPS for none */
 } Lights;
 
@@ -254,6 +256,7 @@ void sum_pending_lobes(LightSums* sums, const PendingLobes* pending, realv shini
 #define DIRECTIONAL_STREAMS 0x40000000u
 #define AREA_STREAMS 0x80000000u
 #define ENVIRONMENT_STREAM 0xC0000000u
+#define ENVIRONMENT_SPECULAR_STREAM 0xC0000001u
 
 /* F times the light's visibility: 0 in the lanes where its shadow ray is blocked (a select, not a
  * product: F may be +Inf at a light), traced only where the light casts shadows (`casts`, its
@@ -422,7 +425,10 @@ static inline void add_area_light(LightSums* sums, const Surface* surface, const
 }
 
 /* What the environment adds: E(n) / pi to the diffuse sum (kd times it is the light a Lambertian
- * surface reflects), with ENVIRONMENT_SHADOWS from the directions nothing blocks. No specular lobe yet. */
+ * surface reflects), with ENVIRONMENT_SHADOWS from the directions nothing blocks; with SPECULAR each
+ * material's prefiltered lobe at r to the specular sum, times the free fraction of rays in the lobe
+ * with ENVIRONMENT_SHADOWS (environment_specular.h), and the suns as directional lights through
+ * surface_light(). */
 static inline void add_environment(LightSums* sums, const Surface* surface, const Lights* lights) {
   UNIFORM_SPACE const EnvironmentRecord* environment = lights->environment;
   vec3 light = environment_irradiance(environment, lights->environment_texels, surface->n);
@@ -435,11 +441,37 @@ static inline void add_environment(LightSums* sums, const Surface* surface, cons
   else if (ENVIRONMENT_SHADOWS)
     light = environment_visible_light(lights->shadows, environment, lights->environment_texels, light, surface->p, surface->n,
                                       shift, pending);
-  const vec3 suns =
-      environment_suns(lights->environment_suns, environment->sun_count, lights->shadows, surface->p, surface->n, pending);
-  light = add3(light, scale3(suns, (realv)environment->scale));
+  /* Without a specular term the suns are diffuse light here; with one they are lights below. */
+  if (!SPECULAR) {
+    const vec3 suns =
+        environment_suns(lights->environment_suns, environment->sun_count, lights->shadows, surface->p, surface->n, pending);
+    light = add3(light, scale3(suns, (realv)environment->scale));
+  }
   if (PRINCIPLED_V2) light = scale3(light, lambert_share(surface));
   sums->diffuse = add3(sums->diffuse, light);
+  if (!SPECULAR) return;
+  const realv zero = 0;
+  /* A few rays in each lane's lobe: an eighth of the diffuse light's, at least 1. */
+  const realv visible =
+      ENVIRONMENT_SHADOWS ? environment_specular_visibility(lights->shadows, lights->environment_lobes, surface->material,
+                                                            surface->p, surface->n, surface->v,
+                                                            max(environment->rays / 8, 1u),
+                                                            lattice_shift(lights->pixel, ENVIRONMENT_SPECULAR_STREAM), pending)
+                          : 1;
+  /* Version 2's lanes have no environment highlight yet (their lobe's amplitude is 0). */
+  const vec3 principled_color = PRINCIPLED_V1 ? surface->principled.specular_color : make_vec3(zero, zero, zero);
+  const realv roughness = PRINCIPLED_V1 ? surface->principled.roughness : zero;
+  sums->specular = add3(sums->specular, environment_specular(environment, lights->environment_texels, lights->environment_lobes,
+                                                             surface->material, surface->n, surface->v, roughness,
+                                                             principled_color, visible));
+  ShadowInputs traced = *lights->shadows;
+  traced.tiles = 0;
+  for (int k = 0; k < environment->sun_count; ++k) {
+    UNIFORM_SPACE const EnvironmentSun* sun = &lights->environment_suns[k];
+    const vec3 d = environment_sun_direction(sun);
+    const realv weight = environment->scale * environment_sun_visible(&traced, d, surface->p, surface->n, pending);
+    surface_light(sums, 0, surface, d, 1, sun->color, weight);
+  }
 }
 
 void add_block(LightSums* sums, LightSums* compensation, const LightSums* block) {
@@ -744,6 +776,7 @@ __kernel void phong_shade(
       .environment = TABLE(UNIFORM_SPACE, EnvironmentRecord, scene, frame.scene.environment),
       .environment_texels = TABLE(UNIFORM_SPACE, float, scene, frame.scene.environment_texels),
       .environment_suns = TABLE(UNIFORM_SPACE, EnvironmentSun, scene, frame.scene.environment_suns),
+      .environment_lobes = TABLE(UNIFORM_SPACE, EnvironmentLobe, scene, frame.scene.environment_lobes),
       .environment_group = LIGHT_GROUPS && ENVIRONMENT ? groups[frame.point_count + frame.directional_count + frame.area_count] : 0,
   };
   MaterialLookup material;

@@ -94,8 +94,9 @@ IrradianceMap convolve_irradiance(const RadianceGrid& radiance) {
       cells.push_back({direction * solid_angle, glm::dvec3(rgb[0], rgb[1], rgb[2])});
     }
   }
-  IrradianceMap map{kIrradianceWidth, kIrradianceHeight, {}, take_out_suns(cells), {}};
+  IrradianceMap map{kIrradianceWidth, kIrradianceHeight, {}, take_out_suns(cells), {}, {}};
   map.sky = average_cells(cells, radiance.width, radiance.height, map.width, map.height);
+  map.radiance = average_cells(cells, radiance.width, radiance.height, radiance.width, radiance.height);
   map.rgb.resize(3 * static_cast<std::size_t>(map.width) * map.height);
   for_each_core_range(static_cast<std::size_t>(map.width) * map.height, 64,
                       [&](std::size_t, std::size_t begin, std::size_t end) {
@@ -112,7 +113,7 @@ IrradianceMap convolve_irradiance(const RadianceGrid& radiance) {
 
 IrradianceMap uniform_irradiance(const glm::dvec3& color) {
   const std::vector<float> rgb{static_cast<float>(color.x), static_cast<float>(color.y), static_cast<float>(color.z)};
-  return {1, 1, rgb, {}, {1, 1, rgb}};
+  return {1, 1, rgb, {}, {1, 1, rgb}, {1, 1, rgb}};
 }
 
 std::shared_ptr<const IrradianceMap> irradiance_of_file(const std::filesystem::path& file) {

@@ -41,12 +41,14 @@ inline constexpr double kSunContrast = 20.0;
 // E(n) / pi is the bilinear lookup plus each sun's color max(0, n.direction). `sky` is the radiance
 // without the suns, averaged to the irradiance's size: what a blocked visibility ray takes away
 // from E / pi (kernels/environment.h), so that a ray blocked by the dark ground below the horizon
-// takes away little and one blocked towards the bright zenith much.
+// takes away little and one blocked towards the bright zenith much. `radiance` is the grid without
+// the suns at its own size, which the specular maps are prefiltered from (prefiltered_map.h).
 struct IrradianceMap {
   int width = 0, height = 0;
   std::vector<float> rgb;
   std::vector<EnvironmentSunCell> suns;
   RadianceGrid sky;
+  RadianceGrid radiance;
 };
 
 // The unit direction of equirect coordinates (u, t) in [0, 1]^2, t from the top: Blender's mapping,

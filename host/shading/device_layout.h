@@ -11,15 +11,18 @@ static_assert(sizeof(layout_float) == 4 && sizeof(layout_int) == 4 && sizeof(lay
 static_assert(offsetof(FrameScalars, background) == 16 && offsetof(FrameScalars, radiance_scale_a) == 32 &&
               offsetof(FrameScalars, point_count) == 40 && offsetof(FrameScalars, plane_stride) == 48 &&
               offsetof(FrameScalars, shadow_tiles) == 56 && offsetof(FrameScalars, scene) == 64 &&
-              offsetof(FrameScalars, tile_lists) == 112 && offsetof(FrameScalars, shadow_geometry) == 128 &&
-              offsetof(FrameScalars, shadow_lists) == 148 && offsetof(FrameScalars, grid) == 160 &&
-              offsetof(FrameScalars, shadow_grid) == 180 && offsetof(FrameScalars, shadow) == 200 &&
-              offsetof(FrameScalars, first_pixel) == 60 && sizeof(FrameScalars) == 200 + sizeof(ShadowFrame));
+              offsetof(FrameScalars, tile_lists) == 116 && offsetof(FrameScalars, shadow_geometry) == 132 &&
+              offsetof(FrameScalars, shadow_lists) == 152 && offsetof(FrameScalars, grid) == 164 &&
+              offsetof(FrameScalars, shadow_grid) == 184 && offsetof(FrameScalars, shadow) == 204 &&
+              offsetof(FrameScalars, first_pixel) == 60 && sizeof(FrameScalars) == 204 + sizeof(ShadowFrame));
 static_assert(sizeof(EnvironmentRecord) == 80 && offsetof(EnvironmentRecord, scale) == 48 &&
               offsetof(EnvironmentRecord, rays) == 60 && offsetof(EnvironmentRecord, sun_count) == 64 &&
               offsetof(EnvironmentRecord, sky_offset) == 76);
 static_assert(sizeof(EnvironmentSun) == 32 && offsetof(EnvironmentSun, color) == 16);
-static_assert(sizeof(SceneTables) == 48 && sizeof(TileListTables) == 16 && sizeof(ShadowGeometryTables) == 20 &&
+static_assert(sizeof(EnvironmentLobe) == 32 && offsetof(EnvironmentLobe, amplitude) == 12 &&
+              offsetof(EnvironmentLobe, split_sum) == 20 && offsetof(EnvironmentLobe, spread) == 24 &&
+              offsetof(EnvironmentLobe, half_vector) == 28);
+static_assert(sizeof(SceneTables) == 52 && sizeof(TileListTables) == 16 && sizeof(ShadowGeometryTables) == 20 &&
               sizeof(ShadowListTables) == 12);
 static_assert(PHONGCL_UNROLL_LIGHT_LIMIT <= PHONGCL_LIGHT_BLOCK, "an unrolled light loop is one compensated block");
 static_assert(sizeof(PointLight) == 48 && offsetof(PointLight, color) == 16 && offsetof(PointLight, position_rest) == 32);

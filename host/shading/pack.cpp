@@ -16,6 +16,7 @@
 #include "common/host_threads.h"
 #include "shading/light_order.h"
 #include "shading/pack_area.h"
+#include "shading/pack_environment_specular.h"
 #include "shading/pack_principled_v2.h"
 #include "shading/store3.h"
 
@@ -139,6 +140,7 @@ UniformData pack_uniforms(const Scene& scene, const Recipe& recipe) {
   data.area_lights = pack_area_lights(scene, scale);
   data.scalars.area_count = static_cast<layout_int>(data.area_lights.size());
   data.environment = pack_environment(scene, *irradiance, recipe.environment_rays, scale);
+  if (recipe.environment && recipe.value("SPECULAR") == "1") pack_environment_lobes(data.environment, scene, irradiance);
   return data;
 }
 

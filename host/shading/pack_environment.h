@@ -22,6 +22,7 @@ struct PackedEnvironment {
   std::vector<EnvironmentRecord> record;
   std::vector<layout_float> texels;
   std::vector<EnvironmentSun> suns;  // directions turned into the eye's frame
+  std::vector<EnvironmentLobe> lobes;  // per material, with SPECULAR (pack_environment_specular.h)
 };
 PackedEnvironment pack_environment(const Scene& scene, const IrradianceMap& irradiance, int rays, double scale);
 

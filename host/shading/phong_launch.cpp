@@ -84,7 +84,8 @@ DeviceUniforms upload_uniforms(const cl::Context& context, const UniformData& un
                    .soft_lights = block.add(shadow_casters.soft),
                    .environment = block.add(uniforms.environment.record),
                    .environment_texels = block.add(uniforms.environment.texels),
-                   .environment_suns = block.add(uniforms.environment.suns)};
+                   .environment_suns = block.add(uniforms.environment.suns),
+                   .environment_lobes = block.add(uniforms.environment.lobes)};
   scalars.plane_stride = static_cast<layout_uint>(plane_stride);
   return DeviceUniforms{.scene = block.upload(context, CL_MEM_READ_ONLY),
                         .point_bounds = uniform_buffer(context, uniforms.point_bounds),

@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "environment/irradiance_map.h"
+#include "shading/pack_environment_specular.h"
 #include "shading/device_layout.h"
 
 namespace phongcl {
@@ -245,7 +246,7 @@ void decide_terms(Recipe& recipe, const Scene& scene, const GBuffer& gbuffer) {
     return;
   }
   const auto& materials = scene.materials;
-  const bool any_lights = !scene.lights.empty() || !scene.area_lights.empty();  // the environment has no specular lobe
+  const bool any_lights = !scene.lights.empty() || !scene.area_lights.empty() || scene.environment.has_value();
   // A Principled material always has a specular lobe: at grazing angles its Fresnel reaches 1.
   const bool table_ks_zero = std::all_of(materials.begin(), materials.end(), [](const Material& m) {
     return is_zero(m.ks) && m.specular_model != SpecularModel::principled;
@@ -411,7 +412,8 @@ void decide_environment(Recipe& recipe, const Scene& scene) {
                            : scene.environment->file.empty() ? "uniform colour"
                                                              : "map " + scene.environment->file.filename().string();
   add_flag(recipe, "ENVIRONMENT", recipe.environment,
-           recipe.environment ? "environment: " + kind + ", diffuse from its irradiance map"
+           recipe.environment ? "environment: " + kind +
+                                    ", diffuse from its irradiance map, specular (with SPECULAR) from each lobe's prefiltered map"
                               : "environment: compiled out (none in the scene)",
            recipe.environment ? "environment (" + kind + ")" : "");
 }
@@ -444,7 +446,8 @@ void decide_memory(Recipe& recipe, const Scene& scene, const DeviceInfo& device)
                                    2 * lights * sizeof(layout_uint) + kSceneTables * kSceneTableAlignment +
                                    (scene.environment ? sizeof(EnvironmentRecord) + sizeof(layout_uint) +
                                                             2 * 3 * kIrradianceWidth * kIrradianceHeight * sizeof(float) +  // E / pi and the sky
-                                                            kMaxSunCells * sizeof(EnvironmentSun)
+                                                            kMaxSunCells * sizeof(EnvironmentSun) +
+                                                            (recipe.value("SPECULAR") == "1" ? environment_lobe_bytes(scene) : 0)
                                                       : 0);
   const bool constant = recipe.specialised && device.max_constant_args >= 1 && bytes <= device.max_constant_buffer;
   recipe.flags.push_back({"UNIFORM_SPACE", constant ? "__constant" : "__global",

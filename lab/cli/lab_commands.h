@@ -11,5 +11,6 @@ void add_stability_command(CLI::App& app);
 void add_agreement_command(CLI::App& app);
 void add_fit_ltc_command(CLI::App& app);
 void add_principled_tables_command(CLI::App& app);
+void add_environment_brdf_command(CLI::App& app);
 
 }  // namespace phongcl::cli

@@ -13,5 +13,6 @@ int main(int argc, char** argv) {
   phongcl::cli::add_agreement_command(app);
   phongcl::cli::add_fit_ltc_command(app);
   phongcl::cli::add_principled_tables_command(app);
+  phongcl::cli::add_environment_brdf_command(app);
   return phongcl::cli::run_app(app, argc, argv);
 }

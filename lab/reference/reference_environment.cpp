@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <mutex>
 #include <string>
@@ -46,21 +47,13 @@ const ReferenceMap& reference_map(const EnvironmentLight& light) {
   return found->second;
 }
 
-namespace {
-
-// strength (1/pi) sum L(w) max(0, n.w) dw over the map's texels, turned by the light's rotation
-// about +Z as Blender's Mapping node turns the lookup, over the directions `visible` lets through
-// (given in n's frame).
-template <class Visible>
-glm::dvec3 integrate_map(const EnvironmentLight& light, const ReferenceMap& map, const glm::dvec3& n, Visible visible) {
-  const double length = glm::length(n);
-  if (!(length > 0.0)) return glm::dvec3(0.0);
+glm::dvec3 integrate_environment(const EnvironmentLight& light, const ReferenceMap& map,
+                                 const std::function<glm::dvec3(const glm::dvec3&)>& lobe) {
   // The lookup direction: into the world, then the Mapping node's rotation about +Z.
   const double turn = light.rotation_deg * pi / 180.0;
   const glm::dmat3 rotate_z(glm::dvec3(std::cos(turn), std::sin(turn), 0.0), glm::dvec3(-std::sin(turn), std::cos(turn), 0.0),
                             glm::dvec3(0.0, 0.0, 1.0));  // columns
-  const glm::dmat3 to_map = rotate_z * light.to_world;
-  const glm::dvec3 m = to_map * (n / length);
+  const glm::dmat3 to_world = glm::transpose(rotate_z * light.to_world);  // a rotation's inverse
   // Cells at most 1/256 of the turn wide and 1/128 of the half turn tall.
   const int split_x = (256 + map.width - 1) / map.width, split_y = (128 + map.height - 1) / map.height;
   const int columns = map.width * split_x, rows = map.height * split_y;
@@ -74,14 +67,28 @@ glm::dvec3 integrate_map(const EnvironmentLight& light, const ReferenceMap& map,
       // u = 1/2 - azimuth / 2 pi (Cycles' equirectangular mapping): the middle column looks along +X.
       const double u = (column + 0.5) / columns, azimuth = 2.0 * pi * (0.5 - u);
       const glm::dvec3 w(std::sin(polar) * std::cos(azimuth), std::sin(polar) * std::sin(azimuth), std::cos(polar));
-      const double cosine = glm::dot(m, w);
-      if (cosine <= 0.0) continue;
+      const glm::dvec3 weight = lobe(to_world * w);
+      if (weight == glm::dvec3(0.0)) continue;
       const double* texel = &map.rgb[3 * (static_cast<std::size_t>(y) * map.width + column / split_x)];
-      if (!visible(glm::transpose(to_map) * w)) continue;  // to_map is a rotation
-      sum += glm::dvec3(texel[0], texel[1], texel[2]) * (cosine * cell_solid_angle);
+      sum += glm::dvec3(texel[0], texel[1], texel[2]) * weight * cell_solid_angle;
     }
   }
   return sum * (light.strength / pi);
+}
+
+namespace {
+
+// strength (1/pi) sum L(w) max(0, n.w) dw over the map's texels, over the directions `visible` lets
+// through (given in n's frame).
+template <class Visible>
+glm::dvec3 integrate_map(const EnvironmentLight& light, const ReferenceMap& map, const glm::dvec3& n, Visible visible) {
+  const double length = glm::length(n);
+  if (!(length > 0.0)) return glm::dvec3(0.0);
+  const glm::dvec3 unit = n / length;
+  return integrate_environment(light, map, [&](const glm::dvec3& w) {
+    const double cosine = glm::dot(unit, w);
+    return glm::dvec3(cosine > 0.0 && visible(w) ? cosine : 0.0);
+  });
 }
 
 // Whether direction d leaves the scene from a point of unit normal n: a directional light's shadow

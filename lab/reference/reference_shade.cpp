@@ -5,6 +5,7 @@
 #include "reference/reference.h"
 #include "reference/reference_area.h"
 #include "reference/reference_environment.h"
+#include "reference/reference_environment_specular.h"
 #include "reference/reference_principled.h"
 #include "reference/reference_principled_v2.h"
 #include "reference/reference_soft_shadows.h"
@@ -145,11 +146,16 @@ ShadingTerms reference_shade_point(const Scene& scene, const SurfacePoint& point
     const EnvironmentLight& world = *scene.environment;
     diffuse += soft.environment && world.shadows ? soft.environment(point)
                                                  : reference_environment_light(world, reference_map(world), n);
+    // Its specular: the material's own lobe against every texel, unoccluded (nothing for a
+    // Phong-family ks of 0, nor yet for Principled v2, as the kernel).
+    const bool principled = point.specular_model == SpecularModel::principled;
+    if ((principled && point.principled.version == 1) || (!principled && point.ks != glm::dvec3(0.0)))
+      (principled ? principled_specular : specular) += reference_environment_specular(world, reference_map(world), point, v);
   }
   if (point.specular_model == SpecularModel::principled) {
     // Area lights and the environment: Lambert's irradiance times the diffuse colour (v2's under its
-    // dielectric layer), as the kernel (docs/shading.md); v1's highlight from area lights is in
-    // principled_specular.
+    // dielectric layer), as the kernel (docs/shading.md); v1's highlights from area lights and the
+    // environment are in principled_specular.
     const glm::dvec3 weight =
         point.principled.version == 2
             ? reference_principled_v2_lambert(point.principled, std::clamp(glm::dot(n, v), 0.0, 1.0))

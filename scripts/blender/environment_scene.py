@@ -1,6 +1,8 @@
 """The scene of the environment comparison (docs/formats.md "The world"): shadow_scene.py's spheres and box on
 a ground, pure diffuse, no bounces, lit by the world alone, so that Cycles' Diffuse Direct pass holds all of
-the world's light on a surface and phongcl's environment light is held to it. Two worlds:
+the world's light on a surface and phongcl's environment light is held to it. With --materials principled
+the objects are Principled BSDFs instead (PRINCIPLED: a rough dielectric ground, a glossier red, a blue
+metal) and the Glossy Direct and Color passes are rendered too, for the environment's specular. Two worlds:
 
     uniform  a Background colour times a strength
     hdri     an equirectangular float EXR this script draws (sky.exr, 256x128: a sky gradient, a darker
@@ -8,7 +10,7 @@ the world's light on a surface and phongcl's environment light is held to it. Tw
              about Z, fed by Texture Coordinate's Generated, so the check sees the rotation's sign
 
     blender -b --factory-startup --python scripts/blender/environment_scene.py -- --out DIR --world uniform|hdri
-        [--width 160 --height 120] [--samples 1024] [--seed 1]
+        [--width 160 --height 120] [--samples 1024] [--seed 1] [--materials diffuse|principled]
 
 writes DIR/environment.blend, with export_scene.py (--geometry) DIR/scene.json, DIR/gbuffer.exr and
 DIR/meshes/*.ply, then DIR/render.exr: Cycles' DiffDir, DiffCol, IndexOB (and the G-buffer's passes), every
@@ -25,12 +27,16 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import blender_versions as versions  # noqa: E402
 import exr_file  # noqa: E402
 import export_scene  # noqa: E402
+import principled_scene  # noqa: E402
 import shadow_scene  # noqa: E402
 
 UNIFORM_COLOUR, UNIFORM_STRENGTH = (0.6, 0.75, 1.0), 1.2
 SKY_SIZE = (256, 128)
 SUN_AZIMUTH_U, SUN_ELEVATION_DEG, SUN_RADIUS_DEG, SUN_RADIANCE = 0.3, 35.0, 4.0, 150.0
 HDRI_STRENGTH, ROTATION_DEG = 1.5, 40.0
+# shadow_scene.py's material name: base colour, metallic, roughness (Specular 0.5, no tint)
+PRINCIPLED = {"ground": ((0.6, 0.6, 0.55), 0.0, 0.5), "red": ((0.8, 0.15, 0.1), 0.0, 0.3),
+              "blue": ((0.15, 0.25, 0.8), 1.0, 0.4)}
 
 
 def sky_rows(width, height):
@@ -81,6 +87,20 @@ def hdri_world(world, directory):
     background.inputs["Strength"].default_value = HDRI_STRENGTH
 
 
+def use_principled_materials(scene):
+    """Each object's diffuse material swapped for the Principled one of its name, with its pass index."""
+    for obj in scene.objects:
+        if obj.type != "MESH":
+            continue
+        old = obj.data.materials[0]
+        colour, metallic, roughness = PRINCIPLED[old.name]
+        obj.data.materials[0] = principled_scene.principled_material(
+            old.name + "-principled", colour, metallic, roughness, 0.5, 0.0, old.pass_index)
+    layer = bpy.context.view_layer
+    layer.use_pass_glossy_direct = True
+    layer.use_pass_glossy_color = True
+
+
 def main():
     parser = argparse.ArgumentParser(prog="environment_scene.py")
     parser.add_argument("--out", required=True)
@@ -89,6 +109,7 @@ def main():
     parser.add_argument("--height", type=int, default=120)
     parser.add_argument("--samples", type=int, default=1024)
     parser.add_argument("--seed", type=int, default=1)
+    parser.add_argument("--materials", choices=("diffuse", "principled"), default="diffuse")
     args = parser.parse_args(sys.argv[sys.argv.index("--") + 1:])
     out = os.path.abspath(args.out)
     os.makedirs(out, exist_ok=True)
@@ -101,6 +122,8 @@ def main():
 
     scene = shadow_scene.build_shadow_scene(args.width, args.height, add_world, args.samples)
     scene.cycles.seed = args.seed
+    if args.materials == "principled":
+        use_principled_materials(scene)
     bpy.ops.wm.save_as_mainfile(filepath=os.path.join(out, "environment.blend"))
     export_scene.render_gbuffer(scene, os.path.join(out, "gbuffer.exr"), samples=1)  # one sample: the centre
     objects = export_scene.export_geometry(scene, os.path.join(out, "meshes"), out)

@@ -12,7 +12,7 @@ check=66-blender-versions
 versions=${PHONGCL_BLENDER_VERSIONS:-blender5 blender4}
 cache=${PHONGCL_CACHE:-/var/cache/phongcl}
 checks=(60-blender 61-blender-notes 62-blender-area 62-blender-lights 63-blender-colour 64-blender-over 65-blender-shadows
-        65-blender-soft-shadows 67-blender-environment 68-blender-principled)
+        65-blender-soft-shadows 67-blender-environment 67-blender-environment-specular 68-blender-principled)
 
 summary=()
 for version in $versions; do
