@@ -204,6 +204,31 @@ static inline PrincipledV2Surface principled_v2_surface(vec3 metal_f0, vec3 meta
   return m;
 }
 
+/* Version 2's specular albedo at view cosine mu under a white world, per channel, for the environment's
+ * split sum: E times each lobe's mean Fresnel over the reflected light, the metal's from its F82
+ * factors (principled_tables.h), the dielectric's Cycles' own estimate mix(f0, 1, s)
+ * (bsdf_microfacet_estimate_albedo), each times its scale (with the energy compensation). */
+static inline vec3 principled_v2_specular_albedo(PrincipledV2Surface m, realv mu) {
+  const realv roughness = sqrt(sqrt(m.alpha_sq));
+  realv albedo, average, interpolation;
+  ggx_table_lanes(roughness, mu, sqrt(sqrt(m.ior_f0)), &albedo, &average, &interpolation);
+  real r[PHONGCL_LANES], c[PHONGCL_LANES], schlick[PHONGCL_LANES], f82[PHONGCL_LANES];
+  VSTORE(roughness, 0, r);
+  VSTORE(mu, 0, c);
+  for (int k = 0; k < PHONGCL_LANES; ++k) {
+    schlick[k] = table_plane(ggx_schlick_factor_table, r[k], c[k], GGX_ALBEDO_SIZE, GGX_ALBEDO_SIZE);
+    f82[k] = table_plane(ggx_f82_factor_table, r[k], c[k], GGX_ALBEDO_SIZE, GGX_ALBEDO_SIZE);
+  }
+  const realv s5 = VLOAD(0, schlick), s6 = VLOAD(0, f82);
+  const vec3 metal = make_vec3(clamp(fma(1 - m.metal_f0.x, s5, m.metal_f0.x) - m.metal_b.x * s6, (real)0, (real)1),
+                               clamp(fma(1 - m.metal_f0.y, s5, m.metal_f0.y) - m.metal_b.y * s6, (real)0, (real)1),
+                               clamp(fma(1 - m.metal_f0.z, s5, m.metal_f0.z) - m.metal_b.z * s6, (real)0, (real)1));
+  return scale3(make_vec3(fma(m.metal_scale.x, metal.x, m.dielectric_scale.x * remapped_fresnel(interpolation, m.dielectric_f0.x)),
+                          fma(m.metal_scale.y, metal.y, m.dielectric_scale.y * remapped_fresnel(interpolation, m.dielectric_f0.y)),
+                          fma(m.metal_scale.z, metal.z, m.dielectric_scale.z * remapped_fresnel(interpolation, m.dielectric_f0.z))),
+                albedo);
+}
+
 /* Version 2's diffuse and specular responses to a light from unit l, for unit n and v. */
 static inline PrincipledResponse principled_v2_response(PrincipledV2Surface m, vec3 n, vec3 v, vec3 l) {
   const realv n_dot_l = dot3(n, l), n_dot_v = dot3(n, v);
