@@ -69,6 +69,19 @@ static inline realv fresnel_blend(PrincipledSurface m, realv l_dot_h) {
   return SELECT(m.f0 < 1, (dielectric_fresnel(l_dot_h, m.ior) - m.f0) / (1 - m.f0), 0);
 }
 
+/* GGX's denominator root c^2 (alpha^2 - 1) + 1 = sin^2 + c^2 alpha^2 at c = n.h, h halfway between
+ * unit l and v, and l.h. sin^2 = |n x h|^2: near the peak 1 - c^2 would cancel to float's rounding of
+ * c, which at alpha^2 = 1e-4 is 1e-3 of D. */
+static inline realv ggx_denominator_root(vec3 n, vec3 v, vec3 l, realv alpha_sq, realv* l_dot_h) {
+  const vec3 s = add3(l, v);
+  const realv inverse_s = rsqrt(max(dot3(s, s), (real)1e-30f));
+  const realv n_dot_h = dot3(n, s) * inverse_s;
+  *l_dot_h = dot3(l, s) * inverse_s;
+  const vec3 n_cross_s = cross3(n, s);
+  const realv sin_sq = dot3(n_cross_s, n_cross_s) * (inverse_s * inverse_s);
+  return fma(n_dot_h * n_dot_h, alpha_sq, sin_sq);
+}
+
 /* The diffuse and specular responses to a light from unit l, for unit n and v. */
 static inline PrincipledResponse principled_response(PrincipledSurface m, vec3 n, vec3 v, vec3 l) {
   const realv n_dot_l = dot3(n, l), n_dot_v = dot3(n, v), l_dot_v = dot3(l, v);
@@ -77,14 +90,8 @@ static inline PrincipledResponse principled_response(PrincipledSurface m, vec3 n
   /* GGX: pi D G / (4 n.v) with the n.l of L_o cancelled, D = alpha^2 / (pi (c^2 (alpha^2 - 1) + 1)^2),
    * c = n.h, G = G1(n.v) G1(n.l) separable. 0 where either side faces away, and for alpha^2 <= 1e-7 (a
    * mirror: no highlight from a point). */
-  const vec3 s = add3(l, v);
-  const realv inverse_s = rsqrt(max(dot3(s, s), (real)1e-30f));
-  const realv n_dot_h = dot3(n, s) * inverse_s, l_dot_h = dot3(l, s) * inverse_s;
-  /* c^2 (alpha^2 - 1) + 1 = sin^2 + c^2 alpha^2, sin^2 = |n x h|^2: near the peak 1 - c^2 would cancel
-   * to float's rounding of c, which at alpha^2 = 1e-4 is 1e-3 of D. */
-  const vec3 n_cross_s = cross3(n, s);
-  const realv sin_sq = dot3(n_cross_s, n_cross_s) * (inverse_s * inverse_s);
-  const realv d_root = fma(n_dot_h * n_dot_h, m.alpha_sq, sin_sq);
+  realv l_dot_h;
+  const realv d_root = ggx_denominator_root(n, v, l, m.alpha_sq, &l_dot_h);
   const realv masking = half_smith_masking(n_dot_v, m.alpha_sq) * half_smith_masking(n_dot_l, m.alpha_sq);
   const realv lobe = m.alpha_sq * masking / (n_dot_v * d_root * d_root);
   const realv lit = SELECT(n_dot_l > 0 && n_dot_v > 0 && m.alpha_sq > (real)1e-7f, lobe, 0);
@@ -234,12 +241,8 @@ static inline PrincipledResponse principled_v2_response(PrincipledV2Surface m, v
   const realv n_dot_l = dot3(n, l), n_dot_v = dot3(n, v);
   PrincipledResponse response;
   response.diffuse = SELECT(n_dot_l > 0, n_dot_l * m.diffuse_scale, 0);
-  const vec3 s = add3(l, v);
-  const realv inverse_s = rsqrt(max(dot3(s, s), (real)1e-30f));
-  const realv n_dot_h = dot3(n, s) * inverse_s, l_dot_h = dot3(l, s) * inverse_s;
-  const vec3 n_cross_s = cross3(n, s);
-  const realv sin_sq = dot3(n_cross_s, n_cross_s) * (inverse_s * inverse_s);
-  const realv d_root = fma(n_dot_h * n_dot_h, m.alpha_sq, sin_sq);
+  realv l_dot_h;
+  const realv d_root = ggx_denominator_root(n, v, l, m.alpha_sq, &l_dot_h);
   /* pi D G2 / (4 n.v), D = alpha^2 / (pi d_root^2), height-correlated G2 = 1 / (1 + Lambda_v + Lambda_l),
    * 1 + Lambda(c) = (1 + root(c) / c) / 2 with root(c) = sqrt(c^2 + alpha^2 (1 - c^2)). */
   const realv root_v = sqrt(fma(m.alpha_sq, 1 - n_dot_v * n_dot_v, n_dot_v * n_dot_v));
