@@ -5,7 +5,8 @@
  * lobe-weighted mean radiance, which the lobe's integral (`amplitude`) turns into its light, times n.r
  * for the normalised lobes (their n.l is n.r r.w plus a part odd about r, which the mean leaves out).
  * Principled lanes take Karis' split sum: the map prefiltered with GGX under n = v = r, times the
- * BRDF's white-world albedo split by its Fresnel, cspec0 A + B (environment_brdf.h). The map holds
+ * BRDF's white-world albedo: version 1's split by its Fresnel, cspec0 A + B (environment_brdf.h),
+ * version 2's from Cycles' own tables (principled_v2_specular_albedo). The map holds
  * the sky without its suns, which come as directional lights and take their specular through
  * surface_light() as any light does. */
 #ifndef PHONGCL_ENVIRONMENT_SPECULAR_H
@@ -31,31 +32,35 @@ static inline void environment_brdf_lookup(real n_dot_v, real roughness, real* s
   }
 }
 
+/* A version 1 Principled lane's specular albedo under a white world, cspec0 A + B. */
+static inline vec3 principled_v1_specular_albedo(realv n_dot_v, realv roughness, vec3 specular_color) {
+  real cosines[PHONGCL_LANES], roughnesses[PHONGCL_LANES], scales[PHONGCL_LANES], biases[PHONGCL_LANES];
+  VSTORE(n_dot_v, 0, cosines);
+  VSTORE(roughness, 0, roughnesses);
+  for (int k = 0; k < PHONGCL_LANES; ++k) environment_brdf_lookup(cosines[k], roughnesses[k], &scales[k], &biases[k]);
+  const realv scale = VLOAD(0, scales), bias = VLOAD(0, biases);
+  return make_vec3(fma(scale, specular_color.x, bias), fma(scale, specular_color.y, bias), fma(scale, specular_color.z, bias));
+}
+
 /* One lane's specular light: its material's prefiltered radiance at r (the map's frame) times its
- * lobe's factor and `visible`. */
+ * lobe's factor and `visible`, and a split sum's by the lane's `albedo`. */
 static inline void environment_lane_specular(UNIFORM_SPACE const EnvironmentLobe* lobe, UNIFORM_SPACE const float* texels,
-                                             real rx, real ry, real rz, real n_dot_r, real n_dot_v, real roughness,
-                                             const real* specular_color, real visible, real* rgb) {
+                                             real rx, real ry, real rz, real n_dot_r, real n_dot_v, const real* albedo,
+                                             real visible, real* rgb) {
   equirect_lookup(texels + lobe->offset, lobe->width, lobe->height, rx, ry, rz, rgb);
   real factor = lobe->amplitude * (lobe->takes_cosine ? fmax(n_dot_r, (real)0) : (real)1);
   if (lobe->half_vector) factor *= n_dot_v;
   factor *= visible;
-  if (lobe->split_sum) {
-    real scale, bias;
-    environment_brdf_lookup(n_dot_v, roughness, &scale, &bias);
-    for (int c = 0; c < 3; ++c) rgb[c] *= factor * fma(scale, specular_color[c], bias);
-    return;
-  }
-  for (int c = 0; c < 3; ++c) rgb[c] *= factor;
+  for (int c = 0; c < 3; ++c) rgb[c] *= lobe->split_sum ? factor * albedo[c] : factor;
 }
 
 /* The specular light of each lane's material from the environment, scaled, times `visible` (its
  * lobe's free fraction, environment_specular_visibility; 1 without visibility): 0 in background
- * lanes and where the eye is behind the surface. `roughness` and `specular_color` are the Principled lanes' (read
- * only where a lobe is a split sum). */
+ * lanes and where the eye is behind the surface. `albedo` is the Principled lanes' white-world
+ * specular albedo (read only where a lobe is a split sum). */
 static inline vec3 environment_specular(UNIFORM_SPACE const EnvironmentRecord* environment, UNIFORM_SPACE const float* texels,
                                         UNIFORM_SPACE const EnvironmentLobe* lobes, intv material, vec3 n, vec3 v,
-                                        realv roughness, vec3 specular_color, realv visible) {
+                                        vec3 albedo, realv visible) {
   const realv n_dot_v = dot3(n, v);
   const vec3 r = sub3(scale3(n, 2 * n_dot_v), v);
   UNIFORM_SPACE const float* m = environment->to_map;
@@ -65,13 +70,13 @@ static inline vec3 environment_specular(UNIFORM_SPACE const EnvironmentRecord* e
   const realv n_dot_r = dot3(n, r);
   const real scale = environment->scale;
 #if PHONGCL_LANES == 1
-  const real color[3] = {specular_color.x, specular_color.y, specular_color.z};
+  const real white[3] = {albedo.x, albedo.y, albedo.z};
   real rgb[3] = {0, 0, 0};
   if (material != PHONGCL_BACKGROUND && n_dot_v > 0)
-    environment_lane_specular(&lobes[material], texels, x, y, z, n_dot_r, n_dot_v, roughness, color, visible, rgb);
+    environment_lane_specular(&lobes[material], texels, x, y, z, n_dot_r, n_dot_v, white, visible, rgb);
   return make_vec3(rgb[0] * scale, rgb[1] * scale, rgb[2] * scale);
 #else
-  real xs[PHONGCL_LANES], ys[PHONGCL_LANES], zs[PHONGCL_LANES], nr[PHONGCL_LANES], nv[PHONGCL_LANES], rough[PHONGCL_LANES];
+  real xs[PHONGCL_LANES], ys[PHONGCL_LANES], zs[PHONGCL_LANES], nr[PHONGCL_LANES], nv[PHONGCL_LANES];
   real cr[PHONGCL_LANES], cg[PHONGCL_LANES], cb[PHONGCL_LANES], seen[PHONGCL_LANES];
   real r_out[PHONGCL_LANES], g_out[PHONGCL_LANES], b_out[PHONGCL_LANES];
   int materials[PHONGCL_LANES];
@@ -80,18 +85,16 @@ static inline vec3 environment_specular(UNIFORM_SPACE const EnvironmentRecord* e
   PHONGCL_XCAT(vstore, PHONGCL_LANES)(z, 0, zs);
   PHONGCL_XCAT(vstore, PHONGCL_LANES)(n_dot_r, 0, nr);
   PHONGCL_XCAT(vstore, PHONGCL_LANES)(n_dot_v, 0, nv);
-  PHONGCL_XCAT(vstore, PHONGCL_LANES)(roughness, 0, rough);
-  PHONGCL_XCAT(vstore, PHONGCL_LANES)(specular_color.x, 0, cr);
-  PHONGCL_XCAT(vstore, PHONGCL_LANES)(specular_color.y, 0, cg);
-  PHONGCL_XCAT(vstore, PHONGCL_LANES)(specular_color.z, 0, cb);
+  PHONGCL_XCAT(vstore, PHONGCL_LANES)(albedo.x, 0, cr);
+  PHONGCL_XCAT(vstore, PHONGCL_LANES)(albedo.y, 0, cg);
+  PHONGCL_XCAT(vstore, PHONGCL_LANES)(albedo.z, 0, cb);
   PHONGCL_XCAT(vstore, PHONGCL_LANES)(visible, 0, seen);
   PHONGCL_XCAT(vstore, PHONGCL_LANES)(material, 0, materials);
   for (int k = 0; k < PHONGCL_LANES; ++k) {
-    const real color[3] = {cr[k], cg[k], cb[k]};
+    const real white[3] = {cr[k], cg[k], cb[k]};
     real rgb[3] = {0, 0, 0};
     if (materials[k] != PHONGCL_BACKGROUND && nv[k] > 0)
-      environment_lane_specular(&lobes[materials[k]], texels, xs[k], ys[k], zs[k], nr[k], nv[k], rough[k], color, seen[k],
-                                rgb);
+      environment_lane_specular(&lobes[materials[k]], texels, xs[k], ys[k], zs[k], nr[k], nv[k], white, seen[k], rgb);
     r_out[k] = rgb[0] * scale;
     g_out[k] = rgb[1] * scale;
     b_out[k] = rgb[2] * scale;

@@ -424,6 +424,21 @@ static inline void add_area_light(LightSums* sums, const Surface* surface, const
   }
 }
 
+/* A Principled lane's specular albedo under a white world, in its version, for the environment's
+ * split sum; 0 where no lane is Principled (then nothing reads it). */
+static inline vec3 split_sum_albedo(const Surface* surface) {
+  const realv zero = 0;
+  const realv n_dot_v = clamp(dot3(surface->n, surface->v), zero, (realv)1);
+  vec3 albedo = make_vec3(zero, zero, zero);
+  if (PRINCIPLED_V1)
+    albedo = principled_v1_specular_albedo(n_dot_v, surface->principled.roughness, surface->principled.specular_color);
+  if (PRINCIPLED_V2) {
+    const vec3 v2 = principled_v2_specular_albedo(surface->principled_v2, n_dot_v);
+    albedo = PRINCIPLED_V1 ? select3(v2, albedo, SELECT(surface->specular_model == PRINCIPLED_V2_MODEL, 1, 0)) : v2;
+  }
+  return albedo;
+}
+
 /* What the environment adds: E(n) / pi to the diffuse sum (kd times it is the light a Lambertian
  * surface reflects), with ENVIRONMENT_SHADOWS from the directions nothing blocks; with SPECULAR each
  * material's prefiltered lobe at r to the specular sum, times the free fraction of rays in the lobe
@@ -450,7 +465,6 @@ static inline void add_environment(LightSums* sums, const Surface* surface, cons
   if (PRINCIPLED_V2) light = scale3(light, lambert_share(surface));
   sums->diffuse = add3(sums->diffuse, light);
   if (!SPECULAR) return;
-  const realv zero = 0;
   /* A few rays in each lane's lobe: an eighth of the diffuse light's, at least 1. */
   const realv visible =
       ENVIRONMENT_SHADOWS ? environment_specular_visibility(lights->shadows, lights->environment_lobes, surface->material,
@@ -458,12 +472,9 @@ static inline void add_environment(LightSums* sums, const Surface* surface, cons
                                                             max(environment->rays / 8, 1u),
                                                             lattice_shift(lights->pixel, ENVIRONMENT_SPECULAR_STREAM), pending)
                           : 1;
-  /* Version 2's lanes have no environment highlight yet (their lobe's amplitude is 0). */
-  const vec3 principled_color = PRINCIPLED_V1 ? surface->principled.specular_color : make_vec3(zero, zero, zero);
-  const realv roughness = PRINCIPLED_V1 ? surface->principled.roughness : zero;
   sums->specular = add3(sums->specular, environment_specular(environment, lights->environment_texels, lights->environment_lobes,
-                                                             surface->material, surface->n, surface->v, roughness,
-                                                             principled_color, visible));
+                                                             surface->material, surface->n, surface->v,
+                                                             split_sum_albedo(surface), visible));
   ShadowInputs traced = *lights->shadows;
   traced.tiles = 0;
   for (int k = 0; k < environment->sun_count; ++k) {

@@ -69,6 +69,19 @@ static inline realv fresnel_blend(PrincipledSurface m, realv l_dot_h) {
   return SELECT(m.f0 < 1, (dielectric_fresnel(l_dot_h, m.ior) - m.f0) / (1 - m.f0), 0);
 }
 
+/* GGX's denominator root c^2 (alpha^2 - 1) + 1 = sin^2 + c^2 alpha^2 at c = n.h, h halfway between
+ * unit l and v, and l.h. sin^2 = |n x h|^2: near the peak 1 - c^2 would cancel to float's rounding of
+ * c, which at alpha^2 = 1e-4 is 1e-3 of D. */
+static inline realv ggx_denominator_root(vec3 n, vec3 v, vec3 l, realv alpha_sq, realv* l_dot_h) {
+  const vec3 s = add3(l, v);
+  const realv inverse_s = rsqrt(max(dot3(s, s), (real)1e-30f));
+  const realv n_dot_h = dot3(n, s) * inverse_s;
+  *l_dot_h = dot3(l, s) * inverse_s;
+  const vec3 n_cross_s = cross3(n, s);
+  const realv sin_sq = dot3(n_cross_s, n_cross_s) * (inverse_s * inverse_s);
+  return fma(n_dot_h * n_dot_h, alpha_sq, sin_sq);
+}
+
 /* The diffuse and specular responses to a light from unit l, for unit n and v. */
 static inline PrincipledResponse principled_response(PrincipledSurface m, vec3 n, vec3 v, vec3 l) {
   const realv n_dot_l = dot3(n, l), n_dot_v = dot3(n, v), l_dot_v = dot3(l, v);
@@ -77,14 +90,8 @@ static inline PrincipledResponse principled_response(PrincipledSurface m, vec3 n
   /* GGX: pi D G / (4 n.v) with the n.l of L_o cancelled, D = alpha^2 / (pi (c^2 (alpha^2 - 1) + 1)^2),
    * c = n.h, G = G1(n.v) G1(n.l) separable. 0 where either side faces away, and for alpha^2 <= 1e-7 (a
    * mirror: no highlight from a point). */
-  const vec3 s = add3(l, v);
-  const realv inverse_s = rsqrt(max(dot3(s, s), (real)1e-30f));
-  const realv n_dot_h = dot3(n, s) * inverse_s, l_dot_h = dot3(l, s) * inverse_s;
-  /* c^2 (alpha^2 - 1) + 1 = sin^2 + c^2 alpha^2, sin^2 = |n x h|^2: near the peak 1 - c^2 would cancel
-   * to float's rounding of c, which at alpha^2 = 1e-4 is 1e-3 of D. */
-  const vec3 n_cross_s = cross3(n, s);
-  const realv sin_sq = dot3(n_cross_s, n_cross_s) * (inverse_s * inverse_s);
-  const realv d_root = fma(n_dot_h * n_dot_h, m.alpha_sq, sin_sq);
+  realv l_dot_h;
+  const realv d_root = ggx_denominator_root(n, v, l, m.alpha_sq, &l_dot_h);
   const realv masking = half_smith_masking(n_dot_v, m.alpha_sq) * half_smith_masking(n_dot_l, m.alpha_sq);
   const realv lobe = m.alpha_sq * masking / (n_dot_v * d_root * d_root);
   const realv lit = SELECT(n_dot_l > 0 && n_dot_v > 0 && m.alpha_sq > (real)1e-7f, lobe, 0);
@@ -204,17 +211,38 @@ static inline PrincipledV2Surface principled_v2_surface(vec3 metal_f0, vec3 meta
   return m;
 }
 
+/* Version 2's specular albedo at view cosine mu under a white world, per channel, for the environment's
+ * split sum: E times each lobe's mean Fresnel over the reflected light, the metal's from its F82
+ * factors (principled_tables.h), the dielectric's Cycles' own estimate mix(f0, 1, s)
+ * (bsdf_microfacet_estimate_albedo), each times its scale (with the energy compensation). */
+static inline vec3 principled_v2_specular_albedo(PrincipledV2Surface m, realv mu) {
+  const realv roughness = sqrt(sqrt(m.alpha_sq));
+  realv albedo, average, interpolation;
+  ggx_table_lanes(roughness, mu, sqrt(sqrt(m.ior_f0)), &albedo, &average, &interpolation);
+  real r[PHONGCL_LANES], c[PHONGCL_LANES], schlick[PHONGCL_LANES], f82[PHONGCL_LANES];
+  VSTORE(roughness, 0, r);
+  VSTORE(mu, 0, c);
+  for (int k = 0; k < PHONGCL_LANES; ++k) {
+    schlick[k] = table_plane(ggx_schlick_factor_table, r[k], c[k], GGX_ALBEDO_SIZE, GGX_ALBEDO_SIZE);
+    f82[k] = table_plane(ggx_f82_factor_table, r[k], c[k], GGX_ALBEDO_SIZE, GGX_ALBEDO_SIZE);
+  }
+  const realv s5 = VLOAD(0, schlick), s6 = VLOAD(0, f82);
+  const vec3 metal = make_vec3(clamp(fma(1 - m.metal_f0.x, s5, m.metal_f0.x) - m.metal_b.x * s6, (real)0, (real)1),
+                               clamp(fma(1 - m.metal_f0.y, s5, m.metal_f0.y) - m.metal_b.y * s6, (real)0, (real)1),
+                               clamp(fma(1 - m.metal_f0.z, s5, m.metal_f0.z) - m.metal_b.z * s6, (real)0, (real)1));
+  return scale3(make_vec3(fma(m.metal_scale.x, metal.x, m.dielectric_scale.x * remapped_fresnel(interpolation, m.dielectric_f0.x)),
+                          fma(m.metal_scale.y, metal.y, m.dielectric_scale.y * remapped_fresnel(interpolation, m.dielectric_f0.y)),
+                          fma(m.metal_scale.z, metal.z, m.dielectric_scale.z * remapped_fresnel(interpolation, m.dielectric_f0.z))),
+                albedo);
+}
+
 /* Version 2's diffuse and specular responses to a light from unit l, for unit n and v. */
 static inline PrincipledResponse principled_v2_response(PrincipledV2Surface m, vec3 n, vec3 v, vec3 l) {
   const realv n_dot_l = dot3(n, l), n_dot_v = dot3(n, v);
   PrincipledResponse response;
   response.diffuse = SELECT(n_dot_l > 0, n_dot_l * m.diffuse_scale, 0);
-  const vec3 s = add3(l, v);
-  const realv inverse_s = rsqrt(max(dot3(s, s), (real)1e-30f));
-  const realv n_dot_h = dot3(n, s) * inverse_s, l_dot_h = dot3(l, s) * inverse_s;
-  const vec3 n_cross_s = cross3(n, s);
-  const realv sin_sq = dot3(n_cross_s, n_cross_s) * (inverse_s * inverse_s);
-  const realv d_root = fma(n_dot_h * n_dot_h, m.alpha_sq, sin_sq);
+  realv l_dot_h;
+  const realv d_root = ggx_denominator_root(n, v, l, m.alpha_sq, &l_dot_h);
   /* pi D G2 / (4 n.v), D = alpha^2 / (pi d_root^2), height-correlated G2 = 1 / (1 + Lambda_v + Lambda_l),
    * 1 + Lambda(c) = (1 + root(c) / c) / 2 with root(c) = sqrt(c^2 + alpha^2 (1 - c^2)). */
   const realv root_v = sqrt(fma(m.alpha_sq, 1 - n_dot_v * n_dot_v, n_dot_v * n_dot_v));

@@ -58,7 +58,9 @@ TEST(PrincipledV2, TheTablesAreTheLabsIntegrals) {
   double worst = 0.0;
   for (int k = 0; k < kAlbedoSize * kAlbedoSize; k += 37) {
     const double roughness = std::clamp((k % kAlbedoSize) / 31.0, 1e-4, 1.0), mu = std::clamp((k / kAlbedoSize) / 31.0, 1e-4, 1.0);
-    worst = std::max(worst, std::abs(ggx_albedo(roughness, mu, 256) - ggx_albedo_table[k]));
+    worst = std::max({worst, std::abs(ggx_albedo(roughness, mu, 256) - ggx_albedo_table[k]),
+                      std::abs(ggx_schlick_factor(roughness, mu, 256) - ggx_schlick_factor_table[k]),
+                      std::abs(ggx_f82_factor(roughness, mu, 256) - ggx_f82_factor_table[k])});
   }
   const int n = kInterpolationSize;
   for (int k = 0; k < n * n * n; k += 101) {

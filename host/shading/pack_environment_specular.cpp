@@ -71,9 +71,7 @@ void pack_environment_lobes(PackedEnvironment& packed, const Scene& scene, const
   for (const Material& material : scene.materials) {
     const SpecularLobe lobe = environment_lobe(material);
     EnvironmentLobe record = maps[map_of(mapped, lobe)];
-    // Version 2's Principled lobe has no split-sum table of its own yet: no environment highlight.
-    const bool unmapped = material.specular_model == SpecularModel::principled && material.version == 2;
-    record.amplitude = unmapped ? 0.0f : static_cast<float>(lobe_integral(lobe));
+    record.amplitude = static_cast<float>(lobe_integral(lobe));
     record.split_sum = lobe.kind == SpecularLobe::Kind::ggx;
     record.takes_cosine = lobe.takes_cosine && !record.split_sum;
     record.half_vector = lobe.kind == SpecularLobe::Kind::blinn;

@@ -77,12 +77,27 @@ double index_of_axis(double z) {
   return (1.0 + root) / (1.0 - root);
 }
 
-double ggx_albedo(double roughness, double mu, int n) {
+// The light single-scattering GGX reflects, each direction weighted by weight(h.v): the estimator of
+// single scattering over visible normals, G2 / G1(v), times the weight.
+template <typename Weight>
+double ggx_weighted_albedo(double roughness, double mu, int n, Weight weight) {
   const double alpha = roughness * roughness, lambda_v = lambda(alpha, mu);
-  // The estimator of single scattering over visible normals: G2 / G1(v).
-  return visible_normal_mean(alpha, mu, n, [&](double, double l_z) {
-    return (1.0 + lambda_v) / (1.0 + lambda_v + lambda(alpha, l_z));
+  return visible_normal_mean(alpha, mu, n, [&](double h_dot_v, double l_z) {
+    return weight(h_dot_v) * (1.0 + lambda_v) / (1.0 + lambda_v + lambda(alpha, l_z));
   });
+}
+
+double ggx_albedo(double roughness, double mu, int n) {
+  return ggx_weighted_albedo(roughness, mu, n, [](double) { return 1.0; });
+}
+
+double ggx_schlick_factor(double roughness, double mu, int n) {
+  return ggx_weighted_albedo(roughness, mu, n, [](double c) { return std::pow(1.0 - c, 5.0); }) / ggx_albedo(roughness, mu, n);
+}
+
+double ggx_f82_factor(double roughness, double mu, int n) {
+  return ggx_weighted_albedo(roughness, mu, n, [](double c) { return c * std::pow(1.0 - c, 6.0); }) /
+         ggx_albedo(roughness, mu, n);
 }
 
 double ggx_average_albedo(double roughness, int mu_points, int n) {
@@ -112,6 +127,14 @@ PrincipledTables compute_principled_tables(int n) {
   for (int i = 0; i < a * a; ++i)
     tables.albedo[static_cast<std::size_t>(i)] =
         saturate(ggx_albedo(clamped_axis(i % a, a, 1e-4, 1.0), clamped_axis(i / a, a, 1e-4, 1.0), n));
+  tables.schlick_factor.resize(tables.albedo.size());
+  tables.f82_factor.resize(tables.albedo.size());
+#pragma omp parallel for schedule(dynamic)
+  for (int i = 0; i < a * a; ++i) {
+    const double roughness = clamped_axis(i % a, a, 1e-4, 1.0), mu = clamped_axis(i / a, a, 1e-4, 1.0);
+    tables.schlick_factor[static_cast<std::size_t>(i)] = saturate(ggx_schlick_factor(roughness, mu, n));
+    tables.f82_factor[static_cast<std::size_t>(i)] = saturate(ggx_f82_factor(roughness, mu, n));
+  }
 #pragma omp parallel for schedule(dynamic)
   for (int i = 0; i < a; ++i)
     tables.average_albedo[static_cast<std::size_t>(i)] = saturate(ggx_average_albedo(clamped_axis(i, a, 1e-4, 1.0), kAverageCosines, n));
@@ -140,6 +163,9 @@ std::string principled_tables_source(const PrincipledTables& tables, int n) {
   append_table(text, "ggx_average_albedo_table", tables.average_albedo, 8);
   text += "\n/* s(roughness, mu, z): the dielectric Fresnel's mean F0-to-1 factor, index (1 + z^2) / (1 - z^2). */\n";
   append_table(text, "ggx_fresnel_interpolation_table", tables.interpolation, kInterpolationSize);
+  text += "\n/* The F82-tint metal's mean Fresnel factors over the reflected light, of (1 - f0) and of b. */\n";
+  append_table(text, "ggx_schlick_factor_table", tables.schlick_factor, kAlbedoSize);
+  append_table(text, "ggx_f82_factor_table", tables.f82_factor, kAlbedoSize);
   text += "\n#endif\n";
   return text;
 }

@@ -1,7 +1,8 @@
 // The tables Cycles' Principled BSDF v2 reads (docs/shading.md "Principled v2"), computed here by
 // integrating the GGX BRDF, never copied: the directional albedo E(roughness, mu) of single-scattering
 // GGX without Fresnel, its cosine-weighted average E_avg(roughness), and the F0-to-1 interpolation
-// factor s(roughness, mu, z) that the real dielectric Fresnel gives on average over the reflected light.
+// factor s(roughness, mu, z) that the real dielectric Fresnel gives on average over the reflected light,
+// and the two factors of the F82-tint metal's Fresnel (the environment's split sum reads those).
 // Each is an average over the GGX distribution of visible normals (Heitz 2018), taken on an n x n
 // midpoint grid of that distribution's disk parameters, at the grid points Cycles samples its own
 // (roughness = x / (nx - 1), mu = y / (ny - 1), z = k / (nz - 1), each clamped as Cycles does).
@@ -27,10 +28,18 @@ double ggx_average_albedo(double roughness, int mu_points, int n);
 // Fresnel, counting 0 where the reflected direction falls below the horizon.
 double ggx_fresnel_interpolation(double roughness, double mu, double index, int n);
 
+// The F82-tint Fresnel's mean factors over the light single-scattering GGX reflects, weighted as E
+// integrates it: of (1 - f0) in (1 - h.v)^5, and of b in h.v (1 - h.v)^6. The metal's albedo is
+// E (f0 + (1 - f0) schlick - b f82).
+double ggx_schlick_factor(double roughness, double mu, int n);
+double ggx_f82_factor(double roughness, double mu, int n);
+
 struct PrincipledTables {
   std::vector<float> albedo;          // [mu][roughness], kAlbedoSize^2
   std::vector<float> average_albedo;  // [roughness], kAlbedoSize
   std::vector<float> interpolation;   // [z][mu][roughness], kInterpolationSize^3
+  std::vector<float> schlick_factor;  // [mu][roughness], kAlbedoSize^2
+  std::vector<float> f82_factor;      // [mu][roughness], kAlbedoSize^2
 };
 
 // Every entry, each integral on an n x n grid (E_avg over kAverageCosines cosines).

@@ -200,6 +200,12 @@ glm::dvec3 reference_principled_v2_lambert(const Material& material, double mu) 
 
 PrincipledLight reference_principled_v2(const Material& material, const glm::dvec3& n, const glm::dvec3& v,
                                         const glm::dvec3& l) {
+  const double alpha = material.roughness * material.roughness;
+  return reference_principled_v2(material, n, v, l, [alpha](double mu) { return reference_smith_masking(alpha, mu); });
+}
+
+PrincipledLight reference_principled_v2(const Material& material, const glm::dvec3& n, const glm::dvec3& v,
+                                        const glm::dvec3& l, const std::function<double(double)>& masking) {
   PrincipledLight light;
   const double ndl = glm::dot(n, l), ndv = glm::dot(n, v);
   if (!(ndl > 0.0)) return light;
@@ -211,8 +217,7 @@ PrincipledLight reference_principled_v2(const Material& material, const glm::dve
   // GGX's density from its slope distribution (Heitz 2014, eq. 12) and G2 = 1 / (1 + Lambda_v + Lambda_l).
   const double t_sq = (1.0 - c * c) / (c * c), shape = 1.0 + t_sq / sqr(lobes.alpha);
   const double density = 1.0 / (pi * sqr(lobes.alpha) * sqr(shape) * sqr(c * c));
-  const double lambda_v = 1.0 / reference_smith_masking(lobes.alpha, ndv) - 1.0;
-  const double lambda_l = 1.0 / reference_smith_masking(lobes.alpha, ndl) - 1.0;
+  const double lambda_v = 1.0 / masking(ndv) - 1.0, lambda_l = 1.0 / masking(ndl) - 1.0;
   const double brdf_pi = pi * density / (1.0 + lambda_v + lambda_l) / (4.0 * ndv);
   const glm::dvec3 dielectric =
       lobes.layer ? (1.0 - lobes.metallic) * lobes.dielectric_boost *
@@ -220,6 +225,17 @@ PrincipledLight reference_principled_v2(const Material& material, const glm::dve
                   : glm::dvec3(0.0);
   light.specular = brdf_pi * (lobes.metal_scale * f82_fresnel(ldh, lobes.metal_f0, lobes.metal_b) + dielectric);
   return light;
+}
+
+PrincipledLight reference_principled_of_version(const Material& material, const glm::dvec3& n, const glm::dvec3& v,
+                                                const glm::dvec3& l) {
+  return material.version == 2 ? reference_principled_v2(material, n, v, l) : reference_principled(material, n, v, l);
+}
+
+PrincipledLight reference_principled_of_version(const Material& material, const glm::dvec3& n, const glm::dvec3& v,
+                                                const glm::dvec3& l, const std::function<double(double)>& masking) {
+  return material.version == 2 ? reference_principled_v2(material, n, v, l, masking)
+                               : reference_principled(material, n, v, l, masking);
 }
 
 }  // namespace phongcl

@@ -6,6 +6,8 @@
 // Cycles reads its tables.
 #pragma once
 
+#include <functional>
+
 #include <glm/vec3.hpp>
 
 #include "reference/reference_principled.h"
@@ -16,6 +18,15 @@ namespace phongcl {
 // A light's diffuse and specular light on a version 2 surface, per unit Li: pi BRDF n.l for unit n, v, l.
 PrincipledLight reference_principled_v2(const Material& material, const glm::dvec3& n, const glm::dvec3& v,
                                         const glm::dvec3& l);
+
+// The light of the material's own version: reference_principled_v2 or, for version 1, reference_principled.
+PrincipledLight reference_principled_of_version(const Material& material, const glm::dvec3& n, const glm::dvec3& v,
+                                                const glm::dvec3& l);
+// The same with Smith's masking G1 given as a function of the cosine (for the material's alpha).
+PrincipledLight reference_principled_v2(const Material& material, const glm::dvec3& n, const glm::dvec3& v,
+                                        const glm::dvec3& l, const std::function<double(double)>& masking);
+PrincipledLight reference_principled_of_version(const Material& material, const glm::dvec3& n, const glm::dvec3& v,
+                                                const glm::dvec3& l, const std::function<double(double)>& masking);
 
 // The share of Lambert's light (area lights', the environment's) the diffuse beneath the dielectric
 // layer takes at view cosine mu, times base colour and 1 - metallic.

@@ -119,8 +119,10 @@ ShadingTerms reference_shade_point(const Scene& scene, const SurfacePoint& point
     if (factor == 0.0) continue;
 
     if (point.specular_model == SpecularModel::principled) {
-      const PrincipledLight lobes = point.principled.version == 2 ? reference_principled_v2(point.principled, n, v, l)
-                                                                  : reference_principled(point.principled, n, v, l);
+      // Smith's masking tabulated once per alpha (within 1e-6 of its integral): this runs per pixel and light.
+      const double alpha = point.principled.roughness * point.principled.roughness;
+      const PrincipledLight lobes = reference_principled_of_version(
+          point.principled, n, v, l, [alpha](double mu) { return smith_masking_table(alpha)(mu); });
       principled_diffuse += product(light.color, lobes.diffuse * factor);
       principled_specular += product(light.color, lobes.specular * factor);
       continue;
@@ -147,9 +149,9 @@ ShadingTerms reference_shade_point(const Scene& scene, const SurfacePoint& point
     diffuse += soft.environment && world.shadows ? soft.environment(point)
                                                  : reference_environment_light(world, reference_map(world), n);
     // Its specular: the material's own lobe against every texel, unoccluded (nothing for a
-    // Phong-family ks of 0, nor yet for Principled v2, as the kernel).
+    // Phong-family ks of 0, as the kernel).
     const bool principled = point.specular_model == SpecularModel::principled;
-    if ((principled && point.principled.version == 1) || (!principled && point.ks != glm::dvec3(0.0)))
+    if (principled || point.ks != glm::dvec3(0.0))
       (principled ? principled_specular : specular) += reference_environment_specular(world, reference_map(world), point, v);
   }
   if (point.specular_model == SpecularModel::principled) {

@@ -3,8 +3,8 @@
 # 5.2 (Debian unstable) and 4.3 (Debian 13). `scripts/setup.sh blenderN` makes a root once per machine
 # (about 2 minutes and 1.3 GB each; seconds when it exists), then every check runs with
 # BLENDER=/var/cache/phongcl/bin/blenderN, so each renders its scenes with that version and holds
-# phongcl to that version's Cycles and colour management with the same targets as on 3.4 (68 reports its
-# figures there without holding them: 4.0+ has the Principled BSDF's version 2, which phongcl has not).
+# phongcl to that version's Cycles and colour management with the same targets as on 3.4 (the exporter
+# writes 4.0+'s Principled BSDF as its version 2, so 67-specular and 68 hold version 2 there).
 # PHONGCL_BLENDER_VERSIONS="blender5" narrows the list (default "blender5 blender4").
 set -euo pipefail
 cd "$(dirname "$0")/../.."
