@@ -129,6 +129,7 @@ static inline realv ltc_tail_correction(const LtcEntry* e, realv det, Principled
 typedef struct {
   realv highlight;
   vec3 tint;
+  vec3 mean, view; /* the light's mean direction in the lobe and v, in the lobe's frame (n = z) */
 } LtcHighlight;
 
 /* The highlight of one area light, times its range window, for pixels at p (relative to the eye)
@@ -188,7 +189,21 @@ LtcHighlight ltc_area_highlight(UNIFORM_SPACE const AreaLightRecord* light, vec3
                           fma(1 - fh, m.specular_color.z, fh));
   const realv lit = SELECT(h > 0 && n_dot_v > 0, 1, 0);
   result.highlight = SELECT(lit != 0, tail * e.magnitude * fmax(irradiance.z, 0), 0) * area_range_window(light, distance);
+  result.mean = mean;
+  result.view = v_local;
   return result;
+}
+
+/* Version 2's colour on a highlight integrated with `white` (its GGX of the same alpha, without
+ * Fresnel: version 1's separable masking): version 2's own lobe over white's, both towards the
+ * light's mean direction. That ratio carries version 2's Fresnel (F82 metal, remapped dielectric),
+ * height-correlated masking and energy compensation, each slowly varying over the emitter as v1's
+ * Fresnel is taken there. */
+static inline vec3 ltc_v2_tint(PrincipledV2Surface m, PrincipledSurface white, LtcHighlight ltc) {
+  const realv zero = 0, one = 1;
+  const vec3 n = make_vec3(zero, zero, one);
+  const realv lobe = principled_response(white, n, ltc.view, ltc.mean).specular.x;
+  return scale3(principled_v2_response(m, n, ltc.view, ltc.mean).specular, SELECT(lobe > 0, 1 / lobe, 0));
 }
 
 #endif

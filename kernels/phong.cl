@@ -383,6 +383,28 @@ static inline void shadow_area_light(realv* irradiance, realv* highlight, const 
   *highlight = SELECT(TO_REALV(blocked) != 0, 0, *highlight);
 }
 
+/* The GGX lobe an area light's LTC integrates for each Principled lane: a v1 lane's own, a v2 lane's
+ * of its alpha without Fresnel (f0 = 1, white), which ltc_v2_tint colours after. */
+static inline PrincipledSurface ltc_lobe_surface(const Surface* surface) {
+  if (!PRINCIPLED_V2) return surface->principled;
+  const realv one = 1;
+  PrincipledSurface white;
+  white.specular_color = make_vec3(one, one, one);
+  white.alpha_sq = surface->principled_v2.alpha_sq;
+  white.roughness = sqrt(sqrt(white.alpha_sq));
+  white.ior = surface->principled_v2.ior;
+  white.f0 = one;
+  if (!PRINCIPLED_V1) return white;
+  const realv is_v2 = SELECT(surface->specular_model == PRINCIPLED_V2_MODEL, 1, 0);
+  PrincipledSurface m = surface->principled;
+  m.specular_color = select3(white.specular_color, m.specular_color, is_v2);
+  m.alpha_sq = SELECT(is_v2 != 0, white.alpha_sq, m.alpha_sq);
+  m.roughness = SELECT(is_v2 != 0, white.roughness, m.roughness);
+  m.ior = SELECT(is_v2 != 0, white.ior, m.ior);
+  m.f0 = SELECT(is_v2 != 0, one, m.f0);
+  return m;
+}
+
 /* What an area light adds: Li E and Li S (area_light.h), with r = 2(n.v)n - v, times its visibility
  * with SHADOWS. */
 static inline void add_area_light(LightSums* sums, const Surface* surface, const Lights* lights, int k) {
@@ -394,18 +416,22 @@ static inline void add_area_light(LightSums* sums, const Surface* surface, const
   realv irradiance, highlight;
   area_light_terms(light, surface->p, n, v, r, surface->shininess, surface->specular_model,
                    ONLY_PRINCIPLED_LOBES ? 0 : SPECULAR, &irradiance, &highlight);
-  /* Principled lanes take Lambert's irradiance (v2's under its dielectric layer); v1's highlight is
-   * GGX's by LTC (area_ltc.h), coloured by its Fresnel: `tint`, 1 in the other lanes. v2 has no
-   * highlight from an area light yet. */
+  /* Principled lanes take Lambert's irradiance (v2's under its dielectric layer) and GGX's highlight
+   * by LTC (area_ltc.h), coloured by v1's Fresnel or by v2's lobe over the white one: `tint`, 1 in
+   * the other lanes. */
   const realv one = 1;
   vec3 tint = make_vec3(one, one, one);
-  if (PRINCIPLED_LOBES)
-    highlight = ONLY_PRINCIPLED_LOBES ? 0 : SELECT(surface->specular_model >= PRINCIPLED_MODEL, 0, highlight);
-  if (PRINCIPLED_V1 && SPECULAR) {
-    const LtcHighlight ltc = ltc_area_highlight(light, surface->p, n, v, surface->principled);
-    const realv principled = SPECULAR_MODELS == 16 ? 1 : SELECT(surface->specular_model == PRINCIPLED_MODEL, 1, 0);
+  if (PRINCIPLED_LOBES && SPECULAR) {
+    const PrincipledSurface lobe = ltc_lobe_surface(surface);
+    const LtcHighlight ltc = ltc_area_highlight(light, surface->p, n, v, lobe);
+    vec3 ltc_tint = ltc.tint;
+    if (PRINCIPLED_V2) {
+      const vec3 v2 = ltc_v2_tint(surface->principled_v2, lobe, ltc);
+      ltc_tint = PRINCIPLED_V1 ? select3(v2, ltc_tint, SELECT(surface->specular_model == PRINCIPLED_V2_MODEL, 1, 0)) : v2;
+    }
+    const realv principled = ONLY_PRINCIPLED_LOBES ? 1 : SELECT(surface->specular_model >= PRINCIPLED_MODEL, 1, 0);
     highlight = SELECT(principled != 0, ltc.highlight, highlight);
-    tint = select3(ltc.tint, tint, principled);
+    tint = select3(ltc_tint, tint, principled);
   }
   if (PRINCIPLED_V2) irradiance *= lambert_share(surface);
   if (SHADOWS && lights->area_casters[k])

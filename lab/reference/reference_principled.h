@@ -27,9 +27,9 @@ PrincipledLight reference_principled(const Material& material, const glm::dvec3&
 // GGX's normal density of roughness alpha at cosine c to the normal, from its slope distribution.
 double reference_ggx_density(double alpha, double c);
 
-// The specular light of a Principled surface from an area light per unit Li, without the range
-// window: the BSDF integrated over the emitter (reference_area.h's rules). 0 for alpha^2 <= 1e-7, as
-// reference_principled's.
+// The specular light of a Principled surface (either version) from an area light per unit Li, without
+// the range window: the BSDF integrated over the emitter (reference_area.h's rules). 0 for alpha^2 <=
+// 1e-7, as reference_principled's.
 glm::dvec3 reference_principled_area(const Material& material, const AreaLight& light, const glm::dvec3& position,
                                      const glm::dvec3& n, const glm::dvec3& v);
 

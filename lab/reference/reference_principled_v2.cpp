@@ -113,7 +113,7 @@ struct Lobes {
   double missing = 0.0;
 };
 
-Lobes lobes_at(const Material& m, double mu) {
+Lobes compute_lobes(const Material& m, double mu) {
   Lobes lobes;
   lobes.alpha = m.roughness * m.roughness;
   lobes.metallic = m.metallic > 1e-5 ? m.metallic : 0.0;
@@ -148,6 +148,21 @@ Lobes lobes_at(const Material& m, double mu) {
   const double mean_factor = std::clamp((fit - index_f0) / (1.0 - index_f0), 0.0, 1.0);
   lobes.dielectric_boost = boost(lobes.dielectric_f0 + (1.0 - lobes.dielectric_f0) * mean_factor);
   return lobes;
+}
+
+// compute_lobes of the last material and cosine asked for on this thread: an integral over directions
+// asks for the same ones at every direction.
+const Lobes& lobes_at(const Material& m, double mu) {
+  struct Last {
+    double mu = -1.0, roughness = 0.0, metallic = 0.0, ior = 0.0, level = 0.0;
+    glm::dvec3 base{0.0}, tint{0.0};
+    Lobes lobes;
+  };
+  static thread_local Last last;
+  if (mu != last.mu || m.roughness != last.roughness || m.metallic != last.metallic || m.ior != last.ior ||
+      m.specular_ior_level != last.level || m.base_color != last.base || m.specular_tint_color != last.tint)
+    last = {mu, m.roughness, m.metallic, m.ior, m.specular_ior_level, m.base_color, m.specular_tint_color, compute_lobes(m, mu)};
+  return last.lobes;
 }
 
 }  // namespace

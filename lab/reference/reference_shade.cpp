@@ -140,7 +140,7 @@ ShadingTerms reference_shade_point(const Scene& scene, const SurfacePoint& point
     const double window = area_range_window(light, point.position) * (traced ? soft.area(point, light) : 1.0);
     diffuse += product(light.color, glm::dvec3(integrals.irradiance * window));
     specular += product(light.color, glm::dvec3(integrals.highlight * window));
-    if (point.specular_model == SpecularModel::principled && point.principled.version == 1)
+    if (point.specular_model == SpecularModel::principled)
       principled_specular += product(light.color, reference_principled_area(point.principled, light, point.position, n, v) * window);
   }
   // The environment: its irradiance by brute force over the map (reference_environment.h).
