@@ -102,7 +102,10 @@ def build_shadow_scene(width, height, add_lights=add_point_lights, samples=1):
 
     make_fixtures.cycles(scene, samples)
     scene.cycles.max_bounces = 0
-    scene.cycles.pixel_filter_type, scene.cycles.filter_width = "BOX", 0.01
+    # Pixel centres: Cycles widens a box filter to one pixel whatever its width (BlenderSync::sync_film),
+    # which averaged each pixel over its area (a cone's edge, a penumbra, a terminator blurred by the
+    # pixel, against phongcl's centre); a Gaussian keeps its width, 0.01 px the smallest Blender takes.
+    scene.cycles.pixel_filter_type, scene.cycles.filter_width = "GAUSSIAN", 0.01
     layer = bpy.context.view_layer
     layer.use_pass_diffuse_direct = True
     layer.use_pass_object_index = True
