@@ -44,6 +44,12 @@ static inline realv emitter_inverse_scale(const Emitter* emitter, vec3 c) {
   return 1 / (sqrt(dot3(c, c)) + sqrt(dot3(emitter->u, emitter->u) + dot3(emitter->v, emitter->v)));
 }
 
+/* `weight` times a spot's cone seen the way from the point at d (from P) to P; the floor keeps a
+ * point at P from dividing by 0. */
+static inline realv times_cone_from(UNIFORM_SPACE const LightShape* cone, vec3 d, realv weight) {
+  return times_cone(cone, d, 1 / sqrt(fmax(dot3(d, d), (real)1e-30)), weight);
+}
+
 /* The mean of a spot's cone over its emitter, each point seen the way from it to P and weighted by
  * the diffuse integrand, from `points` points of the lattice (no rays); where no point faces P, the
  * cone seen from the centre. */
@@ -57,9 +63,9 @@ static inline realv emitter_cone_mean(const Emitter* emitter, vec3 c, vec3 n, UN
     const vec3 d = add3(c, emitter_offset(emitter, s, t));
     const realv weight = emitter_weight(scale3(d, inverse_scale), n, emitter->normal);
     total += weight;
-    in_cone += times_cone(cone, d, 1 / sqrt(fmax(dot3(d, d), (real)1e-30)), weight);
+    in_cone += times_cone_from(cone, d, weight);
   }
-  return SELECT(total > 0, in_cone / total, times_cone(cone, c, 1 / sqrt(fmax(dot3(c, c), (real)1e-30)), 1));
+  return SELECT(total > 0, in_cone / total, times_cone_from(cone, c, 1));
 }
 
 /* Whether a spot's cone changes across a sphere light's disk facing P, c its centre from P: the
@@ -101,8 +107,7 @@ static inline SHADOW_INLINE realv emitter_visibility(const ShadowInputs* shadows
     const vec3 offset = emitter_offset(emitter, s, t);
     const vec3 d = add3(c, offset);
     const realv facing = emitter_weight(scale3(d, inverse_scale), n, emitter->normal);
-    const realv weight =
-        SELECT(TO_REALV(pending) != 0, cone ? times_cone(cone, d, 1 / sqrt(fmax(dot3(d, d), (real)1e-30)), facing) : facing, 0);
+    const realv weight = SELECT(TO_REALV(pending) != 0, cone ? times_cone_from(cone, d, facing) : facing, 0);
     const vec3 where = emitter->directional ? unit_or_zero(d) : add3(emitter->center, offset);
     const intv blocked =
         light_blocked(&traced, p, n, where, emitter->directional, SCREEN_SHADOWS, caster, pending & LANE_MASK(weight > 0));
@@ -115,7 +120,7 @@ static inline SHADOW_INLINE realv emitter_visibility(const ShadowInputs* shadows
   const realv visible = SELECT(total > 0, seen / total, 1);
   if (!cone) return visible;
   const intv changes = cone_changes_across(emitter, c, cone);
-  realv mean = SELECT(facing_total > 0, total / facing_total, times_cone(cone, c, 1 / sqrt(fmax(dot3(c, c), (real)1e-30)), 1));
+  realv mean = SELECT(facing_total > 0, total / facing_total, times_cone_from(cone, c, 1));
   if (any_lane(changes))
     mean = SELECT(TO_REALV(changes) != 0, emitter_cone_mean(emitter, c, n, cone, max(rays, SPOT_CONE_POINTS), shift), mean);
   return mean * visible;
