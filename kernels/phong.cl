@@ -453,7 +453,8 @@ static inline void add_environment(LightSums* sums, const Surface* surface, cons
   const realv zero = 0;
   /* A few rays in each lane's lobe: an eighth of the diffuse light's, at least 1. */
   const realv visible =
-      ENVIRONMENT_SHADOWS ? environment_specular_visibility(lights->shadows, lights->environment_lobes, surface->material,
+      ENVIRONMENT_SHADOWS ? environment_specular_visibility(lights->shadows, environment, lights->environment_texels,
+                                                            lights->environment_lobes, surface->material,
                                                             surface->p, surface->n, surface->v,
                                                             max(environment->rays / 8, 1u),
                                                             lattice_shift(lights->pixel, ENVIRONMENT_SPECULAR_STREAM), pending)
