@@ -132,11 +132,10 @@ StabilityCase with_bounds(StabilityCase c, int version, Emitter emitter, bool ro
   // integrates its own way: 5.2e-4 apart at cosines 0.02 to 1 (docs/shading.md), 1.1e-3 measured at n.v = 0.
   const E tables = E::within(3e-3, "v2's GGX tables against the reference's quadrature: 1.1e-3 measured at n.v = 0");
   if (emitter == Emitter::rect && version == 1) {
-    // The highlight is the LTC fit's (docs/shading.md "Principled under area lights"): at grazing views
-    // its error is the fit's, not float's (5.6 measured at n.v = 1e-4 on the metal), and the kernel's
-    // LTC has no mirror threshold: roughness 1e-4 takes the lobe fitted at 0.02, where the reference has
-    // no highlight (2.9 measured).
-    const E fit = E::finite_only("the LTC fit's error, and no mirror threshold in the LTC highlight: 2.9 to 5.6 measured");
+    // The highlight is the LTC fit's (docs/shading.md "Principled under area lights"), and the kernel's
+    // LTC has no mirror threshold: roughness 1e-4 takes the lobe fitted at 0.02, where the reference
+    // has no highlight.
+    const E fit = E::finite_only("the LTC fit's highlight, with no mirror threshold: 2.9 measured at roughness 1e-4");
     c.expect = {fit, fit, fit, fit};
     return c;
   }
@@ -168,11 +167,17 @@ StabilityCase with_bounds(StabilityCase c, int version, Emitter emitter, bool ro
   return c;
 }
 
-std::vector<Material> roughness_limits(int version) {
-  // Just above the mirror threshold: v1's alpha^2 > 1e-7, v2's > 2e-10 (kernels/principled.h).
+std::vector<Material> roughness_limits(int version, Emitter emitter) {
+  std::vector<Material> materials = {principled(version, 0.8, 0.0, 1.0), principled(version, 0.8, 0.0, 1e-4)};
+  // Just above the mirror threshold: v1's alpha^2 > 1e-7, v2's > 2e-10 (kernels/principled.h). Not
+  // under v1's rect: the quadrature of a lobe 4e-4 wide over the emitter costs twice the rest of the
+  // catalogue, built by every test process, for a case whose highlight is finite only (the LTC fit's).
   const double sharpest = version == 1 ? 0.02 : 0.004;
-  return {principled(version, 0.8, 0.0, 1.0), principled(version, 0.8, 0.0, 1e-4), principled(version, 0.8, 0.0, sharpest),
-          principled(version, 0.8, 1.0, sharpest)};
+  if (version == 2 || emitter != Emitter::rect) {
+    materials.push_back(principled(version, 0.8, 0.0, sharpest));
+    materials.push_back(principled(version, 0.8, 1.0, sharpest));
+  }
+  return materials;
 }
 
 std::vector<Material> fresnel_and_colour_limits(int version) {
@@ -196,8 +201,12 @@ std::vector<StabilityCase> principled_cases() {
       cases.push_back(with_bounds(principled_case(version, emitter, "roughness",
                                                   "roughness 1, 1e-4 (a mirror) and just above the mirror threshold, "
                                                   "dielectric and metal",
-                                                  roughness_limits(version)),
+                                                  roughness_limits(version, emitter)),
                                   version, emitter, true));
+      // Not under v1's rect: its highlight there is the LTC fit's, finite only, whose error
+      // test_area_lights measures; the reference's quadrature of it would cost every test process
+      // as much as the rest of the catalogue.
+      if (version == 1 && emitter == Emitter::rect) continue;
       cases.push_back(with_bounds(principled_case(version, emitter, "Fresnel and colour",
                                                   version == 1 ? "specular 0 and 1, metallic 0 and 1, base 0 and 1"
                                                                : "IOR 1 and 3, metallic 0 and 1, base 0 and 1",
