@@ -3,11 +3,13 @@
  * (Fresnel apart) is fitted as magnitude * D(M^-1 w / |M^-1 w|) |det M^-1| / |M^-1 w|^3 with D the
  * clamped cosine over pi: its integral over the emitter's part above the horizon is magnitude times
  * the clamped cosine's over that polygon transformed by M^-1 and clipped to z >= 0, Lambert's closed
- * form (as area_light.h's, here as a vector). The table, M^-1 and magnitude over roughness and view, is lab/fit's fit
- * (ltc_table.h, which states its error). The Fresnel is v1's exact blend (principled.h) at the
- * half vector of v and the light's mean direction in the lobe: M times the transformed polygon's
- * vector irradiance. A disk is its area-matched LTC_DISK_SIDES-gon. docs/shading.md "Principled
- * under area lights" gives the measured error against the reference and against Cycles. */
+ * form (as area_light.h's, here as a vector). The table, M^-1 and magnitude over roughness and view,
+ * is lab/fit's fit (ltc_table.h, which states its error). The Fresnel is v1's exact blend
+ * (principled.h) at the half vector of v and the light's mean direction in the lobe: M times the
+ * transformed polygon's vector irradiance. The highlight is then scaled by the lobe over the fitted
+ * LTC at that direction (ltc_tail_correction), which corrects the fit's tails. A disk is its
+ * area-matched LTC_DISK_SIDES-gon. docs/shading.md "Principled under area lights" gives the measured
+ * error against the reference and against Cycles. */
 #ifndef PHONGCL_AREA_LTC_H
 #define PHONGCL_AREA_LTC_H
 
@@ -96,6 +98,33 @@ vec3 ltc_space(const LtcEntry* e, vec3 tangent, vec3 bitangent, vec3 n, vec3 x) 
   return make_vec3(fma(e->m00, lx, e->m02 * lz), dot3(bitangent, x), fma(e->m20, lx, e->m22 * lz));
 }
 
+/* The fitted lobe's value towards unit w in the lobe's frame, in the units of the lobe's own (pi f
+ * n.l without Fresnel): magnitude times the clamped cosine over pi at M^-1 w / |M^-1 w| times |det
+ * M^-1| / |M^-1 w|^3, pi cancelled; M^-1's scale cancels too (m11 = 1 here). */
+static inline realv ltc_value(const LtcEntry* e, realv det, vec3 w) {
+  const realv zero = 0, one = 1;
+  const vec3 warped = ltc_space(e, make_vec3(one, zero, zero), make_vec3(zero, one, zero), make_vec3(zero, zero, one), w);
+  const realv length_sq = dot3(warped, warped);
+  return e->magnitude * det * fmax(warped.z, 0) / fmax(length_sq * length_sq, (real)1e-30f);
+}
+
+/* What the LTC misses where the emitter is: the lobe over the fitted LTC at the light's mean direction
+ * in the lobe. One transformed cosine cannot follow GGX's long tail (2x off there at roughness 0.3),
+ * but over an emitter in the tail both vary slowly, so their ratio at the mean direction is their
+ * integrals' ratio. Weighted towards 1 by `caught`, the share of the LTC's mass on the emitter: one
+ * that holds the peak is where the fit is good and one direction's ratio is not the integrals'. */
+static inline realv ltc_tail_correction(const LtcEntry* e, realv det, PrincipledSurface m, vec3 v_local, vec3 mean,
+                                        realv caught) {
+  const realv zero = 0, one = 1;
+  PrincipledSurface white = m; /* f0 = 1 takes no Fresnel: the response is the lobe the table fits */
+  white.specular_color = make_vec3(one, one, one);
+  white.f0 = one;
+  const realv lobe = principled_response(white, make_vec3(zero, zero, one), v_local, mean).specular.x;
+  const realv fitted = ltc_value(e, det, mean);
+  const realv ratio = SELECT(fitted > 0 && lobe > 0, lobe / fitted, 1);
+  return fma(1 - ratio, caught, ratio);
+}
+
 /* A Principled lane's highlight from an area light: `highlight` times the light's colour and `tint`. */
 typedef struct {
   realv highlight;
@@ -152,11 +181,13 @@ LtcHighlight ltc_area_highlight(UNIFORM_SPACE const AreaLightRecord* light, vec3
   const vec3 half_sum = add3(v_local, mean);
   const realv l_dot_h = dot3(mean, half_sum) * rsqrt(fmax(dot3(half_sum, half_sum), (real)1e-30f));
   const realv fh = fresnel_blend(m, l_dot_h);
+  const realv caught = clamp(irradiance.z / AREA_PI, (real)0, (real)1);
+  const realv tail = ltc_tail_correction(&e, det, m, v_local, mean, caught);
   LtcHighlight result;
   result.tint = make_vec3(fma(1 - fh, m.specular_color.x, fh), fma(1 - fh, m.specular_color.y, fh),
                           fma(1 - fh, m.specular_color.z, fh));
   const realv lit = SELECT(h > 0 && n_dot_v > 0, 1, 0);
-  result.highlight = SELECT(lit != 0, e.magnitude * fmax(irradiance.z, 0), 0) * area_range_window(light, distance);
+  result.highlight = SELECT(lit != 0, tail * e.magnitude * fmax(irradiance.z, 0), 0) * area_range_window(light, distance);
   return result;
 }
 

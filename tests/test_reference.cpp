@@ -399,6 +399,26 @@ TEST(ReferenceImage, ShadedBackgroundAndNonFinitePixels) {
   }
 }
 
+TEST(ReferenceImage, TermImagesAreEachTermAlone) {
+  // The pixel of ShadedBackgroundAndNonFinitePixels: ka (0.1, 0.2, 0.3), kd Li (1, 0.75, 0.5), ks Li
+  // (0.5, 1.5, 3); the background pixel's terms are 0 with alpha 0.
+  Scene scene = scene_with({0, 0, 5}, {point_light({0, 0, 5}, kLi)}, {1, 1, 1});
+  const SurfacePoint s = surface(8.0);
+  scene.materials = {material(s.ka, s.kd, s.ks, s.shininess)};
+  scene.background = {0.25, 0.5, 0.75};
+  ReferenceTermImages terms;
+  reference_image(scene, row_gbuffer({0.0f, -1.0f}), {}, {}, &terms);
+  const float ambient[3] = {0.1f, 0.2f, 0.3f}, diffuse[3] = {1.0f, 0.75f, 0.5f}, specular[3] = {0.5f, 1.5f, 3.0f};
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_NEAR(terms.ambient.pixel(0)[c], ambient[c], 1e-6) << "ambient, channel " << c;
+    EXPECT_NEAR(terms.diffuse.pixel(0)[c], diffuse[c], 1e-6) << "diffuse, channel " << c;
+    EXPECT_NEAR(terms.specular.pixel(0)[c], specular[c], 1e-6) << "specular, channel " << c;
+    EXPECT_EQ(terms.specular.pixel(1)[c], 0.0f) << "background pixel, channel " << c;
+  }
+  EXPECT_EQ(terms.diffuse.pixel(0)[3], 1.0f) << "a shaded pixel's alpha";
+  EXPECT_EQ(terms.diffuse.pixel(1)[3], 0.0f) << "the background's alpha";
+}
+
 TEST(ReferenceImage, InfOnlyWhereTheExactResultOverflowsFloat) {
   // Head-on light, eye above, kd = ks = 1, ka = 0: each channel is 2*Li (FLT_MAX ~ 3.40e38).
   // Li = 1e30 -> 2e30 finite; Li = 1.5e38 -> 3e38 finite although a float sum of the terms would

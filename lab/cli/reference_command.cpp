@@ -2,6 +2,7 @@
 #include <chrono>
 #include <iostream>
 #include <memory>
+#include <utility>
 
 #include "cli/lab_commands.h"
 #include "cli/format.h"
@@ -28,9 +29,12 @@ void run_reference(const ReferenceArguments& args) {
   const GBuffer gbuffer = args.inputs.load_gbuffer(scene);
   check_materials(gbuffer, scene.materials.size());
   const auto start = std::chrono::steady_clock::now();
-  const Image image = reference_image(scene, gbuffer);
+  ReferenceTermImages terms;
+  const Image image = reference_image(scene, gbuffer, {}, {}, args.outputs.aov_file.empty() ? nullptr : &terms);
   const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-  const std::string written = outputs.write(image, scene.background);
+  TermImages layers;
+  layers.ambient = std::move(terms.ambient), layers.diffuse = std::move(terms.diffuse), layers.specular = std::move(terms.specular);
+  const std::string written = outputs.write(image, scene.background, layers);
   std::cout << "phongcl reference: " << scene.source.string() << " + " << gbuffer.source.string() << "\n"
             << "  image      " << gbuffer.width << " x " << gbuffer.height << ", " << with_commas(gbuffer.pixel_count())
             << " pixels, " << scene.lights.size() << " lights\n"
@@ -46,6 +50,7 @@ void add_reference_command(CLI::App& app) {
   CLI::App* command = app.add_subcommand("reference", "Shade with the scalar double-precision C++ reference");
   args->inputs.add_options(*command);
   args->outputs.add_options(*command);
+  args->outputs.add_aov_option(*command);
   command->callback([args] { run_reference(*args); });
 }
 

@@ -59,9 +59,15 @@ ShadingTerms reference_shade_point(const Scene& scene, const SurfacePoint& point
 // The material of a shaded pixel: per-pixel channels where present, else the scene's table.
 SurfacePoint reference_surface(const Scene& scene, const GBuffer& gbuffer, std::size_t index);
 
-// The whole image: shaded pixels get total() (alpha 1), the rest the scene background (alpha 0).
+// Each term's own image, premultiplied as the whole image is (0 where nothing is shaded).
+struct ReferenceTermImages {
+  Image ambient, diffuse, specular;
+};
+
+// The whole image: shaded pixels get total() (alpha 1), the rest the scene background (alpha 0);
+// with `terms`, each term's image too.
 Image reference_image(const Scene& scene, const GBuffer& gbuffer, const LightReach& reaches = {},
-                      const SoftVisibility& soft = {});
+                      const SoftVisibility& soft = {}, ReferenceTermImages* terms = nullptr);
 
 // The scene lit by one light group alone (`group` empty: the ungrouped lights), point, spot,
 // directional and area lights alike, with no ambient: its reference_image() is that group's layer
