@@ -55,7 +55,7 @@ static inline void environment_lane_specular(UNIFORM_SPACE const EnvironmentLobe
 }
 
 /* The specular light of each lane's material from the environment, scaled, times `visible` (its
- * lobe's free fraction, environment_specular_visibility; 1 without visibility): 0 in background
+ * lobe's sky-weighted free share, environment_specular_visibility; 1 without visibility): 0 in background
  * lanes and where the eye is behind the surface. `albedo` is the Principled lanes' white-world
  * specular albedo (read only where a lobe is a split sum). */
 static inline vec3 environment_specular(UNIFORM_SPACE const EnvironmentRecord* environment, UNIFORM_SPACE const float* texels,
@@ -104,35 +104,53 @@ static inline vec3 environment_specular(UNIFORM_SPACE const EnvironmentRecord* e
 #endif
 }
 
-/* The free fraction of the directions above the surface among `rays` spread about each lane's r =
- * 2(n.v)n - v by its lobe's width (EnvironmentLobe.spread, s): at angle s sqrt(-2 ln(1 - a)) from r
- * (a Gaussian's radius, over the shifted R2 lattice). Those below the surface are left out, not
- * counted blocked: the split sum's table holds the horizon's cut already (counted blocked, the HDRI's
- * glossy median was 6.0% off Cycles, 12% dark on the ground). The rays are directional lights' (to
- * infinity). In the lanes of `pending`, and where some ray is above the surface; 1 elsewhere.
- * Measured against the diffuse light's visible fraction with Lagarde's formula (docs/environment.md):
- * that takes the ground away from a face whose reflection looks up, and leaves the sky to one whose
- * reflection looks down into the ground. */
+/* The share of each lane's lobe light that reaches it: `rays` directions spread about r = 2(n.v)n - v
+ * by its lobe's width (EnvironmentLobe.spread, s: at angle s sqrt(-2 ln(1 - a)) from r, a Gaussian's
+ * radius, over the shifted R2 lattice), each weighted by the sky's radiance there (the map without its
+ * suns, summed over R, G and B). The prefiltered map holds the lobe's mean over every direction, so the
+ * share is (the sum over the free directions above the surface) / (the sum over all of them), the
+ * light the surface's horizon and the geometry leave. A split-sum lobe's table holds the horizon's cut
+ * already, so its share is over the rays above the surface only (their count, not every ray's, over
+ * the same): the mean over the free directions above the surface over the mean over all. Weighting by
+ * the sky matters where the lobe crosses the horizon: on a glancing ground it lifts the lobe's mean to
+ * the bright sky above (the map's dark ground below the surface left out), and a ray blocked by the
+ * ground takes away the dark ground's radiance, not the lobe's mean (the plain free fraction left
+ * Cycles' glossy median 5.8% off under check 67's HDRI, the ground 8% and the metal 7% dark;
+ * docs/environment.md). A uniform world looks nothing up. The rays are directional lights' (to
+ * infinity). In the lanes of `pending` (a split sum's where some ray is above the surface); 1 elsewhere.
+ * Lagarde's specular occlusion from the diffuse light's visible fraction was measured first: it takes
+ * the ground away from a face whose reflection looks up, and leaves the sky to one whose reflection
+ * looks down into the ground. */
 static inline SHADOW_INLINE realv environment_specular_visibility(const ShadowInputs* shadows,
+                                                                  UNIFORM_SPACE const EnvironmentRecord* environment,
+                                                                  UNIFORM_SPACE const float* texels,
                                                                   UNIFORM_SPACE const EnvironmentLobe* lobes, intv material,
                                                                   vec3 p, vec3 n, vec3 v, uint rays, LatticeShift shift,
                                                                   intv pending) {
   if (!any_lane(pending) || rays == 0) return 1;
   ShadowInputs traced = *shadows;
   traced.tiles = 0;
+  UNIFORM_SPACE const float* sky = texels + environment->sky_offset;
+  const bool uniform_sky = environment->sky_width * environment->sky_height == 1;
   const vec3 r = sub3(scale3(n, 2 * dot3(n, v)), v);
 #if PHONGCL_LANES == 1
   const realv spread = material != PHONGCL_BACKGROUND ? lobes[material].spread : 0;
+  const realv split_sum = material != PHONGCL_BACKGROUND && lobes[material].split_sum ? 1 : 0;
 #else
   int materials[PHONGCL_LANES];
-  real spreads[PHONGCL_LANES];
+  real spreads[PHONGCL_LANES], split_sums[PHONGCL_LANES];
   PHONGCL_XCAT(vstore, PHONGCL_LANES)(material, 0, materials);
-  for (int k = 0; k < PHONGCL_LANES; ++k) spreads[k] = materials[k] != PHONGCL_BACKGROUND ? lobes[materials[k]].spread : 0;
+  for (int k = 0; k < PHONGCL_LANES; ++k) {
+    const bool lobe = materials[k] != PHONGCL_BACKGROUND;
+    spreads[k] = lobe ? lobes[materials[k]].spread : 0;
+    split_sums[k] = lobe && lobes[materials[k]].split_sum ? 1 : 0;
+  }
   const realv spread = PHONGCL_XCAT(vload, PHONGCL_LANES)(0, spreads);
+  const realv split_sum = PHONGCL_XCAT(vload, PHONGCL_LANES)(0, split_sums);
 #endif
   vec3 a, b;
   orthonormal_basis(r, &a, &b);
-  realv free = 0, seen = 0;
+  realv free = 0, seen = 0, all = 0;
   for (uint k = 0; k < rays; ++k) {
     realv s, t;
     lattice_point(k, shift, &s, &t);
@@ -142,10 +160,19 @@ static inline SHADOW_INLINE realv environment_specular_visibility(const ShadowIn
     const vec3 d = add3(add3(scale3(a, sine * cos(around)), scale3(b, sine * sin(around))), scale3(r, cos(angle)));
     const intv above = LANE_MASK(dot3(n, d) > 0);
     const intv blocked = light_blocked(&traced, p, n, d, 1, SCREEN_SHADOWS, 0, pending & above);
-    free += SELECT(TO_REALV(above) != 0 && TO_REALV(blocked) == 0, 1, 0);
+    realv weight = 1;
+    if (!uniform_sky) {
+      const vec3 radiance = environment_grid(environment, sky, environment->sky_width, environment->sky_height, d);
+      weight = radiance.x + radiance.y + radiance.z;
+    }
+    free += SELECT(TO_REALV(above) != 0 && TO_REALV(blocked) == 0, weight, 0);
     seen += SELECT(TO_REALV(above) != 0, 1, 0);
+    all += weight;
   }
-  return SELECT(TO_REALV(pending) != 0 && seen > 0, free / fmax(seen, (realv)1), 1);
+  /* free / all, times rays / seen for a split sum (with a uniform sky free / seen, or free / rays). */
+  const realv counted = SELECT(split_sum != 0, fmax(seen, (realv)1), (realv)rays);
+  const realv share = free * (real)rays / (counted * fmax(all, (realv)1e-30f));
+  return SELECT(TO_REALV(pending) != 0 && all > 0 && (seen > 0 || split_sum == 0), share, 1);
 }
 
 #endif

@@ -229,7 +229,7 @@ typedef struct {
  * lobe's integral over pi, 2 / (p + 1) for the Phong exponent p), and by max(0, n.r) where
  * `takes_cosine` (the normalised models' n.l); a `split_sum` lobe (Principled) by the BRDF table's
  * cspec0 A + B instead (kernels/environment_brdf.h). With ENVIRONMENT_SHADOWS it is multiplied by the
- * free fraction of rays spread about r by `spread`, the lobe's angular width (radians). A Blinn-Phong lobe (`half_vector`) is also multiplied by n.v: its integral over
+ * sky-weighted share of rays spread about r by `spread`, the lobe's angular width (radians), that are free. A Blinn-Phong lobe (`half_vector`) is also multiplied by n.v: its integral over
  * w is 4 v.h times that over h, v.h = n.v at its peak. */
 typedef struct {
   layout_uint offset;

@@ -467,7 +467,7 @@ static inline vec3 split_sum_albedo(const Surface* surface) {
 
 /* What the environment adds: E(n) / pi to the diffuse sum (kd times it is the light a Lambertian
  * surface reflects), with ENVIRONMENT_SHADOWS from the directions nothing blocks; with SPECULAR each
- * material's prefiltered lobe at r to the specular sum, times the free fraction of rays in the lobe
+ * material's prefiltered lobe at r to the specular sum, times the sky-weighted free share of rays in the lobe
  * with ENVIRONMENT_SHADOWS (environment_specular.h), and the suns as directional lights through
  * surface_light(). */
 static inline void add_environment(LightSums* sums, const Surface* surface, const Lights* lights) {
@@ -493,7 +493,8 @@ static inline void add_environment(LightSums* sums, const Surface* surface, cons
   if (!SPECULAR) return;
   /* A few rays in each lane's lobe: an eighth of the diffuse light's, at least 1. */
   const realv visible =
-      ENVIRONMENT_SHADOWS ? environment_specular_visibility(lights->shadows, lights->environment_lobes, surface->material,
+      ENVIRONMENT_SHADOWS ? environment_specular_visibility(lights->shadows, environment, lights->environment_texels,
+                                                            lights->environment_lobes, surface->material,
                                                             surface->p, surface->n, surface->v,
                                                             max(environment->rays / 8, 1u),
                                                             lattice_shift(lights->pixel, ENVIRONMENT_SPECULAR_STREAM), pending)

@@ -1,7 +1,9 @@
 // phongcl agreement: how often shaded light agrees with a renderer's, light by light (for shadows:
 // Cycles' direct diffuse light of each light rendered alone; scripts/blender/shadow_scene.py), and
 // with --median-at-most / --p99-at-most how closely (light types and groups: light_scene.py).
+#include <algorithm>
 #include <cstdio>
+#include <map>
 #include <memory>
 #include <stdexcept>
 #include <utility>
@@ -22,6 +24,7 @@ struct AgreementArguments {
   std::string layer = "diffuse";  // phongcl's AOV layer: diffuse, or group.<name>
   std::string cycles_pass;        // empty: DiffDir x DiffCol; else a Cycles pass (Combined_<light group>)
   bool glossy = false;            // GlossDir x GlossCol instead, on pixels where it is >= 20% of the direct light
+  bool per_object = false;        // with relative errors, each object index's too
   double tolerance = 0.05;
   double at_least = -1.0;  // percent; negative: report only
   double median_at_most = -1.0, p99_at_most = -1.0;  // relative errors; negative: report only
@@ -105,6 +108,30 @@ void check_relative_errors(const AgreementArguments& args, const std::vector<Lig
                              " (or it lights no pixel)");
 }
 
+// Each object index's median and 99th percentile relative error (each over its own pixels of `mask`)
+// and its median ratio of shaded to expected light (R + G + B): where a median comes from, and which way.
+void print_per_object(const LightImages& light, const std::vector<bool>& mask, const std::vector<float>& objects) {
+  std::map<int, std::vector<bool>> masks;
+  for (std::size_t i = 0; i < mask.size(); ++i)
+    if (mask[i]) {
+      std::vector<bool>& own = masks[static_cast<int>(objects[i])];
+      own.resize(mask.size(), false);
+      own[i] = true;
+    }
+  for (const auto& [object, own] : masks) {
+    const RelativeErrors errors = relative_errors(light, own);
+    std::vector<double> ratios;
+    for (std::size_t i = 0; i < own.size(); ++i) {
+      const double expected = light.expected[0][i] + light.expected[1][i] + light.expected[2][i];
+      if (own[i] && expected > 0.0) ratios.push_back((light.shaded[0][i] + light.shaded[1][i] + light.shaded[2][i]) / expected);
+    }
+    if (ratios.empty()) continue;
+    std::nth_element(ratios.begin(), ratios.begin() + static_cast<std::ptrdiff_t>(ratios.size() / 2), ratios.end());
+    std::printf("    object %d  relative error median %.3g, 99th percentile %.3g over %zu pixels; shaded / expected median %.3f\n",
+                object, errors.median, errors.p99, errors.pixels, ratios[ratios.size() / 2]);
+  }
+}
+
 void run_agreement(const AgreementArguments& args) {
   const bool relative = args.median_at_most >= 0.0 || args.p99_at_most >= 0.0;
   const std::size_t bases = args.unshadowed.size() + args.cycles_unshadowed.size();
@@ -117,12 +144,14 @@ void run_agreement(const AgreementArguments& args) {
   const std::vector<std::string> shaded_channels = {shaded_layer + "R", shaded_layer + "G", shaded_layer + "B"};
   std::vector<LightImages> lights;
   std::vector<bool> mask;
+  std::vector<float> objects;  // the first render's object index
   int width = 0, height = 0;
   for (std::size_t k = 0; k < args.cycles.size(); ++k) {
     Planes cycles = read_cycles(args.cycles[k], layer, args.cycles_pass, args.glossy);
     if (k == 0) {
       width = cycles.width, height = cycles.height;
       mask = away_from_silhouettes(cycles.values[3], cycles.values[4], width, height);
+      objects = cycles.values[3];
     }
     if (args.glossy) keep_glossy_pixels(mask, cycles, read_cycles(args.cycles[k], layer, ""));
     LightImages light;
@@ -142,6 +171,8 @@ void run_agreement(const AgreementArguments& args) {
     std::printf("phongcl agreement: %zu lights, %dx%d, %s against %s\n", lights.size(), width, height, args.layer.c_str(),
                 args.glossy ? "GlossDir x GlossCol (pixels where it is >= 20% of the direct light)"
                 : args.cycles_pass.empty() ? "DiffDir x DiffCol" : args.cycles_pass.c_str());
+    if (args.per_object)
+      for (const LightImages& light : lights) print_per_object(light, mask, objects);
     check_relative_errors(args, lights, mask);
     return;
   }
@@ -185,6 +216,8 @@ void add_agreement_command(CLI::App& app) {
   command->add_option("--median-at-most", args->median_at_most,
                       "Report each light's median and 99th percentile relative error; exit non-zero beyond this median");
   command->add_option("--p99-at-most", args->p99_at_most, "... or beyond this 99th percentile");
+  command->add_flag("--per-object", args->per_object,
+                    "With --median-at-most or --p99-at-most: each object index's errors and median shaded / expected too");
   command->add_option("--view-layer", args->view_layer, "The Cycles files' view layer (default ViewLayer)");
   command->add_option("--tolerance", args->tolerance, "Allowed miss, as a fraction of the light's unshadowed value (default 0.05)")
       ->check(CLI::Range(0.0, 1.0));

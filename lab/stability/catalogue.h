@@ -17,6 +17,7 @@ std::vector<StabilityCase> range_cases();            // catalogue_range.cpp: HDR
 std::vector<StabilityCase> light_shape_cases();      // catalogue_lights.cpp: falloff, range window, spots, linking
 std::vector<StabilityCase> specular_model_cases();   // catalogue_specular.cpp: the lobes other than Phong's
 std::vector<StabilityCase> area_light_cases();       // catalogue_area.cpp: rects and disks at their limits
+std::vector<StabilityCase> principled_cases();       // catalogue_principled.cpp: both versions at their inputs' limits
 // catalogue_shadows.cpp: lights on surfaces and inside objects, grazing rays, coincident triangles,
 // degenerate and huge meshes, 1e6 from the origin; mesh files are written to `scratch`.
 std::vector<StabilityCase> shadow_cases(const std::filesystem::path& scratch);

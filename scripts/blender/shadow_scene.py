@@ -1,7 +1,7 @@
 """The scene of the shadow comparison (docs/shadows.md): spheres and a box on a ground plane under two
 point lights that cast hard shadows, pure diffuse (Lambert), no bounces, and Cycles' direct diffuse
-light of each light alone, rendered from pixel centres (box filter of 0.01 px, one sample: with one
-point light of radius 0 and no bounces, the direct light at a pixel centre is exact, noiseless).
+light of each light alone, rendered from pixel centres (a Gaussian filter of 0.01 px, one sample: with
+one point light of radius 0 and no bounces, the direct light at a pixel centre is exact, noiseless).
 With --soft the lights have a size and cast soft shadows: a 2 m square area light, a point and a spot
 light of radius 0.25 m and a sun of 10 degrees, each rendered with --samples samples per pixel (the
 penumbra's light is then an estimate whose noise the comparison's tolerance must hold). With
@@ -102,7 +102,10 @@ def build_shadow_scene(width, height, add_lights=add_point_lights, samples=1):
 
     make_fixtures.cycles(scene, samples)
     scene.cycles.max_bounces = 0
-    scene.cycles.pixel_filter_type, scene.cycles.filter_width = "BOX", 0.01
+    # Pixel centres: Cycles widens a box filter to one pixel whatever its width (BlenderSync::sync_film),
+    # which averaged each pixel over its area (a cone's edge, a penumbra, a terminator blurred by the
+    # pixel, against phongcl's centre); a Gaussian keeps its width, 0.01 px the smallest Blender takes.
+    scene.cycles.pixel_filter_type, scene.cycles.filter_width = "GAUSSIAN", 0.01
     layer = bpy.context.view_layer
     layer.use_pass_diffuse_direct = True
     layer.use_pass_object_index = True
