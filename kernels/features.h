@@ -11,6 +11,7 @@
  *   SPECULAR_MODELS=m                      the specular models the materials use, a mask of bit 1 << model
  *                                          (specular.h); 1: Phong's alone, the default lobe; 16, 32:
  *                                          Cycles' Principled BSDF v1, v2 (principled.h)
+ *   OREN_NAYAR                             a Principled v2 material has a Diffuse Roughness (oren_nayar.h)
  *   SINGLE_MATERIAL                        every shaded pixel uses materials[0]: no per-pixel fetch
  *   MATERIAL_COUNT=n                       a table of n <= PHONGCL_LANES materials: selects, no gather;
  *                                          0: gathered per lane
@@ -44,7 +45,7 @@
     !defined(SPOT_LIGHTS) || !defined(SPOT_COSINE_POWER) || !defined(LIGHT_LINKING) || !defined(TILED_CULLING) ||   \
     !defined(WRITE_TERMS) || !defined(SHADOWS) || !defined(SCREEN_SHADOWS) || !defined(POSITION_REST) ||          \
     !defined(LIGHT_GROUPS) || !defined(SPECULAR_MODELS) || !defined(AREA_LIGHTS) || !defined(SOFT_SHADOWS) ||   \
-    !defined(ENVIRONMENT) || !defined(ENVIRONMENT_SHADOWS)
+    !defined(ENVIRONMENT) || !defined(ENVIRONMENT_SHADOWS) || !defined(OREN_NAYAR)
 #error "phong.cl is built with every flag of features.h defined (host/shading/recipe.cpp writes them)"
 #endif
 

@@ -250,14 +250,15 @@ typedef struct {
   layout_float metal_f0[4];       /* the F82-tint metal's F0 (rgb), a: metallic */
   layout_float metal_b[4];        /* its B term (rgb), a: 1 where the dielectric layer is (its index is not 1) */
   layout_float fresnel_average;   /* the dielectric lobe's hemispherical mean Fresnel factor (fresnel_dielectric_Fss) */
-  layout_float unused[3];
+  layout_float diffuse_roughness; /* Oren-Nayar's sigma in [0, 1], 0 (Lambert) below Cycles' 1e-5 */
+  layout_float unused[2];
 } MaterialRecord;
 
 /* Float offsets of MaterialRecord's fields, for the kernel's per-lane gathers. */
 enum {
   MATERIAL_KA = 0, MATERIAL_KD = 4, MATERIAL_KS = 8, MATERIAL_SHININESS = 12, MATERIAL_SPECULAR_MODEL = 13,
   MATERIAL_ROUGHNESS = 14, MATERIAL_IOR = 15, MATERIAL_METAL_F0 = 16, MATERIAL_METALLIC = 19, MATERIAL_METAL_B = 20,
-  MATERIAL_DIELECTRIC_LAYER = 23, MATERIAL_FRESNEL_AVERAGE = 24
+  MATERIAL_DIELECTRIC_LAYER = 23, MATERIAL_FRESNEL_AVERAGE = 24, MATERIAL_DIFFUSE_ROUGHNESS = 25
 };
 
 /* The G-buffer lives in one device buffer of planes (structure of arrays: kernels over plain float

@@ -51,7 +51,8 @@ real material_scalar(UNIFORM_SPACE const MaterialRecord* record, int field) {
          : field == MATERIAL_IOR ? record->ior
          : field < MATERIAL_METAL_B ? record->metal_f0[field - MATERIAL_METAL_F0]
          : field < MATERIAL_FRESNEL_AVERAGE ? record->metal_b[field - MATERIAL_METAL_B]
-                                            : record->fresnel_average;
+         : field == MATERIAL_FRESNEL_AVERAGE ? record->fresnel_average
+                                             : record->diffuse_roughness;
 }
 
 /* `value`, or entry m's field in the lanes whose index is m. */

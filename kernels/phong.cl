@@ -193,12 +193,27 @@ void light_contribution(LightSums* sums, PendingLobes* pending, vec3 n, vec3 v, 
   }
 }
 
-/* The share of Lambert's light (area lights', the environment's) a lane's diffuse takes: a Principled v2
- * lane's under its dielectric layer, all of it in the others. */
-static inline realv lambert_share(const Surface* surface) {
-  if (!PRINCIPLED_V2) return 1;
-  if (ONLY_PRINCIPLED_V2) return surface->principled_v2.diffuse_scale;
-  return SELECT(surface->specular_model == PRINCIPLED_V2_MODEL, surface->principled_v2.diffuse_scale, 1);
+/* `share` in Principled v2 lanes, 1 in the others (with PRINCIPLED_V2). */
+static inline vec3 v2_lanes_share(const Surface* surface, vec3 share) {
+  const realv one = 1;
+  if (ONLY_PRINCIPLED_V2) return share;
+  return select3(share, make_vec3(one, one, one), SELECT(surface->specular_model == PRINCIPLED_V2_MODEL, 1, 0));
+}
+
+/* The share of an area light's Lambert light, from unit l toward its centre, a lane's diffuse takes: a
+ * Principled v2 lane's under its dielectric layer (and Oren-Nayar's over Lambert's), all of it in the
+ * others. */
+static inline vec3 area_lambert_share(const Surface* surface, vec3 l) {
+  const realv one = 1;
+  if (!PRINCIPLED_V2) return make_vec3(one, one, one);
+  return v2_lanes_share(surface, principled_v2_lambert_share(surface->principled_v2, surface->n, surface->v, l));
+}
+
+/* The same for the environment's light. */
+static inline vec3 sky_lambert_share(const Surface* surface) {
+  const realv one = 1;
+  if (!PRINCIPLED_V2) return make_vec3(one, one, one);
+  return v2_lanes_share(surface, principled_v2_sky_share(surface->principled_v2));
 }
 
 /* A Principled lane's responses (principled.h) in its version; where lanes mix the versions, both. */
@@ -210,6 +225,7 @@ static inline PrincipledResponse principled_lanes_response(const Surface* surfac
   const realv is_v2 = SELECT(surface->specular_model == PRINCIPLED_V2_MODEL, 1, 0);
   PrincipledResponse response;
   response.diffuse = SELECT(is_v2 != 0, v2.diffuse, v1.diffuse);
+  if (OREN_NAYAR) response.diffuse_multiple = v2.diffuse_multiple; /* M is 0 in other lanes */
   response.specular = select3(v2.specular, v1.specular, is_v2);
   return response;
 }
@@ -219,9 +235,18 @@ void principled_light(LightSums* sums, const Surface* surface, vec3 toward, real
                       realv weight) {
   const PrincipledResponse response = principled_lanes_response(surface, scale3(toward, inverse));
   const realv lit = NONNEGATIVE_TIMES(weight, response.diffuse);
-  sums->diffuse.x += NONNEGATIVE_TIMES(color[0], lit);
-  sums->diffuse.y += NONNEGATIVE_TIMES(color[1], lit);
-  sums->diffuse.z += NONNEGATIVE_TIMES(color[2], lit);
+  if (OREN_NAYAR) {
+    /* Version 2's Oren-Nayar: its multiple scattering coloured by the surface's M. */
+    const vec3 m = surface->principled_v2.rough.multiple;
+    const realv multiple = NONNEGATIVE_TIMES(weight, response.diffuse_multiple);
+    sums->diffuse.x += NONNEGATIVE_TIMES(color[0], fma(m.x, multiple, lit));
+    sums->diffuse.y += NONNEGATIVE_TIMES(color[1], fma(m.y, multiple, lit));
+    sums->diffuse.z += NONNEGATIVE_TIMES(color[2], fma(m.z, multiple, lit));
+  } else {
+    sums->diffuse.x += NONNEGATIVE_TIMES(color[0], lit);
+    sums->diffuse.y += NONNEGATIVE_TIMES(color[1], lit);
+    sums->diffuse.z += NONNEGATIVE_TIMES(color[2], lit);
+  }
   sums->specular.x += NONNEGATIVE_TIMES(color[0], NONNEGATIVE_TIMES(weight, response.specular.x));
   sums->specular.y += NONNEGATIVE_TIMES(color[1], NONNEGATIVE_TIMES(weight, response.specular.y));
   sums->specular.z += NONNEGATIVE_TIMES(color[2], NONNEGATIVE_TIMES(weight, response.specular.z));
@@ -433,12 +458,19 @@ static inline void add_area_light(LightSums* sums, const Surface* surface, const
     highlight = SELECT(principled != 0, ltc.highlight, highlight);
     tint = select3(ltc_tint, tint, principled);
   }
-  if (PRINCIPLED_V2) irradiance *= lambert_share(surface);
   if (SHADOWS && lights->area_casters[k])
     shadow_area_light(&irradiance, &highlight, surface, lights, k, lights->area_casters[k]);
-  sums->diffuse.x += light->color[0] * irradiance;
-  sums->diffuse.y += light->color[1] * irradiance;
-  sums->diffuse.z += light->color[2] * irradiance;
+  if (PRINCIPLED_V2) {
+    const vec3 toward = sub3(area_vector(light->center), surface->p);
+    const vec3 share = area_lambert_share(surface, scale3(toward, rsqrt(max(dot3(toward, toward), (real)1e-30f))));
+    sums->diffuse.x += light->color[0] * irradiance * share.x;
+    sums->diffuse.y += light->color[1] * irradiance * share.y;
+    sums->diffuse.z += light->color[2] * irradiance * share.z;
+  } else {
+    sums->diffuse.x += light->color[0] * irradiance;
+    sums->diffuse.y += light->color[1] * irradiance;
+    sums->diffuse.z += light->color[2] * irradiance;
+  }
   if (SPECULAR && PRINCIPLED_LOBES) {
     sums->specular.x += light->color[0] * highlight * tint.x;
     sums->specular.y += light->color[1] * highlight * tint.y;
@@ -488,7 +520,10 @@ static inline void add_environment(LightSums* sums, const Surface* surface, cons
         environment_suns(lights->environment_suns, environment->sun_count, lights->shadows, surface->p, surface->n, pending);
     light = add3(light, scale3(suns, (realv)environment->scale));
   }
-  if (PRINCIPLED_V2) light = scale3(light, lambert_share(surface));
+  if (PRINCIPLED_V2) {
+    const vec3 share = sky_lambert_share(surface);
+    light = make_vec3(light.x * share.x, light.y * share.y, light.z * share.z);
+  }
   sums->diffuse = add3(sums->diffuse, light);
   if (!SPECULAR) return;
   /* A few rays in each lane's lobe: an eighth of the diffuse light's, at least 1. */
@@ -682,7 +717,7 @@ static inline void shade_pixel(Terms* terms, const PixelPlanes* pixels, const Ma
         material_field(materials, MATERIAL_METALLIC), MATERIAL_FIELD3(materials, MATERIAL_KS),
         material_field(materials, MATERIAL_DIELECTRIC_LAYER), material_field(materials, MATERIAL_ROUGHNESS),
         material_field(materials, MATERIAL_IOR), material_field(materials, MATERIAL_FRESNEL_AVERAGE),
-        clamp(dot3(surface.n, surface.v), (realv)0, (realv)1));
+        OREN_NAYAR ? material_field(materials, MATERIAL_DIFFUSE_ROUGHNESS) : (realv)0, clamp(dot3(surface.n, surface.v), (realv)0, (realv)1));
 
   /* D = sum_i Li F_i max(0, n.l_i), S = sum_i Li F_i max(0, v.r_i)^q (or the material's lobe) */
   LightSums sums;

@@ -9,6 +9,7 @@
 #define PHONGCL_PRINCIPLED_H
 
 #include "features.h"
+#include "oren_nayar.h"
 #include "phong_math.h"
 #include "principled_tables.h"
 
@@ -24,9 +25,11 @@ typedef struct {
   realv f0;            /* that index's Fresnel at normal incidence */
 } PrincipledSurface;
 
-/* A light's response: kd multiplies `diffuse`, `specular` is already coloured. */
+/* A light's response: kd multiplies `diffuse`, `specular` is already coloured. With OREN_NAYAR a
+ * version 2 lane's multiple scattering is apart, `diffuse_multiple` times the surface's per-channel M
+ * (oren_nayar.h). */
 typedef struct {
-  realv diffuse;
+  realv diffuse, diffuse_multiple;
   vec3 specular;
 } PrincipledResponse;
 
@@ -117,6 +120,7 @@ typedef struct {
   realv alpha_sq;              /* GGX's alpha^2, alpha = roughness^2 */
   realv ior, ior_f0;           /* the dielectric's index (after the level) and its F0 */
   realv diffuse_scale;         /* what the dielectric layer leaves the diffuse beneath, at this view */
+  OrenNayarSurface rough;      /* with OREN_NAYAR, the diffuse's Oren-Nayar (sigma 0: Lambert's) */
 } PrincipledV2Surface;
 
 /* Cycles' lookup_table_read: linear between the two entries about x in [0, 1] of a row of `size`. */
@@ -178,11 +182,12 @@ static inline realv f82_tint_fresnel(realv c, realv f0, realv b) {
 static inline realv remapped_fresnel(realv t, realv f0) { return fma(1 - f0, t, f0); }
 
 /* A lane's version 2 parameters at view cosine mu: the record's fields, E, E_avg and s from the
- * tables, the lobes' energy compensation and the diffuse's share under the dielectric layer
- * (closure_layering_weight: 1 - the largest channel of the layer's albedo, its weight divided out). */
+ * tables, the lobes' energy compensation, the diffuse's share under the dielectric layer
+ * (closure_layering_weight: 1 - the largest channel of the layer's albedo, its weight divided out)
+ * and with OREN_NAYAR its Oren-Nayar of the base colour (metal_f0, saturated). */
 static inline PrincipledV2Surface principled_v2_surface(vec3 metal_f0, vec3 metal_b, realv metallic, vec3 dielectric_f0,
                                                         realv dielectric_layer, realv roughness, realv ior,
-                                                        realv fresnel_average, realv mu) {
+                                                        realv fresnel_average, realv diffuse_roughness, realv mu) {
   PrincipledV2Surface m;
   m.metal_f0 = metal_f0, m.metal_b = metal_b, m.dielectric_f0 = dielectric_f0, m.ior = ior;
   m.alpha_sq = roughness * roughness * roughness * roughness;
@@ -208,7 +213,28 @@ static inline PrincipledV2Surface principled_v2_surface(vec3 metal_f0, vec3 meta
                                      remapped_fresnel(interpolation, dielectric_f0.y) * boost.y),
                                  remapped_fresnel(interpolation, dielectric_f0.z) * boost.z) * darkening;
   m.diffuse_scale = SELECT(dielectric_layer > 0, clamp(1 - layer_albedo, (real)0, (real)1), 1);
+  if (OREN_NAYAR) m.rough = oren_nayar_surface(diffuse_roughness, metal_f0, mu);
   return m;
+}
+
+/* Version 2's share of Lambert's light from unit l (an area light's centre): the dielectric layer's,
+ * times with OREN_NAYAR the diffuse's response over Lambert's there (n.l at least 1e-4: a light
+ * about the horizon takes its limit). */
+static inline vec3 principled_v2_lambert_share(PrincipledV2Surface m, vec3 n, vec3 v, vec3 l) {
+  if (!OREN_NAYAR) return make_vec3(m.diffuse_scale, m.diffuse_scale, m.diffuse_scale);
+  const realv n_dot_l = max(dot3(n, l), (real)1e-4f);
+  const realv single = oren_nayar_single(m.rough, n_dot_l, dot3(n, v), dot3(l, v)) / n_dot_l;
+  const realv weight = OREN_NAYAR_G0 - oren_nayar_g(n_dot_l);
+  return scale3(make_vec3(fma(m.rough.multiple.x, weight, single), fma(m.rough.multiple.y, weight, single),
+                          fma(m.rough.multiple.z, weight, single)),
+                m.diffuse_scale);
+}
+
+/* Version 2's share of the environment's Lambert light: the layer's, times with OREN_NAYAR the
+ * diffuse's white-world response over Lambert's (exact for a uniform world). */
+static inline vec3 principled_v2_sky_share(PrincipledV2Surface m) {
+  if (!OREN_NAYAR) return make_vec3(m.diffuse_scale, m.diffuse_scale, m.diffuse_scale);
+  return scale3(oren_nayar_white_sky(m.rough), m.diffuse_scale);
 }
 
 /* Version 2's specular albedo at view cosine mu under a white world, per channel, for the environment's
@@ -240,7 +266,12 @@ static inline vec3 principled_v2_specular_albedo(PrincipledV2Surface m, realv mu
 static inline PrincipledResponse principled_v2_response(PrincipledV2Surface m, vec3 n, vec3 v, vec3 l) {
   const realv n_dot_l = dot3(n, l), n_dot_v = dot3(n, v);
   PrincipledResponse response;
-  response.diffuse = SELECT(n_dot_l > 0, n_dot_l * m.diffuse_scale, 0);
+  if (OREN_NAYAR) {
+    response.diffuse = m.diffuse_scale * oren_nayar_single(m.rough, n_dot_l, n_dot_v, dot3(l, v));
+    response.diffuse_multiple = m.diffuse_scale * oren_nayar_multiple_weight(n_dot_l);
+  } else {
+    response.diffuse = SELECT(n_dot_l > 0, n_dot_l * m.diffuse_scale, 0);
+  }
   realv l_dot_h;
   const realv d_root = ggx_denominator_root(n, v, l, m.alpha_sq, &l_dot_h);
   /* pi D G2 / (4 n.v), D = alpha^2 / (pi d_root^2), height-correlated G2 = 1 / (1 + Lambda_v + Lambda_l),

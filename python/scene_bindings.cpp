@@ -182,7 +182,9 @@ void bind_scene(py::module_& module) {
       .def_readwrite("version", &Material::version, "principled: the node's version, 1 (Blender 2.8 to 3.6) or 2 (4.0 on).")
       .def_readwrite("ior", &Material::ior, "principled version 2: the dielectric's index, [1, 1000].")
       .def_readwrite("specular_ior_level", &Material::specular_ior_level,
-                     "principled version 2: Specular IOR Level, >= 0 (F0 times twice it).");
+                     "principled version 2: Specular IOR Level, >= 0 (F0 times twice it).")
+      .def_readwrite("diffuse_roughness", &Material::diffuse_roughness,
+                     "principled version 2: Diffuse Roughness, [0, 1] (Oren-Nayar's; 0 is Lambert's).");
   vec3_property(material, "specular_tint_color", &Material::specular_tint_color,
                 "principled version 2: the Specular Tint colour (the JSON's specular_tint).");
 

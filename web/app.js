@@ -531,7 +531,8 @@ function renderMaterials() {
       ? [colour('base_color', [0.8, 0.8, 0.8]), number('metallic', 0, { min: 0, max: 1, step: 0.05 }),
          number('roughness', 0.5, { min: 0, max: 1, step: 0.05 }),
          ...(material.version === 2 ? [number('ior', 1.5, { min: 1, max: 1000, step: 0.05 }),
-           number('specular_ior_level', 0.5, { min: 0, step: 0.05 })] : [])]
+           number('specular_ior_level', 0.5, { min: 0, step: 0.05 }),
+           number('diffuse_roughness', 0, { min: 0, max: 1, step: 0.05 })] : [])]
       : [...['ka', 'kd', 'ks'].map((k) => colour(k, [0, 0, 0])), number('shininess', 1, { min: 0, step: 1 })];
     const item = el('li', { className: index === state.selectedMaterial ? 'selected' : '' }, [
       el('div', { className: 'head' }, [el('span', { className: 'grow', textContent: `${index}: ${material.name || ''}` })]),

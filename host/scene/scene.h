@@ -133,6 +133,7 @@ struct Material {
   double ior = 1.5;                    // [1, 1000]: the dielectric's index
   double specular_ior_level = 0.5;     // >= 0: scales F0(ior) by twice itself
   glm::dvec3 specular_tint_color{1.0}; // >= 0: tints the dielectric's F0 and the metal's F82 edge
+  double diffuse_roughness = 0.0;      // [0, 1]: Oren-Nayar's sigma; Lambert's diffuse below 1e-5
 
   bool operator==(const Material&) const = default;
 };

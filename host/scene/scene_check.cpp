@@ -80,6 +80,7 @@ void check_material_table(const std::vector<Material>& materials) {
     require(std::isfinite(m.specular_ior_level) && m.specular_ior_level >= 0.0, entry + ".specular_ior_level",
             "must be finite and >= 0");
     require(non_negative(m.specular_tint_color), entry + ".specular_tint", "must be finite and >= 0 (version 2's colour)");
+    require(within(m.diffuse_roughness, 1.0), entry + ".diffuse_roughness", "must be in [0, 1]");
   }
 }
 

@@ -190,9 +190,7 @@ void read_principled_fields(const JsonObject& object, Material& material) {
   }
   if (auto ior = object.find("ior")) material.ior = read_number_in(*ior, 1.0, 1000.0);
   if (auto level = object.find("specular_ior_level")) material.specular_ior_level = read_number_in(*level, 0.0, 1000.0);
-  // Cycles' Oren-Nayar (Diffuse Roughness > 0) is not implemented: Lambert's diffuse is version 2's here.
-  if (auto roughness = object.find("diffuse_roughness"))
-    if (read_number_in(*roughness, 0.0, 1.0) != 0.0) roughness->fail("must be 0: Oren-Nayar's diffuse is not implemented");
+  if (auto roughness = object.find("diffuse_roughness")) material.diffuse_roughness = read_number_in(*roughness, 0.0, 1.0);
 }
 
 Material read_material(const JsonValue& value) {

@@ -41,7 +41,8 @@ static_assert(offsetof(MaterialRecord, ka) == MATERIAL_KA * sizeof(float) &&
               offsetof(MaterialRecord, metal_f0[3]) == MATERIAL_METALLIC * sizeof(float) &&
               offsetof(MaterialRecord, metal_b) == MATERIAL_METAL_B * sizeof(float) &&
               offsetof(MaterialRecord, metal_b[3]) == MATERIAL_DIELECTRIC_LAYER * sizeof(float) &&
-              offsetof(MaterialRecord, fresnel_average) == MATERIAL_FRESNEL_AVERAGE * sizeof(float));
+              offsetof(MaterialRecord, fresnel_average) == MATERIAL_FRESNEL_AVERAGE * sizeof(float) &&
+              offsetof(MaterialRecord, diffuse_roughness) == MATERIAL_DIFFUSE_ROUGHNESS * sizeof(float));
 static_assert(sizeof(LightShape) == 48 && offsetof(LightShape, inverse_range) == 16 && offsetof(LightShape, falloff) == 32 &&
               offsetof(LightShape, cosine_power) == 36);
 static_assert(sizeof(LightBounds) == 64 && offsetof(LightBounds, apex) == 16 && offsetof(LightBounds, distance_bins) == 48 &&

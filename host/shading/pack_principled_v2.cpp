@@ -23,6 +23,10 @@ double fresnel_mean(double eta) {
 
 }  // namespace
 
+bool takes_oren_nayar(const Material& material) {
+  return material.specular_model == SpecularModel::principled && material.version == 2 && material.diffuse_roughness >= 1e-5;
+}
+
 void store_principled_v2(MaterialRecord& record, const Material& material) {
   const glm::dvec3 base = material.base_color;
   // CLOSURE_WEIGHT_CUTOFF: a metallic weight below it allocates no metal lobe and scales nothing.
@@ -49,6 +53,7 @@ void store_principled_v2(MaterialRecord& record, const Material& material) {
   record.metal_b[3] = record.ior != 1.0f ? 1.0f : 0.0f;
   const double index_f0 = f0_of_index(ior);
   record.fresnel_average = static_cast<float>(std::clamp((fresnel_mean(ior) - index_f0) / (1.0 - index_f0), 0.0, 1.0));
+  record.diffuse_roughness = static_cast<float>(takes_oren_nayar(material) ? material.diffuse_roughness : 0.0);
 }
 
 }  // namespace phongcl

@@ -10,4 +10,8 @@ namespace phongcl {
 // dielectric's mean Fresnel factor, and the diffuse weight base * (1 - metallic).
 void store_principled_v2(MaterialRecord& record, const Material& material);
 
+// Whether the material's diffuse is Cycles' Oren-Nayar: version 2 with a Diffuse Roughness of at least
+// 1e-5 (diffuse_roughness_is_almost_zero below it: Lambert's).
+bool takes_oren_nayar(const Material& material);
+
 }  // namespace phongcl

@@ -6,6 +6,7 @@
 
 #include "environment/irradiance_map.h"
 #include "shading/pack_environment_specular.h"
+#include "shading/pack_principled_v2.h"
 #include "shading/device_layout.h"
 
 namespace phongcl {
@@ -236,6 +237,12 @@ void decide_specular_models(Recipe& recipe, const Scene& scene, const GBuffer& g
             : mixed            ? "specular models: " + names + " (the materials differ: each lane's model read from the table)"
                                : "specular model: " + names + (phong_only ? " (every material's)" : ", compiled in (every material's)"),
             phong_only ? "" : (mixed ? "specular models " : "specular model ") + names);
+  const bool oren_nayar = (mask & (1u << kernel_specular_model(SpecularModel::principled, 2))) &&
+                          std::ranges::any_of(scene.materials, takes_oren_nayar);
+  add_flag(recipe, "OREN_NAYAR", oren_nayar,
+           oren_nayar ? "diffuse: Oren-Nayar compiled in (a Principled v2 material's diffuse roughness)"
+                      : "diffuse: Oren-Nayar compiled out (no Principled v2 material with a diffuse roughness)",
+           oren_nayar ? "Oren-Nayar diffuse" : "");
 }
 
 void decide_terms(Recipe& recipe, const Scene& scene, const GBuffer& gbuffer) {

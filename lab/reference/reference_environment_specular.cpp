@@ -15,7 +15,7 @@ glm::dvec3 reference_environment_specular(const EnvironmentLight& light, const R
   return integrate_environment(light, map, [&](const glm::dvec3& w) {
     if (!(glm::dot(n, w) > 0.0)) return glm::dvec3(0.0);  // a light behind the surface has no highlight
     if (point.specular_model == SpecularModel::principled)
-      return reference_principled_of_version(point.principled, n, v, w, masking).specular;
+      return reference_principled_specular_of_version(point.principled, n, v, w, masking);
     return glm::dvec3(reference_specular_lobe(point.specular_model, n, v, w, point.shininess));
   });
 }

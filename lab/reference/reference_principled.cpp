@@ -118,7 +118,7 @@ glm::dvec3 reference_principled_area(const Material& material, const AreaLight& 
   if (alpha * alpha <= 1e-7) return glm::dvec3(0.0);
   const SmithMaskingTable& masking = smith_masking_table(alpha);
   const auto lobe = [&](const glm::dvec3& w) {
-    return reference_principled_of_version(material, n, v, w, [&](double mu) { return masking(mu); }).specular;
+    return reference_principled_specular_of_version(material, n, v, w, [&](double mu) { return masking(mu); });
   };
   // GGX's peak is about as wide as Phong's of exponent 2 / alpha^2; it has no kink above the horizon.
   return reference_area_lobe(light, position, n, v, lobe, 2.0 / (alpha * alpha), false);

@@ -7,7 +7,10 @@
 #include <utility>
 #include <numbers>
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
+
+#include "reference/reference_oren_nayar.h"
 
 namespace phongcl {
 
@@ -213,20 +216,20 @@ glm::dvec3 reference_principled_v2_lambert(const Material& material, double mu) 
   return material.base_color * (1.0 - lobes.metallic) * share;
 }
 
-PrincipledLight reference_principled_v2(const Material& material, const glm::dvec3& n, const glm::dvec3& v,
-                                        const glm::dvec3& l) {
-  const double alpha = material.roughness * material.roughness;
-  return reference_principled_v2(material, n, v, l, [alpha](double mu) { return reference_smith_masking(alpha, mu); });
-}
+namespace {
 
-PrincipledLight reference_principled_v2(const Material& material, const glm::dvec3& n, const glm::dvec3& v,
-                                        const glm::dvec3& l, const std::function<double(double)>& masking) {
-  PrincipledLight light;
+bool rough_diffuse(const Material& material) { return material.diffuse_roughness >= 1e-5; }
+
+// Cycles' Oren-Nayar takes the base colour saturated as its albedo (bsdf_oren_nayar_param).
+glm::dvec3 diffuse_albedo(const Material& material) { return glm::clamp(material.base_color, 0.0, 1.0); }
+
+// Version 2's specular light alone: the integrals over emitters and texels need no diffuse.
+glm::dvec3 v2_specular(const Material& material, const glm::dvec3& n, const glm::dvec3& v, const glm::dvec3& l,
+                       const std::function<double(double)>& masking) {
   const double ndl = glm::dot(n, l), ndv = glm::dot(n, v);
-  if (!(ndl > 0.0)) return light;
-  light.diffuse = reference_principled_v2_lambert(material, std::clamp(ndv, 0.0, 1.0)) * ndl;
+  if (!(ndl > 0.0)) return glm::dvec3(0.0);
   const Lobes lobes = lobes_at(material, std::clamp(ndv, 0.0, 1.0));
-  if (!(ndv > 0.0) || sqr(lobes.alpha) <= 2e-10) return light;
+  if (!(ndv > 0.0) || sqr(lobes.alpha) <= 2e-10) return glm::dvec3(0.0);
   const glm::dvec3 h = glm::normalize(l + v);
   const double ldh = glm::dot(l, h), c = glm::dot(n, h);
   // GGX's density from its slope distribution (Heitz 2014, eq. 12) and G2 = 1 / (1 + Lambda_v + Lambda_l).
@@ -238,8 +241,44 @@ PrincipledLight reference_principled_v2(const Material& material, const glm::dve
       lobes.layer ? (1.0 - lobes.metallic) * lobes.dielectric_boost *
                         (lobes.dielectric_f0 + (1.0 - lobes.dielectric_f0) * fresnel_factor(ldh, lobes.eta))
                   : glm::dvec3(0.0);
-  light.specular = brdf_pi * (lobes.metal_scale * f82_fresnel(ldh, lobes.metal_f0, lobes.metal_b) + dielectric);
+  return brdf_pi * (lobes.metal_scale * f82_fresnel(ldh, lobes.metal_f0, lobes.metal_b) + dielectric);
+}
+
+}  // namespace
+
+glm::dvec3 reference_principled_v2_over_lambert(const Material& material, const glm::dvec3& n, const glm::dvec3& v,
+                                                const glm::dvec3& l) {
+  if (!rough_diffuse(material)) return glm::dvec3(1.0);
+  return reference_oren_nayar_over_lambert(material.diffuse_roughness, diffuse_albedo(material), n, v, l);
+}
+
+glm::dvec3 reference_principled_v2_white_sky(const Material& material, double mu) {
+  if (!rough_diffuse(material)) return glm::dvec3(1.0);
+  return reference_oren_nayar_white_sky(material.diffuse_roughness, diffuse_albedo(material), mu);
+}
+
+PrincipledLight reference_principled_v2(const Material& material, const glm::dvec3& n, const glm::dvec3& v,
+                                        const glm::dvec3& l) {
+  const double alpha = material.roughness * material.roughness;
+  return reference_principled_v2(material, n, v, l, [alpha](double mu) { return reference_smith_masking(alpha, mu); });
+}
+
+PrincipledLight reference_principled_v2(const Material& material, const glm::dvec3& n, const glm::dvec3& v,
+                                        const glm::dvec3& l, const std::function<double(double)>& masking) {
+  PrincipledLight light;
+  const double ndl = glm::dot(n, l), ndv = glm::dot(n, v);
+  if (!(ndl > 0.0)) return light;
+  light.diffuse = reference_principled_v2_lambert(material, std::clamp(ndv, 0.0, 1.0)) *
+                  (rough_diffuse(material) ? reference_oren_nayar(material.diffuse_roughness, diffuse_albedo(material), n, v, l)
+                                           : glm::dvec3(ndl));
+  light.specular = v2_specular(material, n, v, l, masking);
   return light;
+}
+
+glm::dvec3 reference_principled_specular_of_version(const Material& material, const glm::dvec3& n, const glm::dvec3& v,
+                                                    const glm::dvec3& l, const std::function<double(double)>& masking) {
+  return material.version == 2 ? v2_specular(material, n, v, l, masking)
+                               : reference_principled(material, n, v, l, masking).specular;
 }
 
 PrincipledLight reference_principled_of_version(const Material& material, const glm::dvec3& n, const glm::dvec3& v,

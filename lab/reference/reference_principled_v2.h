@@ -27,10 +27,20 @@ PrincipledLight reference_principled_v2(const Material& material, const glm::dve
                                         const glm::dvec3& l, const std::function<double(double)>& masking);
 PrincipledLight reference_principled_of_version(const Material& material, const glm::dvec3& n, const glm::dvec3& v,
                                                 const glm::dvec3& l, const std::function<double(double)>& masking);
+// Its specular light alone, for the integrals over emitters and texels.
+glm::dvec3 reference_principled_specular_of_version(const Material& material, const glm::dvec3& n, const glm::dvec3& v,
+                                                    const glm::dvec3& l, const std::function<double(double)>& masking);
 
 // The share of Lambert's light (area lights', the environment's) the diffuse beneath the dielectric
 // layer takes at view cosine mu, times base colour and 1 - metallic.
 glm::dvec3 reference_principled_v2_lambert(const Material& material, double mu);
+
+// What the diffuse reflects over Lambert: 1, or where Diffuse Roughness is at least 1e-5 (Cycles'
+// threshold) Oren-Nayar's response over Lambert's from unit l (an area light's centre) ...
+glm::dvec3 reference_principled_v2_over_lambert(const Material& material, const glm::dvec3& n, const glm::dvec3& v,
+                                                const glm::dvec3& l);
+// ... and under a uniform white world at view cosine mu (the environment's).
+glm::dvec3 reference_principled_v2_white_sky(const Material& material, double mu);
 
 // GGX's albedos at alpha = roughness^2 and view cosine mu: single scattering without Fresnel (E), and the
 // mean of the dielectric Fresnel's [F0, 1] factor over the reflected light (s) for index eta.

@@ -138,7 +138,12 @@ ShadingTerms reference_shade_point(const Scene& scene, const SurfacePoint& point
     if (!traced && reaches && light.shadows && !reaches(point, area_shadow_light(light))) continue;
     const AreaIntegrals integrals = reference_area_integrals(light, point.position, n, v, point.specular_model, point.shininess);
     const double window = area_range_window(light, point.position) * (traced ? soft.area(point, light) : 1.0);
-    diffuse += product(light.color, glm::dvec3(integrals.irradiance * window));
+    // A Principled v2 point's Oren-Nayar over Lambert toward the light's centre, as the kernel.
+    const glm::dvec3 over_lambert =
+        point.specular_model == SpecularModel::principled && point.principled.version == 2
+            ? reference_principled_v2_over_lambert(point.principled, n, v, robust_normalize(light.position - point.position))
+            : glm::dvec3(1.0);
+    diffuse += product(light.color, over_lambert * (integrals.irradiance * window));
     specular += product(light.color, glm::dvec3(integrals.highlight * window));
     if (point.specular_model == SpecularModel::principled)
       principled_specular += product(light.color, reference_principled_area(point.principled, light, point.position, n, v) * window);
@@ -146,8 +151,12 @@ ShadingTerms reference_shade_point(const Scene& scene, const SurfacePoint& point
   // The environment: its irradiance by brute force over the map (reference_environment.h).
   if (scene.environment && n != glm::dvec3(0.0)) {
     const EnvironmentLight& world = *scene.environment;
-    diffuse += soft.environment && world.shadows ? soft.environment(point)
-                                                 : reference_environment_light(world, reference_map(world), n);
+    const glm::dvec3 sky = soft.environment && world.shadows ? soft.environment(point)
+                                                             : reference_environment_light(world, reference_map(world), n);
+    // A Principled v2 point's Oren-Nayar under a white world over Lambert's, as the kernel.
+    diffuse += point.specular_model == SpecularModel::principled && point.principled.version == 2
+                   ? product(sky, reference_principled_v2_white_sky(point.principled, std::clamp(glm::dot(n, v), 0.0, 1.0)))
+                   : sky;
     // Its specular: the material's own lobe against every texel, unoccluded (nothing for a
     // Phong-family ks of 0, as the kernel).
     const bool principled = point.specular_model == SpecularModel::principled;

@@ -3,7 +3,8 @@
 // above each version's mirror threshold; IOR 1 and 3 (v2), specular 0 and 1 (v1), metallic 0 and 1,
 // base colour 0 and 1; each over the geometry's limits: the highlight's peak, a normal tilted alpha
 // and 0.3 rad off it, n.v = 1e-4 and 0, n.l = 1e-4 and 0; under a point light, a sun and a rect. The
-// oracle is the double reference's BSDF (reference_principled.h, reference_principled_v2.h) with its
+// oracle is the double reference's BSDF (reference_principled.h, reference_principled_v2.h; with v2's
+// diffuse roughness 1e-5 and 1, Oren-Nayar's, under the point light) with its
 // Smith masking integrated per call, not read from the table the reference's shade uses; under the
 // rect, Lambert's irradiance and v1's highlight by the reference's quadrature at twice its default order.
 #include <algorithm>
@@ -78,7 +79,8 @@ glm::dvec3 oracle(const Material& m, Emitter emitter, const AreaLight& rect, con
     return light.diffuse + light.specular;
   }
   const double irradiance = reference_area_integrals(rect, p, n, v, SpecularModel::phong, 1.0, kRectOracleOrder).irradiance;
-  const glm::dvec3 weight = m.version == 2 ? reference_principled_v2_lambert(m, std::clamp(glm::dot(n, v), 0.0, 1.0))
+  const glm::dvec3 weight = m.version == 2 ? reference_principled_v2_lambert(m, std::clamp(glm::dot(n, v), 0.0, 1.0)) *
+                                                 reference_principled_v2_over_lambert(m, n, v, kToLight)
                                            : m.base_color * (1.0 - m.metallic);
   glm::dvec3 value = weight * irradiance;
   return value + reference_principled_area(m, rect, p, n, v);
@@ -199,6 +201,19 @@ std::vector<Material> fresnel_and_colour_limits(int version) {
   return materials;
 }
 
+// Version 2's Oren-Nayar at its limits: Cycles' threshold 1e-5, where 1 - E is 2e-6 of an E near 1
+// (float's resolution of 1 is 6e-8), and 1; a white base (the multiple scattering's largest) and a grey one.
+std::vector<Material> diffuse_roughness_limits() {
+  std::vector<Material> materials;
+  for (double sigma : {1e-5, 1.0})
+    for (double base : {1.0, 0.5}) {
+      Material m = principled(2, base, 0.0, 0.5);
+      m.diffuse_roughness = sigma;
+      materials.push_back(m);
+    }
+  return materials;
+}
+
 }  // namespace
 
 std::vector<StabilityCase> principled_cases() {
@@ -223,6 +238,10 @@ std::vector<StabilityCase> principled_cases() {
                                   version, emitter, false));
     }
   }
+  cases.push_back(with_bounds(principled_case(2, Emitter::point, "diffuse roughness",
+                                              "diffuse roughness 1e-5 (Cycles' threshold) and 1, base 1 and 0.5",
+                                              diffuse_roughness_limits()),
+                              2, Emitter::point, false));
   return cases;
 }
 

@@ -246,12 +246,13 @@ def test_a_principled_materials_inputs_are_settable():
 
 def test_a_principled_version_2_materials_inputs_are_settable():
     scene = phongcl.Scene.from_dict({"materials": [{"specular_model": "principled", "version": 2, "ior": 1.45,
-                                                    "specular_tint": [1, 0.5, 0.25]}]})
+                                                    "specular_tint": [1, 0.5, 0.25], "diffuse_roughness": 0.5}]})
     material = scene.materials[0]
     assert (material.version, material.ior, material.specular_ior_level) == (2, 1.45, 0.5)
     assert tuple(material.specular_tint_color) == pytest.approx((1, 0.5, 0.25))
-    material.ior, material.specular_ior_level = 3.0, 0.25
-    assert (material.ior, material.specular_ior_level) == (3.0, 0.25)
+    assert material.diffuse_roughness == 0.5
+    material.ior, material.specular_ior_level, material.diffuse_roughness = 3.0, 0.25, 1.0
+    assert (material.ior, material.specular_ior_level, material.diffuse_roughness) == (3.0, 0.25, 1.0)
 
 
 @needs_device

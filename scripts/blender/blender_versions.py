@@ -38,6 +38,12 @@ def set_casts_shadow(light_data, value):
 # 4.0 also renamed "Emission" to "Emission Color" and "Subsurface" to "Subsurface Weight".
 PRINCIPLED_EMISSION = "Emission Color" if at_least(4) else "Emission"
 
+# Oren-Nayar. 4.3 replaced the Diffuse BSDF's Oren-Nayar by Fujii's improved model with OpenPBR's
+# multiple scattering (closure/bsdf_oren_nayar.h) and gave the Principled BSDF the Diffuse Roughness
+# input that takes it (svm/closure.h, CLOSURE_BSDF_PRINCIPLED_ID): phongcl's principled version 2 has
+# that model, not the older one 3.x and 4.0 to 4.2 render a rough Diffuse BSDF with.
+IMPROVED_OREN_NAYAR = at_least(4, 3)
+
 
 def principled_emits(node):
     """True where the Principled BSDF emits light (phongcl has no emissive materials)."""

@@ -39,10 +39,11 @@ name those cases.
   phongcl's "principled" material, version 1, with its base colour, metallic, roughness, specular and
   specular tint (docs/shading.md "Principled"; subsurface, sheen, clearcoat, transmission and
   anisotropy left out with a note where set). One of 4.0+ becomes version 2 (IOR, Specular IOR Level, the
-  Specular Tint colour; coat, sheen, transmission, subsurface, anisotropy, thin film and diffuse roughness left
-  out with a note where set; docs/shading.md "Principled v2").
+  Specular Tint colour, 4.3's Diffuse Roughness: Cycles' Oren-Nayar; coat, sheen, transmission, subsurface,
+  anisotropy and thin film left out with a note where set; docs/shading.md "Principled v2").
   A Diffuse BSDF gives kd = its colour and a material without nodes its viewport colour, both with ks = 0: no
-  specular lobe. ka = kd. Indices no material uses get a grey material. The shader is the one
+  specular lobe. A Diffuse BSDF with a roughness is Oren-Nayar's on 4.3+ (a principled version 2 of IOR 1 and
+  metallic 0: the diffuse alone), Lambert's with a note before. ka = kd. Indices no material uses get a grey material. The shader is the one
   linked to the active Material Output's Surface; any other shader, a socket fed by a node (a
   texture), and emission are not mapped: a note names the material, the node and the value exported
   instead.
@@ -261,9 +262,10 @@ def principled_v1_json(name, owner, node, base, metallic, roughness):
 def principled_v2_json(name, owner, node, base, metallic, roughness):
     """A 4.0+ Principled BSDF as phongcl's principled material, version 2 (docs/shading.md "Principled v2"), with
     a note naming the inputs it leaves out where they are set (subsurface, coat, sheen, transmission, anisotropy,
-    thin film, diffuse roughness), and for the GGX distribution, shaded as Multiscatter GGX (the default)."""
+    thin film), and for the GGX distribution, shaded as Multiscatter GGX (the default). Diffuse Roughness (4.3 on)
+    is Cycles' Oren-Nayar, phongcl's too."""
     for socket in ("Subsurface Weight", "Coat Weight", "Sheen Weight", "Transmission Weight", "Anisotropic",
-                   "Thin Film Thickness", "Diffuse Roughness"):
+                   "Thin Film Thickness"):
         if socket in node.inputs and node.inputs[socket].default_value != 0.0:
             note("%s: the Principled BSDF's %s is %.3g, which phongcl's principled material has not: left out"
                  % (owner, socket, node.inputs[socket].default_value))
@@ -276,10 +278,22 @@ def principled_v2_json(name, owner, node, base, metallic, roughness):
     level = unlinked_value(owner, node, "Specular IOR Level", "value")
     tint = Vector(unlinked_value(owner, node, "Specular Tint", "colour")[:3])
     clamp = lambda x, low=0.0, high=1.0: min(max(float(x), low), high)  # noqa: E731
-    return {"name": name, "ka": rounded(base * (1.0 - metallic)), "specular_model": "principled", "version": 2,
-            "base_color": rounded(base), "metallic": round(clamp(metallic), 6), "roughness": round(clamp(roughness), 6),
-            "ior": round(clamp(ior, 1.0, 1000.0), 6), "specular_ior_level": round(max(float(level), 0.0), 6),
-            "specular_tint": rounded(Vector([max(c, 0.0) for c in tint]))}
+    material = {"name": name, "ka": rounded(base * (1.0 - metallic)), "specular_model": "principled", "version": 2,
+                "base_color": rounded(base), "metallic": round(clamp(metallic), 6), "roughness": round(clamp(roughness), 6),
+                "ior": round(clamp(ior, 1.0, 1000.0), 6), "specular_ior_level": round(max(float(level), 0.0), 6),
+                "specular_tint": rounded(Vector([max(c, 0.0) for c in tint]))}
+    if "Diffuse Roughness" in node.inputs:
+        diffuse_roughness = clamp(unlinked_value(owner, node, "Diffuse Roughness", "value"))
+        if diffuse_roughness > 0.0:
+            material["diffuse_roughness"] = round(diffuse_roughness, 6)
+    return material
+
+
+def rough_diffuse_json(name, base, roughness):
+    """A 4.3+ Diffuse BSDF with a roughness: Cycles' Oren-Nayar of its colour, which is phongcl's principled
+    version 2 without its specular layers (metallic 0, IOR 1: no dielectric lobe, nothing over the diffuse)."""
+    return {"name": name, "ka": rounded(base), "specular_model": "principled", "version": 2, "base_color": rounded(base),
+            "metallic": 0.0, "ior": 1.0, "diffuse_roughness": round(min(max(float(roughness), 0.0), 1.0), 6)}
 
 
 def material_json(material):
@@ -293,6 +307,12 @@ def material_json(material):
         return {"name": material.name, "ka": rounded(base), "kd": rounded(base), "ks": [0.0] * 3, "shininess": 1.0}
     if node.type == "BSDF_DIFFUSE":
         base = Vector(unlinked_value(owner, node, "Color", "colour")[:3])
+        roughness = unlinked_value(owner, node, "Roughness", "value")
+        if roughness > 0.0 and versions.IMPROVED_OREN_NAYAR:
+            return rough_diffuse_json(material.name, base, roughness)
+        if roughness > 0.0:
+            note("%s: the Diffuse BSDF's Roughness is %.3g (Blender before 4.3: the older Oren-Nayar), which phongcl "
+                 "has not: exported as Lambert's" % (owner, roughness))
         return {"name": material.name, "ka": rounded(base), "kd": rounded(base), "ks": [0.0] * 3, "shininess": 1.0}
     base = Vector(unlinked_value(owner, node, "Base Color", "colour")[:3])
     metallic = unlinked_value(owner, node, "Metallic", "value")

@@ -1,5 +1,6 @@
 """The scene of the Principled comparison (docs/shading.md "Principled"): Principled BSDF spheres
-(roughness 0.15 to 0.6, a metal, specular 0.5 and 1.0, a tinted specular) on a Principled floor, under a
+(roughness 0.15 to 0.6, a metal, specular 0.5 and 1.0, a tinted specular; on 4.3+ the floor's and the
+roughest sphere's Diffuse Roughness 0.5 and 1) on a Principled floor, under a
 point, a spot and a sun light without size and shadows, no bounces, the light threshold at 0, each light rendered alone from pixel centres
 (box filter of 0.01 px: with one light of no size and no bounces the direct light at a pixel centre is
 exact; --seed changes Cycles' seed, so that two renders measure its noise). With --area the lights are
@@ -31,6 +32,8 @@ SPHERES = (("rough15", (0.8, 0.2, 0.1), 0.0, 0.15, 0.5, 0.0, (-2.4, 0.0, 0.7)),
            ("rough60", (0.3, 0.7, 0.3), 0.0, 0.6, 0.5, 0.5, (0.8, 0.0, 0.7)),
            ("metal", (0.95, 0.7, 0.35), 1.0, 0.3, 0.5, 0.0, (2.4, 0.0, 0.7)))
 FLOOR = ("floor", (0.5, 0.5, 0.5), 0.0, 0.4, 0.5, 0.0)
+# 4.3 on: Diffuse Roughness (Cycles' Oren-Nayar) on the floor and the roughest sphere
+DIFFUSE_ROUGHNESS = {"floor": 0.5, "rough60": 1.0} if versions.IMPROVED_OREN_NAYAR else {}
 # name, type, location, watts (W/m^2 for the sun)
 LIGHTS = (("point", "POINT", (2.0, -3.0, 4.0), 800.0), ("spot", "SPOT", (-3.0, -2.5, 3.5), 900.0),
           ("sun", "SUN", (0.0, 3.0, 5.0), 3.0))
@@ -47,6 +50,8 @@ def principled_material(name, colour, metallic, roughness, specular, tint, pass_
     node.inputs["Roughness"].default_value = roughness
     if versions.at_least(4):
         node.inputs["Specular IOR Level"].default_value = specular
+        if name in DIFFUSE_ROUGHNESS:
+            node.inputs["Diffuse Roughness"].default_value = DIFFUSE_ROUGHNESS[name]
     else:
         node.inputs["Specular"].default_value = specular
         node.inputs["Specular Tint"].default_value = tint
