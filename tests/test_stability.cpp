@@ -61,13 +61,13 @@ TEST(Stability, LightShapeCasesCrossTheirEdges) {
       ++edges;
       bool moved = false;
       for (const std::vector<ExactColor>& values : c.across)
-        for (std::size_t pixel = 0; pixel < values.size(); ++pixel) moved |= values[pixel] != c.exact[pixel];
+        for (std::size_t pixel = 0; pixel < values.size(); ++pixel) moved |= values[pixel] != c.exact_values()[pixel];
       EXPECT_TRUE(moved) << c.name << ": no pixel lies where the edge's rounding changes its value";
     }
     if (c.group != "falloff over distance" || c.scene.lights[0].falloff == Falloff::linear) continue;
     ++sweeps;
     std::size_t overflowing = 0, finite = 0, green = 0;
-    for (const ExactColor& value : c.exact) {
+    for (const ExactColor& value : c.exact_values()) {
       (value[0] > c.expect.precise.overflow_above ? overflowing : finite) += 1;
       green += value[1] != 0;
     }

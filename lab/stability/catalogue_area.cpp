@@ -24,14 +24,18 @@ StabilityCase area_case(std::string name, std::string what, AreaLight light, dou
   c.scene = starting_scene(0.0, kd, ks, shininess);
   c.scene.area_lights.push_back(light);
   c.gbuffer = blank_gbuffer(static_cast<int>(positions.size()), 1, c.name);
-  for (std::size_t i = 0; i < positions.size(); ++i) {
-    set_surface(c.gbuffer, i, positions[i], normals[i]);
-    const glm::dvec3 p(positions[i]), n = glm::normalize(glm::dvec3(normals[i]));
-    const glm::dvec3 v = glm::normalize(c.scene.camera.eye - p);
-    const AreaIntegrals exact = reference_area_integrals(light, p, n, v, SpecularModel::phong, shininess, kOracleOrder);
-    const long double value = kd * exact.irradiance + ks * exact.highlight;
-    c.exact.push_back({value, value, value});
-  }
+  for (std::size_t i = 0; i < positions.size(); ++i) set_surface(c.gbuffer, i, positions[i], normals[i]);
+  c.oracle = [light, kd, ks, shininess, positions, normals, eye = c.scene.camera.eye] {
+    std::vector<ExactColor> values;
+    for (std::size_t i = 0; i < positions.size(); ++i) {
+      const glm::dvec3 p(positions[i]), n = glm::normalize(glm::dvec3(normals[i]));
+      const glm::dvec3 v = glm::normalize(eye - p);
+      const AreaIntegrals exact = reference_area_integrals(light, p, n, v, SpecularModel::phong, shininess, kOracleOrder);
+      const long double value = kd * exact.irradiance + ks * exact.highlight;
+      values.push_back({value, value, value});
+    }
+    return values;
+  };
   c = complete(std::move(c));
   c.abs_floor = 1e-6;  // shading is linear in the light's colour, 1 here
   return c;

@@ -103,13 +103,18 @@ StabilityCase principled_case(int version, Emitter emitter, const std::string& l
   for (const Material& m : materials) pixels += normals(m.roughness * m.roughness).size();
   c.gbuffer = blank_gbuffer(static_cast<int>(pixels), 1, c.name);
   std::size_t i = 0;
-  for (std::size_t k = 0; k < materials.size(); ++k) {
-    for (const glm::vec3& normal : normals(materials[k].roughness * materials[k].roughness)) {
+  for (std::size_t k = 0; k < materials.size(); ++k)
+    for (const glm::vec3& normal : normals(materials[k].roughness * materials[k].roughness))
       set_surface(c.gbuffer, i++, kPosition, normal, static_cast<float>(k));
-      const glm::dvec3 value = oracle(materials[k], emitter, rect, glm::dvec3(kPosition), glm::normalize(glm::dvec3(normal)));
-      c.exact.push_back({value.r, value.g, value.b});
-    }
-  }
+  c.oracle = [materials, emitter, rect] {
+    std::vector<ExactColor> values;
+    for (const Material& m : materials)
+      for (const glm::vec3& normal : normals(m.roughness * m.roughness)) {
+        const glm::dvec3 value = oracle(m, emitter, rect, glm::dvec3(kPosition), glm::normalize(glm::dvec3(normal)));
+        values.push_back({value.r, value.g, value.b});
+      }
+    return values;
+  };
   c.what = std::to_string(materials.size()) + " materials x 7 normals (peak, alpha and 0.3 off, n.v = 1e-4 and 0, "
            "n.l = 1e-4 and 0): " + limits;
   // n.l and n.v are dot products of unit float vectors, each off by a few float units (6e-8)
@@ -179,8 +184,8 @@ StabilityCase with_bounds(StabilityCase c, int version, Emitter emitter, bool ro
 std::vector<Material> roughness_limits(int version, bool with_sharpest) {
   std::vector<Material> materials = {principled(version, 0.8, 0.0, 1.0), principled(version, 0.8, 0.0, 1e-4)};
   // Just above the mirror threshold: v1's alpha^2 > 1e-7, v2's > 2e-10 (kernels/principled.h). Not
-  // under v1's rect: the quadrature of a lobe 4e-4 wide over the emitter took 0.7 s of every test
-  // process's start (the rest of the catalogue 1.4 s), for a highlight that is finite only there.
+  // under v1's rect: the quadrature of a lobe 4e-4 wide over the emitter takes 0.7 s, for a
+  // highlight that is finite only there.
   const double sharpest = version == 1 ? 0.02 : 0.004;
   if (with_sharpest) {
     materials.push_back(principled(version, 0.8, 0.0, sharpest));
@@ -228,8 +233,7 @@ std::vector<StabilityCase> principled_cases() {
                                                   roughness_limits(version, sharpest)),
                                   version, emitter, true));
       // Not under v1's rect: its highlight there is the LTC fit's, finite only, whose error
-      // test_area_lights measures; the reference's quadrature of it took 0.4 s of every test
-      // process's start.
+      // test_area_lights measures.
       if (version == 1 && emitter == Emitter::rect) continue;
       cases.push_back(with_bounds(principled_case(version, emitter, "Fresnel and colour",
                                                   version == 1 ? "specular 0 and 1, metallic 0 and 1, base 0 and 1"

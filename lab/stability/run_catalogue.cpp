@@ -15,8 +15,8 @@ namespace {
 // The error of one value against the case: its oracle value, or on an edge (StabilityCase::across)
 // the nearest of the values the edge's rounding admits.
 double case_error(const StabilityCase& c, float value, std::size_t pixel, int channel) {
-  if (c.across.empty()) return relative_error(value, c.exact[pixel][channel], c.abs_floor);
-  std::vector<long double> admissible{c.exact[pixel][channel]};
+  if (c.across.empty()) return relative_error(value, c.exact_values()[pixel][channel], c.abs_floor);
+  std::vector<long double> admissible{c.exact_values()[pixel][channel]};
   for (const std::vector<ExactColor>& moved : c.across) admissible.push_back(moved[pixel][channel]);
   return relative_error_to_any(value, admissible, !c.edge_is_step, c.abs_floor);
 }
@@ -41,7 +41,7 @@ std::string judge_image(const Image& image, const StabilityCase& c, const Expect
       continue;
     }
     for (int ch = 0; ch < 3; ++ch) {
-      const bool early_overflow = std::isinf(pixel[ch]) && pixel[ch] > 0 && c.exact[i][ch] > expectation.overflow_above;
+      const bool early_overflow = std::isinf(pixel[ch]) && pixel[ch] > 0 && c.exact_values()[i][ch] > expectation.overflow_above;
       const double error = early_overflow ? 0.0 : case_error(c, pixel[ch], i, ch);
       if (expectation.kind == Expectation::Kind::finite_only) {
         if (std::isinf(error)) return "+-Inf where the exact value is finite, at pixel " + std::to_string(i);
@@ -50,7 +50,7 @@ std::string judge_image(const Image& image, const StabilityCase& c, const Expect
       if (error > max_rel || (std::isinf(error) && worst.empty())) {
         max_rel = error;
         char text[96];
-        std::snprintf(text, sizeof text, " (pixel %zu channel %d: %.7g, exact %.7Lg)", i, ch, pixel[ch], c.exact[i][ch]);
+        std::snprintf(text, sizeof text, " (pixel %zu channel %d: %.7g, exact %.7Lg)", i, ch, pixel[ch], c.exact_values()[i][ch]);
         worst = text;
       }
     }
@@ -139,7 +139,7 @@ CaseOutcome run_case(PhongShader& shader, const StabilityCase& c, bool specialis
   outcome.name = c.name;
   outcome.group = c.group;
   outcome.what = c.what;
-  outcome.exact_probe = c.exact.at(0)[0];
+  outcome.exact_probe = c.exact_values().at(0)[0];
   const Image reference = reference_image(c.scene, c.gbuffer);
   outcome.reference_probe = reference.pixel(0)[0];
   outcome.reference_passed = judge_image(reference, c, c.reference, outcome.reference_rel).empty();

@@ -2,6 +2,7 @@
 // One entry of the stability catalogue: a tiny scene and G-buffer, what each precision variant
 // must produce, and why. The catalogue is data; run_catalogue (stability/run_catalogue.h) runs it.
 #include <cstddef>
+#include <functional>
 #include <limits>
 #include <string>
 #include <vector>
@@ -57,8 +58,17 @@ struct StabilityCase {
   Scene scene;
   GBuffer gbuffer;
   // The oracle's value of every pixel (exact_shade_pixel), or a value the case defines
-  // analytically (pow(0, 0) = 1, back-facing = 0); the report shows pixel 0's red channel.
-  std::vector<ExactColor> exact;
+  // analytically (pow(0, 0) = 1, back-facing = 0); the report shows pixel 0's red channel. Read
+  // through exact_values(). Where they are costly (quadratures over an emitter, the GGX tables'
+  // integrals) a case leaves `exact` empty and sets `oracle`, which exact_values() calls the first time:
+  // every test process builds the whole catalogue to name its tests, and computing every case's values
+  // there took 5.6 s of each process.
+  mutable std::vector<ExactColor> exact;
+  std::function<std::vector<ExactColor>()> oracle;
+  const std::vector<ExactColor>& exact_values() const {
+    if (exact.empty() && oracle) exact = oracle();
+    return exact;
+  }
   // Relative errors are taken against max(|exact|, abs_floor): 1e-6 of the scene's brightest light
   // or ambient colour, since shading is linear in them (the product's 1e-6 floor at unit lights).
   double abs_floor = 1e-6;
