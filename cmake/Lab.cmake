@@ -21,6 +21,16 @@ phongcl_lab_room(stability DEPS phongcl_reference phongcl_report)
 # Principled BSDF v2's GGX tables of kernels/principled_tables.h.
 phongcl_lab_room(fit DEPS phongcl_reference OpenMP::OpenMP_CXX)
 
+# The sanitizer build's references and fits go uninstrumented, at -O2: the sanitizers are there for the
+# product's code (and the tests', the peers', the stability runner's), while the double quadratures the
+# tests hold the kernels to ran many times slower under ASan, one test (88 s) past ctest's 600 s.
+option(PHONGCL_LAB_UNSANITIZED "Build the lab's reference and fit rooms without sanitizers (the sanitizer build)" OFF)
+if(PHONGCL_LAB_UNSANITIZED)
+  foreach(room reference fit)
+    target_compile_options(phongcl_${room} PRIVATE -fno-sanitize=all -O2)
+  endforeach()
+endif()
+
 add_library(phongcl_lab INTERFACE)
 target_link_libraries(phongcl_lab INTERFACE phongcl_reference phongcl_report phongcl_peers phongcl_stability phongcl_fit)
 
