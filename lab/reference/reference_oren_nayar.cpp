@@ -8,6 +8,8 @@
 
 #include <glm/geometric.hpp>
 
+#include "reference/simpson.h"
+
 namespace phongcl {
 
 using std::numbers::pi;
@@ -15,15 +17,6 @@ using std::numbers::pi;
 namespace {
 
 double single_a(double sigma) { return 1.0 / (pi + sigma * (pi / 2.0 - 2.0 / 3.0)); }
-
-// Simpson's rule of f over [low, high] with `intervals` (even) intervals.
-template <typename F>
-double simpson(F f, double low, double high, int intervals) {
-  const double h = (high - low) / intervals;
-  double sum = f(low) + f(high);
-  for (int k = 1; k < intervals; ++k) sum += (k % 2 ? 4.0 : 2.0) * f(low + k * h);
-  return sum * h / 3.0;
-}
 
 // Pi times Ems: OpenPBR's multiple scattering's albedo-dependent factor (bsdf_oren_nayar_param).
 glm::dvec3 multiple_factor(double sigma, const glm::dvec3& albedo) {

@@ -2,6 +2,7 @@
 
 #include "reference/reference_area.h"
 #include "reference/reference_principled_v2.h"
+#include "reference/simpson.h"
 
 #include <algorithm>
 #include <cmath>
@@ -28,18 +29,13 @@ double reference_smith_masking(double alpha, double mu) {
   // [atan(a / alpha), pi / 2]: Simpson's rule with 2048 intervals, error far below 1e-9 there.
   const double a = mu / std::sqrt(std::max(1.0 - mu * mu, 0.0));
   if (!std::isfinite(a)) return 1.0;
-  const double start = std::atan(a / alpha), end = pi / 2.0;
-  const int intervals = 2048;
-  const double h = (end - start) / intervals;
   auto integrand = [&](double phi) {
     const double x = alpha * std::tan(phi);
     const double marginal = 1.0 / (2.0 * alpha * std::pow(1.0 + x * x / (alpha * alpha), 1.5));
     const double dx = alpha / (std::cos(phi) * std::cos(phi));
     return (x - a) * marginal * dx;  // at pi / 2 (cos 6e-17 in double) this is its limit, alpha / 2
   };
-  double sum = integrand(start) + integrand(end);
-  for (int k = 1; k < intervals; ++k) sum += (k % 2 ? 4.0 : 2.0) * integrand(start + k * h);
-  const double lambda = sum * h / 3.0 / a;
+  const double lambda = simpson(integrand, std::atan(a / alpha), pi / 2.0, 2048) / a;
   return 1.0 / (1.0 + lambda);
 }
 

@@ -11,6 +11,7 @@
 #include <glm/geometric.hpp>
 
 #include "reference/reference_oren_nayar.h"
+#include "reference/simpson.h"
 
 namespace phongcl {
 
@@ -138,13 +139,8 @@ Lobes compute_lobes(const Material& m, double mu) {
   const double e = table_albedo(m.roughness, mu), e_avg = table_average(m.roughness);
   lobes.missing = (1.0 - e) / e;
   auto boost = [&](const glm::dvec3& fss) { return 1.0 + fss * e_avg / (1.0 - fss * (1.0 - e_avg)) * lobes.missing; };
-  glm::dvec3 metal_mean(0.0);
-  const int intervals = 512;
-  for (int k = 0; k <= intervals; ++k) {
-    const double c = static_cast<double>(k) / intervals;
-    metal_mean += (k == 0 || k == intervals ? 1.0 : k % 2 ? 4.0 : 2.0) * 2.0 * c * f82_fresnel(c, lobes.metal_f0, lobes.metal_b);
-  }
-  metal_mean /= 3.0 * intervals;
+  const glm::dvec3 metal_mean =
+      simpson([&](double c) { return 2.0 * c * f82_fresnel(c, lobes.metal_f0, lobes.metal_b); }, 0.0, 1.0, 512);
   lobes.metal_scale = lobes.metallic * boost(metal_mean);
   const double eta = lobes.eta, index_f0 = reference_dielectric_fresnel(1.0, eta);
   const double fit = (eta - 1.0) / (4.08567 + 1.00071 * eta);
