@@ -71,7 +71,6 @@ def main():
     scene.cycles.seed = args.seed
     bpy.ops.wm.save_as_mainfile(filepath=os.path.join(out, "area.blend"))
     export_scene.render_gbuffer(scene, os.path.join(out, "gbuffer.exr"), 4)
-    scene.cycles.samples = args.samples
     export_scene.write_json(export_scene.scene_json(scene, "quadratic", "gbuffer.exr"), os.path.join(out, "scene.json"))
     shadow_scene.render_each_light(scene, out)
 

@@ -130,7 +130,6 @@ def main():
     document = export_scene.scene_json(scene, "quadratic", "gbuffer.exr", objects, out)
     export_scene.write_json(document, os.path.join(out, "scene.json"))
 
-    scene.cycles.samples = args.samples
     scene.render.filepath = os.path.join(out, "render.exr")
     bpy.ops.render.render(write_still=True)
 

@@ -471,9 +471,11 @@ def multilayer_exr(settings):
 
 
 def render_gbuffer(scene, path, samples=None):
-    """Renders the active view layer's passes to a multilayer EXR at `path` with Cycles on the CPU."""
+    """Renders the active view layer's passes to a multilayer EXR at `path` with Cycles on the CPU, at
+    `samples` per pixel if given (the scene's own count is kept for the renders that follow)."""
     scene.render.engine = "CYCLES"
     scene.cycles.device = "CPU"
+    kept = scene.cycles.samples
     if samples:
         scene.cycles.samples = samples
     enable_passes(bpy.context.view_layer)
@@ -482,6 +484,7 @@ def render_gbuffer(scene, path, samples=None):
     scene.render.use_file_extension = False
     scene.render.filepath = os.path.abspath(path)
     bpy.ops.render.render(write_still=True)
+    scene.cycles.samples = kept
 
 
 def parse(argv):

@@ -109,7 +109,8 @@ def build_scene(width, height, seed, area=False, samples=1):
     scene.cycles.max_bounces = 0
     # Below the threshold Cycles plays Russian roulette with a light's sample: 0 or 0.01, not the light.
     scene.cycles.light_sampling_threshold = 0.0
-    scene.cycles.pixel_filter_type, scene.cycles.filter_width = "BOX", 0.01
+    # Pixel centres, as phongcl shades them: a Gaussian of 0.01 px (Cycles widens a box to one pixel).
+    scene.cycles.pixel_filter_type, scene.cycles.filter_width = "GAUSSIAN", 0.01
     layer = bpy.context.view_layer
     layer.use_pass_diffuse_direct = True
     layer.use_pass_glossy_direct = True
@@ -129,7 +130,9 @@ def main():
     out = os.path.abspath(args.out)
     os.makedirs(out, exist_ok=True)
     scene = build_scene(args.width, args.height, args.seed, args.area, args.samples)
-    export_scene.render_gbuffer(scene, os.path.join(out, "gbuffer.exr"))
+    # One sample: the filter is a point, so the passes are the pixel centre's whatever the count; the
+    # area lights' samples are for the light renders.
+    export_scene.render_gbuffer(scene, os.path.join(out, "gbuffer.exr"), samples=1)
     document = export_scene.scene_json(scene, "quadratic", "gbuffer.exr", None)
     export_scene.write_json(document, os.path.join(out, "scene.json"))
     shadow_scene.render_each_light(scene, out)

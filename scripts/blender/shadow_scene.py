@@ -153,7 +153,7 @@ def main():
     else:
         scene = build_shadow_scene(args.width, args.height)
     bpy.ops.wm.save_as_mainfile(filepath=os.path.join(out, "shadows.blend"))
-    export_scene.render_gbuffer(scene, os.path.join(out, "gbuffer.exr"))
+    export_scene.render_gbuffer(scene, os.path.join(out, "gbuffer.exr"), samples=1)  # the centre: the filter is a point
     objects = export_scene.export_geometry(scene, os.path.join(out, "meshes"), out)
     document = export_scene.scene_json(scene, "quadratic", "gbuffer.exr", objects)
     export_scene.write_json(document, os.path.join(out, "scene.json"))
