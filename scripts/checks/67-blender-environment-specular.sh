@@ -12,28 +12,12 @@
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 check=67-blender-environment-specular
-phongcl="${PHONGCL_BUILD_DIR:-build}/phongcl"
-[ -x "$phongcl" ] || { echo "$check: no $phongcl (build first)" >&2; exit 1; }
-blender="${BLENDER:-blender}"
-command -v "$blender" >/dev/null || { echo "$check: $blender is not installed (scripts/setup.sh blender)" >&2; exit 1; }
-read -r width height <<<"${PHONGCL_ENVIRONMENT_CHECK_SIZE:-160 120}"
-samples="${PHONGCL_ENVIRONMENT_CHECK_SAMPLES:-256}"
-
-work="${PHONGCL_ENVIRONMENT_CHECK_KEEP:-}"
-if [ -z "$work" ]; then
-  work="$(mktemp -d)"
-  trap 'rm -rf "$work"' EXIT
-fi
-mkdir -p "$work"
-export POCL_CACHE_DIR="${POCL_CACHE_DIR:-$work/pocl-cache}"
+source scripts/checks/lib/environment_check.sh
 
 summary=()
 for world in uniform hdri; do
   dir="$work/$world"
-  "$blender" -b --factory-startup --python-exit-code 1 --python scripts/blender/environment_scene.py -- --out "$dir" \
-    --world "$world" --materials principled --width "$width" --height "$height" --samples "$samples" \
-    >"$work/blender-$world.log" 2>&1 ||
-    { tail -20 "$work/blender-$world.log"; echo "$check: environment_scene.py --world $world failed" >&2; exit 1; }
+  render_environment "$world" --materials principled
   python3 - "$dir/scene.json" <<'PY'
 import json, sys
 scene = json.load(open(sys.argv[1]))

@@ -18,20 +18,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 check=67-blender-environment
-phongcl="${PHONGCL_BUILD_DIR:-build}/phongcl"
-[ -x "$phongcl" ] || { echo "$check: no $phongcl (build first)" >&2; exit 1; }
-blender="${BLENDER:-blender}"
-command -v "$blender" >/dev/null || { echo "$check: $blender is not installed (scripts/setup.sh blender)" >&2; exit 1; }
-read -r width height <<<"${PHONGCL_ENVIRONMENT_CHECK_SIZE:-160 120}"
-samples="${PHONGCL_ENVIRONMENT_CHECK_SAMPLES:-256}"
-
-work="${PHONGCL_ENVIRONMENT_CHECK_KEEP:-}"
-if [ -z "$work" ]; then
-  work="$(mktemp -d)"
-  trap 'rm -rf "$work"' EXIT
-fi
-mkdir -p "$work"
-export POCL_CACHE_DIR="${POCL_CACHE_DIR:-$work/pocl-cache}"
+source scripts/checks/lib/environment_check.sh
 
 agreement() {  # world directory, mode, --at-least percentage: prints the percentage
   "$phongcl" agreement --cycles "$1/render.exr" --shaded "$1/$2.aov.exr" --unshadowed "$1/off.aov.exr" --at-least "$3" \
@@ -42,9 +29,7 @@ agreement() {  # world directory, mode, --at-least percentage: prints the percen
 summary=()
 for world in uniform hdri; do
   dir="$work/$world"
-  "$blender" -b --factory-startup --python-exit-code 1 --python scripts/blender/environment_scene.py -- --out "$dir" \
-    --world "$world" --width "$width" --height "$height" --samples "$samples" >"$work/blender-$world.log" 2>&1 ||
-    { tail -20 "$work/blender-$world.log"; echo "$check: environment_scene.py --world $world failed" >&2; exit 1; }
+  render_environment "$world"
 
   python3 - "$dir/scene.json" "$world" <<'PY'
 import json, sys
