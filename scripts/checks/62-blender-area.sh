@@ -8,15 +8,9 @@
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 check=62-blender-area
+keep="${PHONGCL_AREA_CHECK_KEEP:-}"
 source scripts/checks/lib/blender_check.sh
 samples="${PHONGCL_AREA_CHECK_SAMPLES:-1024}"
-if [ -n "${PHONGCL_AREA_CHECK_KEEP:-}" ]; then
-  rm -rf "$work"
-  trap - EXIT
-  work="$PHONGCL_AREA_CHECK_KEEP"
-  mkdir -p "$work"
-  export POCL_CACHE_DIR="$work/pocl-cache"
-fi
 
 "$blender" -b --factory-startup --python-exit-code 1 --python scripts/blender/area_scene.py -- --out "$work" --samples "$samples" \
   >"$work/blender.log" 2>&1 || { tail -20 "$work/blender.log"; echo "$check: area_scene.py failed" >&2; exit 1; }

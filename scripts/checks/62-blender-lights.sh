@@ -10,19 +10,8 @@
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 check=62-blender-lights
-build="${PHONGCL_BUILD_DIR:-build}"
-phongcl="$build/phongcl"
-[ -x "$phongcl" ] || { echo "$check: no $phongcl (build first)" >&2; exit 1; }
-blender="${BLENDER:-blender}"  # BLENDER=/var/cache/phongcl/bin/blender5 checks another version (scripts/setup.sh blender5)
-command -v "$blender" >/dev/null || { echo "$check: $blender is not installed (scripts/setup.sh blender)" >&2; exit 1; }
-
-work="${PHONGCL_LIGHT_CHECK_KEEP:-}"
-if [ -z "$work" ]; then
-  work="$(mktemp -d)"
-  trap 'rm -rf "$work"' EXIT
-fi
-mkdir -p "$work"
-export POCL_CACHE_DIR="${POCL_CACHE_DIR:-$work/pocl-cache}"
+keep="${PHONGCL_LIGHT_CHECK_KEEP:-}"
+source scripts/checks/lib/blender_check.sh
 
 "$blender" -b --factory-startup --python-exit-code 1 --python scripts/blender/light_scene.py -- --out "$work" >"$work/blender.log" 2>&1 ||
   { tail -20 "$work/blender.log"; echo "$check: light_scene.py failed" >&2; exit 1; }

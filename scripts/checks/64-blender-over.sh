@@ -15,13 +15,8 @@
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 check=64-blender-over
+keep="${PHONGCL_OVER_CHECK_KEEP:-}"
 source scripts/checks/lib/blender_check.sh
-if [ -n "${PHONGCL_OVER_CHECK_KEEP:-}" ]; then
-  rm -rf "$work"
-  trap - EXIT
-  work="$PHONGCL_OVER_CHECK_KEEP"
-  mkdir -p "$work"
-fi
 fail() { echo "$check: FAILED: $*" >&2; exit 1; }
 
 "$blender" -b --factory-startup --python-exit-code 1 --python scripts/blender/over_scene.py -- --out "$work" \

@@ -20,21 +20,12 @@
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 check=68-blender-principled
-build="${PHONGCL_BUILD_DIR:-build}"
-phongcl="$build/phongcl"
-lab="$build/phongcl-lab"
-for tool in "$phongcl" "$lab"; do [ -x "$tool" ] || { echo "$check: no $tool (build first)" >&2; exit 1; }; done
-blender="${BLENDER:-blender}"
-command -v "$blender" >/dev/null || { echo "$check: $blender is not installed (scripts/setup.sh blender)" >&2; exit 1; }
+keep="${PHONGCL_PRINCIPLED_CHECK_KEEP:-}"
+source scripts/checks/lib/blender_check.sh
+lab="${PHONGCL_BUILD_DIR:-build}/phongcl-lab"
+[ -x "$lab" ] || { echo "$check: no $lab (build first)" >&2; exit 1; }
 release=$("$blender" --version 2>/dev/null | sed -n 's/^Blender \([0-9]*\.[0-9]*\).*/\1/p' | head -1)
-
-work="${PHONGCL_PRINCIPLED_CHECK_KEEP:-}"
-if [ -z "$work" ]; then
-  work="$(mktemp -d)"
-  trap 'rm -rf "$work"' EXIT
-fi
 mkdir -p "$work/seed1" "$work/area" "$work/area/seed1"
-export POCL_CACHE_DIR="${POCL_CACHE_DIR:-$work/pocl-cache}"
 
 render() {  # directory, then principled_scene.py's options
   local dir=$1; shift

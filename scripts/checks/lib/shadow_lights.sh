@@ -1,20 +1,10 @@
 # Sourced by 65-blender-shadows.sh and 65-blender-soft-shadows.sh (in lib/ so that test.sh does not
-# run it as a check), after `check=<name>`: the built phongcl, an installed Blender, a work
-# directory (PHONGCL_SHADOW_CHECK_KEEP=DIR keeps it; else removed on exit) and the size
-# (PHONGCL_SHADOW_CHECK_SIZE="320 240"; default 160x120); then shadow_scene.py's render, each light
-# shaded alone, and `phongcl agreement` over them.
-phongcl="${PHONGCL_BUILD_DIR:-build}/phongcl"
-[ -x "$phongcl" ] || { echo "$check: no $phongcl (build first)" >&2; exit 1; }
-blender="${BLENDER:-blender}"  # BLENDER=/var/cache/phongcl/bin/blender5 checks another version (scripts/setup.sh blender5)
-command -v "$blender" >/dev/null || { echo "$check: $blender is not installed (scripts/setup.sh blender)" >&2; exit 1; }
+# run it as a check), after `check=<name>`: blender_check.sh's tools and work directory
+# (PHONGCL_SHADOW_CHECK_KEEP=DIR keeps it) and the size (PHONGCL_SHADOW_CHECK_SIZE="320 240"; default
+# 160x120); then shadow_scene.py's render, each light shaded alone, and `phongcl agreement` over them.
+keep="${PHONGCL_SHADOW_CHECK_KEEP:-}"
+source scripts/checks/lib/blender_check.sh
 read -r width height <<<"${PHONGCL_SHADOW_CHECK_SIZE:-160 120}"
-work="${PHONGCL_SHADOW_CHECK_KEEP:-}"
-if [ -z "$work" ]; then
-  work="$(mktemp -d)"
-  trap 'rm -rf "$work"' EXIT
-fi
-mkdir -p "$work"
-export POCL_CACHE_DIR="${POCL_CACHE_DIR:-$work/pocl-cache}"
 
 # shadow_scene.py at width x height into $work; arguments go to it (--soft --samples N --unshadowed).
 render_shadow_scene() {
