@@ -161,10 +161,9 @@ const timer = setInterval(() => {
     const answered = () => !s.sending && !s.dirty && m.edits.every((e) => e.version === -1 || e.shown !== undefined);
     const report = () => {
       if (!answered() && performance.now() - end < settleSeconds * 1000) { setTimeout(report, 50); return; }
-      const frames = m.displayed.filter((d) => d.time >= start && d.time <= end).length;
       const shown = m.displayed.filter((d) => d.time >= start && d.time <= end);
       const mean = (key) => shown.reduce((sum, d) => sum + d[key], 0) / Math.max(1, shown.length);
-      done({ fps: frames / ((end - start) / 1000), latencies: m.latencies.slice(), events: m.edits.length,
+      done({ fps: shown.length / ((end - start) / 1000), latencies: m.latencies.slice(), events: m.edits.length,
              width: view.width, height: view.height, wait_ms: mean('wait_ms'), transfer_ms: mean('transfer_ms'),
              decode_ms: mean('decode_ms') });
     };
